@@ -1,0 +1,51 @@
+// Material points stored as structure-of-arrays (one std::vector per field).
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/types.hpp"
+#include "material/state.hpp"
+
+namespace skred {
+
+template <int D> struct Particles {
+  // Thesis §2.2: position, velocity, mass and initial volume of each material point.
+  std::vector<Vec<D>> x;       // current position x_p
+  std::vector<Vec<D>> x_ref;   // position at the start of the stage (displacement = x - x_ref)
+  std::vector<Vec<D>> v;       // velocity v_p
+  std::vector<double> mass;    // m_p
+  std::vector<double> volume0; // V_p^0 (current volume V_p = det(F_p) V_p^0)
+  std::vector<Vec<D>> half0;   // voxel half-lengths l_p^0 in the reference configuration
+  std::vector<Mat<D>> F;       // deformation gradient F_p (Thesis eq. 3.1-3.5)
+  std::vector<Sym3> stress;    // Cauchy stress incl. the out-of-plane component (Voigt)
+  std::vector<std::int32_t> material;  // index into the scenario's material table
+  std::vector<std::int32_t> body;      // index into the scenario's body table
+  std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
+
+  // Per-step scratch: the deformation-gradient increment of the current step. F_p stays at
+  // its start-of-step value while the weighting functions are evaluated, and is updated once
+  // at the end of the step (F^{k+1} = dF F^k, Thesis eq. 3.2).
+  std::vector<Mat<D>> dF;
+
+  std::size_t size() const { return x.size(); }
+
+  void reserve(std::size_t n) {
+    x.reserve(n); x_ref.reserve(n); v.reserve(n); mass.reserve(n); volume0.reserve(n);
+    half0.reserve(n); F.reserve(n); stress.reserve(n); material.reserve(n); body.reserve(n);
+    state.reserve(n); dF.reserve(n);
+  }
+
+  // Appends one undeformed, stress-free material point.
+  void add(const Vec<D>& pos, const Vec<D>& vel, double m, double vol, const Vec<D>& half,
+           int mat, int bod) {
+    x.push_back(pos); x_ref.push_back(pos); v.push_back(vel); mass.push_back(m);
+    volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
+    stress.push_back(Sym3::Zero()); material.push_back(mat); body.push_back(bod);
+    state.push_back(PointState{}); dF.push_back(Mat<D>::Identity());
+  }
+
+  // Current volume V_p = det(F_p) V_p^0.
+  double volume(std::size_t p) const { return F[p].determinant() * volume0[p]; }
+};
+
+}  // namespace skred

@@ -1,0 +1,48 @@
+#include "io/series_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <iterator>
+
+#include "io/atomic_file.hpp"
+
+namespace skred {
+
+const char* SeriesWriter::header() {
+  return "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,"
+         "mean_speed,max_speed,momentum_x,momentum_y,num_particles\n";
+}
+
+SeriesWriter::SeriesWriter(const std::filesystem::path& file) : file_(file) {
+  rows_.reserve(4096);
+  text_.reserve(4096 * 160);
+}
+
+SeriesWriter::~SeriesWriter() {
+  if (!dirty_) return;
+  try {
+    flush();
+  } catch (...) {
+  }
+}
+
+void SeriesWriter::add(const SeriesRow& r) {
+  rows_.push_back(r);
+  const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation - r.gravity_work;
+  // "{}" is the shortest representation that reads back to the same double.
+  fmt::format_to(std::back_inserter(text_), "{},{},{},{},{},{},{},{},{},{},{},{}\n", r.step,
+                 r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
+                 r.plastic_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
+                 r.momentum_y, r.num_particles);
+  dirty_ = true;
+}
+
+void SeriesWriter::flush() {
+  write_file_atomically(file_, [&](std::ostream& os) {
+    os << header();
+    os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
+  });
+  dirty_ = false;
+}
+
+}  // namespace skred

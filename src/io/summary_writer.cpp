@@ -1,0 +1,101 @@
+#include "io/summary_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "io/atomic_file.hpp"
+
+namespace skred {
+
+namespace {
+
+// Length of the valid UTF-8 sequence starting at s[i], or 0 if it is not valid (overlong
+// forms, surrogates and code points above U+10FFFF are rejected, as RFC 3629 requires).
+std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
+  const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(s[k]); };
+  const unsigned char c = byte(i);
+  std::size_t len;
+  unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
+  if (c < 0x80) return 1;
+  if (c >= 0xC2 && c <= 0xDF) len = 2;
+  else if (c >= 0xE0 && c <= 0xEF) {
+    len = 3;
+    if (c == 0xE0) lo = 0xA0;
+    if (c == 0xED) hi = 0x9F;
+  } else if (c >= 0xF0 && c <= 0xF4) {
+    len = 4;
+    if (c == 0xF0) lo = 0x90;
+    if (c == 0xF4) hi = 0x8F;
+  } else {
+    return 0;
+  }
+  if (i + len > s.size()) return 0;
+  if (byte(i + 1) < lo || byte(i + 1) > hi) return 0;
+  for (std::size_t k = 2; k < len; ++k)
+    if (byte(i + k) < 0x80 || byte(i + k) > 0xBF) return 0;
+  return len;
+}
+
+std::string json_number(double x) {
+  return std::isfinite(x) ? fmt::format("{}", x) : std::string("null");
+}
+
+}  // namespace
+
+std::string json_string(const std::string& s) {
+  std::string r = "\"";
+  r.reserve(s.size() + 2);
+  for (std::size_t i = 0; i < s.size();) {
+    const unsigned char c = static_cast<unsigned char>(s[i]);
+    switch (c) {
+      case '"': r += "\\\""; break;
+      case '\\': r += "\\\\"; break;
+      case '\b': r += "\\b"; break;
+      case '\f': r += "\\f"; break;
+      case '\n': r += "\\n"; break;
+      case '\r': r += "\\r"; break;
+      case '\t': r += "\\t"; break;
+      default:
+        if (c < 0x20) {
+          r += fmt::format("\\u{:04x}", c);
+        } else if (const std::size_t len = utf8_sequence_length(s, i); len > 0) {
+          r.append(s, i, len);
+          i += len;
+          continue;
+        } else {
+          r += "\\ufffd";  // replacement character for a byte that is not valid UTF-8
+        }
+    }
+    ++i;
+  }
+  r += '"';
+  return r;
+}
+
+void write_summary_json(const std::filesystem::path& file, const Summary& s) {
+  const std::string text = fmt::format(
+      "{{\n"
+      "  \"status\": {},\n"
+      "  \"message\": {},\n"
+      "  \"steps\": {},\n"
+      "  \"simulated_time\": {},\n"
+      "  \"end_time\": {},\n"
+      "  \"particles\": {},\n"
+      "  \"cells\": {},\n"
+      "  \"wall_seconds\": {},\n"
+      "  \"particle_updates_per_second\": {},\n"
+      "  \"threads\": {},\n"
+      "  \"scenario\": {},\n"
+      "  \"interpolation\": {},\n"
+      "  \"scheme\": {},\n"
+      "  \"time_step\": {}\n"
+      "}}\n",
+      json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
+      json_number(s.end_time), s.particles, s.cells, json_number(s.wall_seconds),
+      json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
+      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step));
+  write_file_atomically(file, [&](std::ostream& os) { os << text; });
+}
+
+}  // namespace skred

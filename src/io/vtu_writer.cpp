@@ -1,0 +1,218 @@
+#include "io/vtu_writer.hpp"
+
+#include <Eigen/LU>  // determinant(); core/types.hpp includes only Eigen/Core
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <bit>
+#include <cstdint>
+#include <cstring>
+#include <functional>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+
+#include "io/atomic_file.hpp"
+
+namespace skred {
+
+namespace {
+
+constexpr std::uint8_t kVtkQuad = 9;
+constexpr std::size_t kChunk = 1 << 15;  // particles converted per buffer fill
+
+// One binary block of the appended section. Every block holds a fixed number of bytes per
+// material point (points: 4 corners x 3 coordinates; connectivity: 4 ids; cell data: one
+// tuple), so all blocks are filled chunk by chunk over the particles.
+struct Block {
+  const char* section;  // "Points", "Cells" or "CellData"
+  std::string name;
+  const char* type;
+  int components;
+  std::size_t value_bytes;
+  std::size_t values_per_particle;
+  std::vector<std::string> component_names;
+  std::function<void(std::size_t begin, std::size_t end, unsigned char* out)> fill;
+
+  std::size_t bytes_per_particle() const { return value_bytes * values_per_particle; }
+};
+
+template <class T> inline unsigned char* put(unsigned char* out, T value) {
+  std::memcpy(out, &value, sizeof value);
+  return out + sizeof value;
+}
+
+inline unsigned char* put_sym3(unsigned char* out, const Sym3& s) {
+  std::memcpy(out, s.data(), 6 * sizeof(double));
+  return out + 6 * sizeof(double);
+}
+
+// A cell-data block of `components` doubles per particle computed by f(p, out) -> out.
+template <class F>
+Block doubles(std::string name, int components, F f, std::vector<std::string> names = {}) {
+  return Block{"CellData", std::move(name), "Float64", components, sizeof(double),
+               static_cast<std::size_t>(components), std::move(names),
+               [f](std::size_t b, std::size_t e, unsigned char* out) {
+                 for (std::size_t p = b; p < e; ++p) out = f(p, out);
+               }};
+}
+
+template <class T>
+Block integers(std::string name, const char* type, const std::vector<T>& values) {
+  return Block{"CellData", std::move(name), type, 1, sizeof(T), 1, {},
+               [&values](std::size_t b, std::size_t e, unsigned char* out) {
+                 std::memcpy(out, values.data() + b, (e - b) * sizeof(T));
+               }};
+}
+
+std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extra) {
+  const std::vector<std::string> voigt = {"xx", "yy", "zz", "xy", "yz", "xz"};
+  std::vector<Block> blocks;
+
+  blocks.push_back({"Points", "", "Float64", 3, sizeof(double), 12, {},
+                    [&P](std::size_t b, std::size_t e, unsigned char* out) {
+                      static constexpr double sx[4] = {-1.0, 1.0, 1.0, -1.0};
+                      static constexpr double sy[4] = {-1.0, -1.0, 1.0, 1.0};
+                      for (std::size_t p = b; p < e; ++p) {
+                        const Vec<2>& l0 = P.half0[p];
+                        for (int k = 0; k < 4; ++k) {
+                          const Vec<2> c = P.x[p] + P.F[p] * Vec<2>(sx[k] * l0[0], sy[k] * l0[1]);
+                          out = put(put(put(out, c[0]), c[1]), 0.0);
+                        }
+                      }
+                    }});
+  blocks.push_back({"Cells", "connectivity", "Int64", 1, 8, 4, {},
+                    [](std::size_t b, std::size_t e, unsigned char* out) {
+                      for (std::size_t i = 4 * b; i < 4 * e; ++i)
+                        out = put(out, static_cast<std::int64_t>(i));
+                    }});
+  blocks.push_back({"Cells", "offsets", "Int64", 1, 8, 1, {},
+                    [](std::size_t b, std::size_t e, unsigned char* out) {
+                      for (std::size_t p = b; p < e; ++p)
+                        out = put(out, static_cast<std::int64_t>(4 * (p + 1)));
+                    }});
+  blocks.push_back({"Cells", "types", "UInt8", 1, 1, 1, {},
+                    [](std::size_t b, std::size_t e, unsigned char* out) {
+                      std::fill(out, out + (e - b), kVtkQuad);
+                    }});
+
+  blocks.push_back(doubles("velocity", 3, [&P](std::size_t p, unsigned char* o) {
+    return put(put(put(o, P.v[p][0]), P.v[p][1]), 0.0);
+  }));
+  blocks.push_back(doubles("displacement", 3, [&P](std::size_t p, unsigned char* o) {
+    const Vec<2> u = P.x[p] - P.x_ref[p];
+    return put(put(put(o, u[0]), u[1]), 0.0);
+  }));
+  blocks.push_back(doubles(
+      "stress", 6, [&P](std::size_t p, unsigned char* o) { return put_sym3(o, P.stress[p]); },
+      voigt));
+  blocks.push_back(doubles("mean_stress_p", 1, [&P](std::size_t p, unsigned char* o) {
+    return put(o, mean_stress(P.stress[p]));
+  }));
+  blocks.push_back(doubles("deviatoric_stress_q", 1, [&P](std::size_t p, unsigned char* o) {
+    return put(o, deviatoric_stress(P.stress[p]));
+  }));
+  blocks.push_back(doubles("volume", 1, [&P](std::size_t p, unsigned char* o) {
+    return put(o, P.volume(p));
+  }));
+  blocks.push_back(doubles("det_F", 1, [&P](std::size_t p, unsigned char* o) {
+    return put(o, P.F[p].determinant());
+  }));
+  blocks.push_back(doubles("plastic_shear_strain", 1, [&P](std::size_t p, unsigned char* o) {
+    return put(o, P.state[p].plastic_shear_strain);
+  }));
+  blocks.push_back({"CellData", "yielding", "UInt8", 1, 1, 1, {},
+                    [&P](std::size_t b, std::size_t e, unsigned char* out) {
+                      for (std::size_t p = b; p < e; ++p) *out++ = P.state[p].yielding;
+                    }});
+  blocks.push_back(integers("material_id", "Int32", P.material));
+  blocks.push_back(integers("body_id", "Int32", P.body));
+
+  if (extra.smoothed_stress) {
+    const std::vector<Sym3>& s = *extra.smoothed_stress;
+    blocks.push_back(doubles(
+        "smoothed_stress", 6, [&s](std::size_t p, unsigned char* o) { return put_sym3(o, s[p]); },
+        voigt));
+    blocks.push_back(doubles("smoothed_p", 1, [&s](std::size_t p, unsigned char* o) {
+      return put(o, mean_stress(s[p]));
+    }));
+    blocks.push_back(doubles("smoothed_q", 1, [&s](std::size_t p, unsigned char* o) {
+      return put(o, deviatoric_stress(s[p]));
+    }));
+  }
+  return blocks;
+}
+
+void check_sizes(const Particles<2>& P, const ParticleFields& extra) {
+  const std::size_t n = P.size();
+  const std::size_t sizes[] = {P.x_ref.size(), P.v.size(),     P.volume0.size(),
+                               P.half0.size(), P.F.size(),     P.stress.size(),
+                               P.material.size(), P.body.size(), P.state.size()};
+  for (std::size_t s : sizes)
+    if (s != n) throw std::invalid_argument("write_particles_vtu: particle arrays differ in size");
+  if (extra.smoothed_stress && extra.smoothed_stress->size() != n)
+    throw std::invalid_argument(fmt::format(
+        "write_particles_vtu: smoothed_stress has {} entries for {} particles",
+        extra.smoothed_stress->size(), n));
+}
+
+std::string xml_header(const std::vector<Block>& blocks, std::size_t n) {
+  constexpr bool little = std::endian::native == std::endian::little;
+  std::string h;
+  auto out = std::back_inserter(h);
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" "
+                 "header_type=\"UInt64\">\n"
+                 "  <UnstructuredGrid>\n"
+                 "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
+                 little ? "LittleEndian" : "BigEndian", 4 * n, n);
+  std::size_t offset = 0;
+  const char* open = nullptr;
+  for (const Block& b : blocks) {
+    if (!open || std::strcmp(open, b.section) != 0) {
+      if (open) fmt::format_to(out, "      </{}>\n", open);
+      open = b.section;
+      fmt::format_to(out, "      <{}>\n", open);
+    }
+    fmt::format_to(out, "        <DataArray type=\"{}\"", b.type);
+    if (!b.name.empty()) fmt::format_to(out, " Name=\"{}\"", b.name);
+    if (b.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", b.components);
+    for (std::size_t c = 0; c < b.component_names.size(); ++c)
+      fmt::format_to(out, " ComponentName{}=\"{}\"", c, b.component_names[c]);
+    fmt::format_to(out, " format=\"appended\" offset=\"{}\"/>\n", offset);
+    offset += sizeof(std::uint64_t) + n * b.bytes_per_particle();
+  }
+  if (open) fmt::format_to(out, "      </{}>\n", open);
+  h += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
+  return h;
+}
+
+}  // namespace
+
+void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
+                         const ParticleFields& extra) {
+  check_sizes(P, extra);
+  const std::size_t n = P.size();
+  const std::vector<Block> blocks = make_blocks(P, extra);
+  const std::string header = xml_header(blocks, n);
+
+  write_file_atomically(file, [&](std::ostream& os) {
+    os.write(header.data(), static_cast<std::streamsize>(header.size()));
+    std::vector<unsigned char> buffer;
+    for (const Block& b : blocks) {
+      const std::uint64_t bytes = n * b.bytes_per_particle();
+      os.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
+      buffer.resize(std::min(n, kChunk) * b.bytes_per_particle());
+      for (std::size_t begin = 0; begin < n && os; begin += kChunk) {
+        const std::size_t end = std::min(n, begin + kChunk);
+        b.fill(begin, end, buffer.data());
+        os.write(reinterpret_cast<const char*>(buffer.data()),
+                 static_cast<std::streamsize>((end - begin) * b.bytes_per_particle()));
+      }
+    }
+    os << "\n  </AppendedData>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace skred

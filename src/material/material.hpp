@@ -1,0 +1,38 @@
+// A material: density, elastic constants and a constitutive model. The stress update is a
+// pure function of (stress, strain increment, state) -> (stress, state), with no particle,
+// grid or parser in its signature. Plastic models (Mohr-Coulomb, Tresca, von Mises) add a
+// Model value, a parameter block and a branch in update_stress, and nothing else.
+#pragma once
+#include <string>
+
+#include "core/types.hpp"
+#include "material/elastic.hpp"
+#include "material/state.hpp"
+
+namespace skred {
+
+enum class Model { LinearElastic };
+
+struct Material {
+  std::string name;
+  Model model = Model::LinearElastic;
+  double density = 0.0;  // rho_0 [kg/m^3]
+  ElasticParams elastic;
+
+  // P-wave speed used for the CFL time step.
+  double wave_speed() const { return std::sqrt(elastic.constrained_modulus() / density); }
+};
+
+// Updates `stress` by the strain increment `deps` (Thesis eq. 4.2-4.3: S^{k+1} = sigma^k +
+// C : d_eps) and returns the plastic work dissipated per unit volume (zero when elastic).
+inline double update_stress(const Material& m, Sym3& stress, const Sym3& deps, PointState& state) {
+  switch (m.model) {
+    case Model::LinearElastic:
+      stress += elastic_increment(m.elastic, deps);
+      state.yielding = 0;
+      return 0.0;
+  }
+  return 0.0;
+}
+
+}  // namespace skred

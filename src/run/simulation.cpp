@@ -1,0 +1,170 @@
+#include "run/simulation.hpp"
+
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+
+#include "io/pvd_writer.hpp"
+#include "io/series_writer.hpp"
+#include "io/summary_writer.hpp"
+#include "io/vtu_writer.hpp"
+#include "scenario/build.hpp"
+
+namespace skred {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double scenario_time_step(const Scenario& s) {
+  if (s.time_step > 0.0) return s.time_step;
+  double c = 0.0;
+  for (const Material& m : s.materials) c = std::max(c, m.wave_speed());
+  double v = 0.0;
+  for (const Body& b : s.bodies) v = std::max(v, b.velocity.norm());
+  return s.cfl * s.cell_size / (c + v);
+}
+
+SolverSettings<2> solver_settings(const Scenario& s) {
+  SolverSettings<2> st;
+  st.interpolation = s.interpolation;
+  st.quadrature_points = s.quadrature_points;
+  st.scheme = s.scheme;
+  st.dt = scenario_time_step(s);
+  st.gravity = s.gravity;
+  st.gravity_ramp_time = s.gravity_ramp_time;
+  st.boundaries = s.boundaries;
+  return st;
+}
+
+namespace {
+
+std::string hms(double seconds) {
+  if (!std::isfinite(seconds) || seconds < 0) return "--:--";
+  const long s = std::lround(seconds);
+  return s >= 3600 ? fmt::format("{}:{:02}:{:02}", s / 3600, (s / 60) % 60, s % 60)
+                   : fmt::format("{:02}:{:02}", s / 60, s % 60);
+}
+
+SeriesRow series_row(const ExplicitSolver<2>& solver, long particles) {
+  const auto t = solver.totals();
+  const auto& e = solver.energy();
+  SeriesRow r{};
+  r.step = solver.steps();
+  r.time = solver.time();
+  r.kinetic_energy = t.kinetic_energy;
+  r.strain_energy = e.strain_energy;
+  r.gravity_work = e.gravity_work;
+  r.plastic_dissipation = e.plastic_dissipation;
+  r.mean_speed = t.mean_speed;
+  r.max_speed = t.max_speed;
+  r.momentum_x = t.momentum[0];
+  r.momentum_y = t.momentum[1];
+  r.num_particles = particles;
+  return r;
+}
+
+}  // namespace
+
+RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
+  Particles<2> particles = build_particles(s);
+  GridGeometry<2> grid;
+  grid.origin = s.origin;
+  grid.h = s.cell_size;
+  grid.cells = s.cells;
+  ExplicitSolver<2> solver(grid, particles, s.materials, solver_settings(s), opt.threads);
+
+  fs::create_directories(outdir);
+  PvdWriter pvd(outdir);
+  SeriesWriter series(outdir / "series.csv");
+  std::vector<Sym3> smoothed;
+  int frame = 0;
+  auto write_frame = [&]() {
+    solver.smoothed_stress(smoothed);
+    const std::string name = fmt::format("particles_{:06}.vtu", frame++);
+    ParticleFields extra;
+    extra.smoothed_stress = &smoothed;
+    write_particles_vtu(outdir / name, particles, extra);
+    pvd.add(solver.time(), name);
+    series.flush();
+  };
+
+  const double dt = solver.dt();
+  const long total_steps = static_cast<long>(std::ceil(s.end_time / dt - 1e-9));
+  const long n = static_cast<long>(particles.size());
+  const bool tty = isatty(fileno(stderr));
+  RunResult res;
+  res.particles = n;
+
+  series.add(series_row(solver, n));
+  write_frame();
+  double next_output = s.output_interval, next_series = s.series_interval;
+  const auto start = Clock::now();
+  double compute_seconds = 0.0;
+  auto last_report = start;
+  StepStatus status;
+  while (solver.steps() < total_steps) {
+    const auto t0 = Clock::now();
+    status = solver.step();
+    compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+    if (!status.ok) break;
+    const double t = solver.time();
+    const bool last = solver.steps() == total_steps;
+    if (t >= next_series - 0.5 * dt || last) {
+      series.add(series_row(solver, n));
+      while (next_series <= t + 0.5 * dt) next_series += s.series_interval;
+    }
+    if (t >= next_output - 0.5 * dt || last) {
+      write_frame();
+      while (next_output <= t + 0.5 * dt) next_output += s.output_interval;
+    }
+    const auto now = Clock::now();
+    if (opt.progress && (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last)) {
+      last_report = now;
+      const double elapsed = std::chrono::duration<double>(now - start).count();
+      const double frac = static_cast<double>(solver.steps()) / total_steps;
+      const double pups = compute_seconds > 0 ? n * solver.steps() / compute_seconds : 0.0;
+      fmt::print(stderr, "{}step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
+                 tty ? "\r" : "", solver.steps(), t, 100 * frac, hms(elapsed / frac - elapsed),
+                 pups / 1e6, tty && !last ? "" : "\n");
+      std::fflush(stderr);
+    }
+  }
+  res.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  res.steps = solver.steps();
+  res.simulated_time = solver.time();
+  res.particle_updates_per_second = compute_seconds > 0 ? n * res.steps / compute_seconds : 0.0;
+  res.completed = status.ok;
+  if (!status.ok) {
+    const long p = status.particle;
+    res.message = fmt::format(
+        "unstable at step {} (t = {:.6g} s): particle {} of body '{}' at ({:.6g}, {:.6g}): {}",
+        solver.steps() + 1, solver.time(), p, s.bodies[particles.body[p]].name, particles.x[p][0],
+        particles.x[p][1], status.reason);
+    series.add(series_row(solver, n));
+    write_frame();  // the last state, for diagnosis
+  }
+  series.flush();
+
+  Summary sum{};
+  sum.status = status.ok ? "completed" : "unstable";
+  sum.message = res.message;
+  sum.steps = res.steps;
+  sum.simulated_time = res.simulated_time;
+  sum.end_time = s.end_time;
+  sum.particles = n;
+  sum.cells = static_cast<long>(s.cells[0]) * s.cells[1];
+  sum.wall_seconds = res.wall_seconds;
+  sum.particle_updates_per_second = res.particle_updates_per_second;
+  sum.threads = solver.threads();
+  sum.scenario = s.source;
+  sum.interpolation = to_string(s.interpolation);
+  sum.scheme = to_string(s.scheme);
+  sum.time_step = dt;
+  write_summary_json(outdir / "summary.json", sum);
+  return res;
+}
+
+}  // namespace skred

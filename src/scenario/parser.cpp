@@ -1,0 +1,330 @@
+// Scenario file parser: TOML text -> validated Scenario. The schema is documented in
+// docs/scenario.md; keep the two in step.
+#include <fmt/format.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "scenario/build.hpp"
+#include "scenario/scenario.hpp"
+#include "scenario/toml_reader.hpp"
+
+namespace skred {
+
+const char* to_string(Interpolation i) {
+  switch (i) {
+    case Interpolation::Linear: return "linear";
+    case Interpolation::Gimp: return "gimp";
+    case Interpolation::GimpQuadrature: return "gimp-quadrature";
+    case Interpolation::Bspline: return "bspline";
+  }
+  return "?";
+}
+
+const char* to_string(StressScheme s) {
+  switch (s) {
+    case StressScheme::USF: return "usf";
+    case StressScheme::USL: return "usl";
+    case StressScheme::Averaged: return "averaged";
+  }
+  return "?";
+}
+
+const char* to_string(BoundaryKind b) {
+  switch (b) {
+    case BoundaryKind::Free: return "free";
+    case BoundaryKind::Fixed: return "fixed";
+    case BoundaryKind::Roller: return "roller";
+    case BoundaryKind::Friction: return "friction";
+  }
+  return "?";
+}
+
+namespace {
+
+using scenario_detail::Choices;
+using scenario_detail::fail;
+using scenario_detail::Location;
+using scenario_detail::location_of;
+using scenario_detail::node_vec2;
+using scenario_detail::Range;
+using scenario_detail::TableReader;
+
+constexpr int kMaxCells = 100000;
+constexpr int kMaxParticlesPerCell = 8;
+
+const char* axis_name(int d) { return d == 0 ? "x" : "y"; }
+
+void parse_grid(const TableReader& root, Scenario& s) {
+  const TableReader g = *root.table("grid", true);
+  g.allow_only({"origin", "size", "cell_size"});
+  s.origin = g.vec2("origin", Vec<2>::Zero());
+  const Vec<2> size = g.vec2("size");
+  for (int d = 0; d < 2; ++d)
+    if (!(size[d] > 0.0))
+      g.fail_at("size", fmt::format("the {} extent must be > 0, got {}", axis_name(d), size[d]));
+  const double h = g.number("cell_size", Range::positive());
+  for (int d = 0; d < 2; ++d) {
+    const double ratio = size[d] / h;
+    if (ratio < 0.5)
+      g.fail_at("cell_size", fmt::format("cell_size {} is larger than the grid size {} along {}",
+                                         h, size[d], axis_name(d)));
+    if (ratio > kMaxCells + 0.5)
+      g.fail_at("cell_size", fmt::format("gives {:.0f} cells along {}; at most {} are allowed",
+                                         ratio, axis_name(d), kMaxCells));
+    const double n = std::round(ratio);
+    if (std::abs(n * h - size[d]) > 1e-9 * size[d])
+      g.fail_at("size", fmt::format("the {} extent {} is not a whole multiple of cell_size {} "
+                                    "({} cells)", axis_name(d), size[d], h, ratio));
+    s.cells[static_cast<std::size_t>(d)] = static_cast<int>(n);
+  }
+  s.cell_size = h;
+}
+
+void parse_materials(const TableReader& root, Scenario& s) {
+  const auto tables = root.array_of_tables("material");
+  if (tables.empty())
+    fail(s.source, root.where("material"), "material",
+         "at least one [[material]] table is required");
+  std::map<std::string, Location> seen;
+  for (const auto& t : tables) {
+    t.allow_only({"name", "model", "density", "young", "poisson"});
+    Material m;
+    m.name = t.string("name");
+    if (m.name.empty()) t.fail_at("name", "must not be empty");
+    if (const auto it = seen.find(m.name); it != seen.end())
+      t.fail_at("name", fmt::format("duplicate material name \"{}\" (first defined on line {})",
+                                    m.name, it->second.line));
+    seen.emplace(m.name, t.where("name"));
+    m.model = t.choice<Model>("model", {{"linear-elastic", Model::LinearElastic}});
+    m.density = t.number("density", Range::positive());
+    m.elastic.young = t.number("young", Range::positive());
+    m.elastic.poisson = t.number("poisson", Range{0.0, 0.5, false, true});
+    s.materials.push_back(std::move(m));
+  }
+}
+
+// High corner of the grid and the tolerance for "inside the grid" tests.
+Vec<2> grid_high(const Scenario& s) { return s.origin + s.cell_size * Vec<2>(s.cells[0], s.cells[1]); }
+double grid_tolerance(const Scenario& s) { return 1e-9 * (grid_high(s) - s.origin).maxCoeff(); }
+
+bool inside_grid(const Scenario& s, const Vec<2>& x) {
+  const double tol = grid_tolerance(s);
+  return (x.array() >= s.origin.array() - tol).all() && (x.array() <= grid_high(s).array() + tol).all();
+}
+
+std::string grid_bounds(const Scenario& s) {
+  const Vec<2> hi = grid_high(s);
+  return fmt::format("[{}, {}] x [{}, {}]", s.origin[0], hi[0], s.origin[1], hi[1]);
+}
+
+// Checks that point x lies within the grid; `what` names it in the message.
+void check_inside(const TableReader& t, std::string_view key, const Scenario& s, const Vec<2>& x,
+                  const std::string& what) {
+  if (!inside_grid(s, x))
+    t.fail_at(key, fmt::format("{} ({}, {}) lies outside the grid {}", what, x[0], x[1],
+                               grid_bounds(s)));
+}
+
+Shape parse_rectangle(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "min", "max"});
+  Rectangle r{b.vec2("min"), b.vec2("max")};
+  if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
+    b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components",
+                                 r.max[0], r.max[1], r.min[0], r.min[1]));
+  check_inside(b, "min", s, r.min, "min corner");
+  check_inside(b, "max", s, r.max, "max corner");
+  return r;
+}
+
+Shape parse_polygon(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "vertices"});
+  if (!b.has("vertices")) b.fail_missing("vertices");
+  const auto* arr = b.find("vertices")->as_array();
+  if (!arr) b.fail_type("vertices", "an array of [x, y] pairs");
+  if (arr->size() < 3)
+    b.fail_at("vertices", fmt::format("a polygon needs at least 3 vertices, got {}", arr->size()));
+  Polygon p;
+  for (std::size_t k = 0; k < arr->size(); ++k) {
+    const std::string key = fmt::format("{}[{}]", b.key("vertices"), k);
+    const Vec<2> v = node_vec2(*arr->get(k), b.source(), key, b.where("vertices"));
+    if (!inside_grid(s, v))
+      fail(b.source(), location_of(arr->get(k)->source(), b.where("vertices")), key,
+           fmt::format("vertex ({}, {}) lies outside the grid {}", v[0], v[1], grid_bounds(s)));
+    p.vertices.push_back(v);
+  }
+  Vec<2> lo = p.vertices[0], hi = p.vertices[0];
+  for (const auto& v : p.vertices) lo = lo.cwiseMin(v), hi = hi.cwiseMax(v);
+  const Vec<2> span = hi - lo;
+  if (!(std::abs(polygon_area(p)) > 1e-12 * span.squaredNorm()))
+    b.fail_at("vertices", "the polygon has zero area");
+  return p;
+}
+
+Shape parse_disc(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "center", "radius"});
+  Disc c{b.vec2("center"), b.number("radius", Range::positive())};
+  check_inside(b, "center", s, c.center, "centre");
+  const Vec<2> r = Vec<2>::Constant(c.radius);
+  if (!inside_grid(s, c.center - r) || !inside_grid(s, c.center + r))
+    b.fail_at("radius", fmt::format("the disc of radius {} around ({}, {}) extends outside the "
+                                    "grid {}", c.radius, c.center[0], c.center[1],
+                                    grid_bounds(s)));
+  return c;
+}
+
+void parse_bodies(const TableReader& root, Scenario& s) {
+  const auto tables = root.array_of_tables("body");
+  if (tables.empty())
+    fail(s.source, root.where("body"), "body", "at least one [[body]] table is required");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const TableReader& t = tables[i];
+    enum class Kind { Rectangle, Polygon, Disc };
+    const Kind kind = t.choice<Kind>(
+        "shape", {{"rectangle", Kind::Rectangle}, {"polygon", Kind::Polygon}, {"disc", Kind::Disc}});
+    Body b;
+    switch (kind) {
+      case Kind::Rectangle: b.shape = parse_rectangle(t, s); break;
+      case Kind::Polygon: b.shape = parse_polygon(t, s); break;
+      case Kind::Disc: b.shape = parse_disc(t, s); break;
+    }
+    b.name = t.string("name", fmt::format("body-{}", i));
+    const std::string mat = t.string("material");
+    b.material = -1;
+    for (std::size_t m = 0; m < s.materials.size(); ++m)
+      if (s.materials[m].name == mat) b.material = static_cast<int>(m);
+    if (b.material < 0) {
+      std::string names;
+      for (const auto& m : s.materials) names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", m.name);
+      t.fail_at("material", fmt::format("no [[material]] is named \"{}\"; defined: {}", mat, names));
+    }
+    b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
+    b.velocity = t.vec2("velocity", Vec<2>::Zero());
+    if (!has_points(s, b))
+      t.fail_at("shape", fmt::format("body \"{}\" contains no material point: it covers no "
+                                     "sub-cell centre (spacing {} m); enlarge it, refine the grid "
+                                     "or raise particles_per_cell", b.name,
+                                     s.cell_size / b.particles_per_cell));
+    s.bodies.push_back(std::move(b));
+  }
+}
+
+void parse_gravity(const TableReader& root, Scenario& s) {
+  const auto g = root.table("gravity", false);
+  if (!g) return;
+  g->allow_only({"acceleration", "ramp_time"});
+  s.gravity = g->vec2("acceleration", Vec<2>::Zero());
+  s.gravity_ramp_time = g->number("ramp_time", Range::non_negative(), 0.0);
+}
+
+BoundarySide parse_side(const TableReader& bt, std::string_view side) {
+  constexpr const char* allowed =
+      "\"free\", \"fixed\", \"roller\", { type = \"friction\", friction = MU }";
+  const toml::node& n = *bt.find(side);
+  if (n.is_string()) {
+    const Choices<BoundaryKind> choices = {{"free", BoundaryKind::Free},
+                                           {"fixed", BoundaryKind::Fixed},
+                                           {"roller", BoundaryKind::Roller}};
+    const std::string v = bt.string(side);
+    if (v == to_string(BoundaryKind::Friction))
+      bt.fail_at(side, "\"friction\" needs a coefficient: write { type = \"friction\", "
+                       "friction = 0.6 }");
+    for (const auto& [name, kind] : choices)
+      if (v == name) return BoundarySide{kind, 0.0};
+    bt.fail_at(side, fmt::format("unknown value \"{}\"; allowed values: {}", v, allowed));
+  }
+  if (!n.is_table()) bt.fail_type(side, "a string or an inline table { type = ... }");
+  const TableReader t = *bt.table(side, true);
+  const BoundaryKind kind = t.choice<BoundaryKind>(
+      "type", {{"free", BoundaryKind::Free}, {"fixed", BoundaryKind::Fixed},
+               {"roller", BoundaryKind::Roller}, {"friction", BoundaryKind::Friction}});
+  if (kind != BoundaryKind::Friction) {
+    if (t.has("friction"))
+      t.fail_at("friction", "only allowed together with type = \"friction\"");
+    t.allow_only({"type"});
+    return BoundarySide{kind, 0.0};
+  }
+  t.allow_only({"type", "friction"});
+  return BoundarySide{kind, t.number("friction", Range::non_negative())};
+}
+
+void parse_boundary(const TableReader& root, Scenario& s) {
+  const auto b = root.table("boundary", false);
+  if (!b) return;
+  b->allow_only({"x_min", "x_max", "y_min", "y_max"});
+  const char* sides[4] = {"x_min", "x_max", "y_min", "y_max"};
+  for (std::size_t k = 0; k < 4; ++k)
+    if (b->has(sides[k])) s.boundaries[k] = parse_side(*b, sides[k]);
+}
+
+void parse_solver(const TableReader& root, Scenario& s) {
+  const TableReader t = *root.table("solver", true);
+  t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl"});
+  const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
+  s.interpolation = t.choice<Interpolation>(
+      "interpolation", {I(Interpolation::Linear), I(Interpolation::Gimp),
+                        I(Interpolation::GimpQuadrature), I(Interpolation::Bspline)},
+      Interpolation::Gimp);
+  s.quadrature_points = static_cast<int>(t.integer("quadrature_points", 1, 3, 2));
+  const auto S = [](StressScheme x) { return std::pair{to_string(x), x}; };
+  s.scheme = t.choice<StressScheme>(
+      "scheme", {S(StressScheme::USF), S(StressScheme::USL), S(StressScheme::Averaged)},
+      StressScheme::Averaged);
+  s.end_time = t.number("end_time", Range::positive());
+  s.time_step = t.has("time_step") ? t.number("time_step", Range::positive()) : 0.0;
+  s.cfl = t.number("cfl", Range{0.0, 1.0, true, false}, 0.3);
+}
+
+void parse_output(const TableReader& root, Scenario& s) {
+  const auto o = root.table("output", false);
+  s.output_interval = s.end_time / 20.0;
+  if (o) {
+    o->allow_only({"interval", "series_interval"});
+    s.output_interval = o->number("interval", Range::positive(), s.output_interval);
+  }
+  s.series_interval = s.output_interval / 10.0;
+  if (o) s.series_interval = o->number("series_interval", Range::positive(), s.series_interval);
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& source) {
+  toml::table doc;
+  try {
+    doc = toml::parse(std::string_view(text), std::string_view(source));
+  } catch (const toml::parse_error& e) {
+    const Location at = location_of(e.source(), Location{1, 1});
+    throw ScenarioError(fmt::format("{}:{}:{}: syntax error: {}", source, at.line, at.column,
+                                    e.description()));
+  }
+  const TableReader root(doc, "", source);
+  root.allow_only({"title", "grid", "material", "body", "gravity", "boundary", "solver", "output"});
+  Scenario s;
+  s.source = source;
+  s.title = root.string("title", std::string());
+  parse_grid(root, s);
+  parse_materials(root, s);
+  parse_bodies(root, s);
+  parse_gravity(root, s);
+  parse_boundary(root, s);
+  parse_solver(root, s);
+  parse_output(root, s);
+  return s;
+}
+
+Scenario load_scenario(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    throw ScenarioError(fmt::format("{}: cannot open scenario file: {}", path,
+                                    std::strerror(errno)));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw ScenarioError(fmt::format("{}: cannot read scenario file", path));
+  return parse_scenario(text.str(), path);
+}
+
+}  // namespace skred

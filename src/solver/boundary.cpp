@@ -1,0 +1,91 @@
+#include "solver/boundary.hpp"
+
+#include <cmath>
+
+namespace skred {
+
+namespace {
+
+// End-of-step velocity at a node on `wall`, given the trial velocity without the wall.
+template <int D> Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
+  switch (wall.side.kind) {
+    case BoundaryKind::Fixed: return Vec<D>::Zero();
+    case BoundaryKind::Roller: vnew[wall.axis] = 0.0; return vnew;
+    case BoundaryKind::Friction: {
+      const double vn = vnew[wall.axis] * wall.sign;  // > 0: would move into the wall
+      if (vn <= 0.0) return vnew;                     // separating: no contact, no friction
+      // The wall's normal reaction m vn / dt stops the motion into it; friction is bounded
+      // by mu times that reaction (Thesis eq. 5.8). If it can stop the tangential motion
+      // within the step the node sticks (eq. 5.11), otherwise full friction acts against
+      // the sliding direction (eq. 5.9-5.10). In velocity terms the node's mass cancels.
+      Vec<D> vt = vnew;
+      vt[wall.axis] = 0.0;
+      const double speed = vt.norm();
+      const double stop = wall.side.friction * vn;
+      return (speed <= stop) ? Vec<D>::Zero() : Vec<D>(vt * (1.0 - stop / speed));
+    }
+    case BoundaryKind::Free: return vnew;
+  }
+  return vnew;
+}
+
+}  // namespace
+
+
+template <int D>
+Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides) {
+  const double tol = 1e-9 * g.h;
+  for (std::size_t i = 0; i < g.node_count(); ++i) {
+    const auto ij = g.unflatten(i);
+    BoundaryNode b;
+    b.node = i;
+    for (int d = 0; d < D; ++d) {
+      const double r = g.node_coordinate(d, ij[d]);
+      const BoundarySide& lo = sides[2 * d];
+      const BoundarySide& hi = sides[2 * d + 1];
+      if (lo.kind != BoundaryKind::Free && r <= tol) b.walls[b.count++] = {d, -1.0, lo};
+      if (hi.kind != BoundaryKind::Free && r >= g.h * g.cells[d] - tol) b.walls[b.count++] = {d, +1.0, hi};
+    }
+    if (b.count > 0) nodes_.push_back(b);
+  }
+}
+
+template <int D> void Boundaries<D>::constrain_velocity(std::vector<Vec<D>>& velocity) const {
+  for (const BoundaryNode& b : nodes_) {
+    Vec<D>& v = velocity[b.node];
+    for (int w = 0; w < b.count; ++w) {
+      const Wall& wall = b.walls[w];
+      switch (wall.side.kind) {
+        case BoundaryKind::Fixed: v.setZero(); break;
+        case BoundaryKind::Roller: v[wall.axis] = 0.0; break;
+        case BoundaryKind::Friction:
+          if (v[wall.axis] * wall.sign > 0.0) v[wall.axis] = 0.0;
+          break;
+        case BoundaryKind::Free: break;
+      }
+    }
+  }
+}
+
+template <int D>
+void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, const Vec<D>& gravity, double dt) const {
+  for (const BoundaryNode& b : nodes_) {
+    const std::size_t i = b.node;
+    const double m = grid.mass[i];
+    if (m <= 0.0) continue;
+    const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
+    Vec<D> vnew = v_free + dt / m * (grid.force[i] + m * gravity);  // trial v^{k+1}
+    for (int w = 0; w < b.count; ++w) {
+      const Wall& wall = b.walls[w];
+      vnew = wall_velocity<D>(wall, vnew);
+    }
+    grid.accel[i] = (vnew - v_free) / dt;
+    grid.velocity_move[i] = 0.5 * (grid.velocity[i] + vnew);
+  }
+}
+
+
+template class Boundaries<2>;
+template class Boundaries<3>;
+
+}  // namespace skred

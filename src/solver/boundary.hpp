@@ -1,0 +1,50 @@
+// Boundary conditions on the sides of the grid: free, fixed, roller (no normal motion) and
+// frictional contact without penalty parameters (Thesis eq. 5.8-5.11, Post eq. 52-55).
+#pragma once
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "scenario/scenario.hpp"
+#include "solver/grid_fields.hpp"
+
+namespace skred {
+
+// One wall a node lies on (or beyond).
+struct Wall {
+  int axis = 0;       // axis normal to the wall
+  double sign = 1.0;  // outward normal: -1 on the low side, +1 on the high side
+  BoundarySide side;
+};
+
+// A node on (or beyond) one or more walls (corner nodes touch several).
+struct BoundaryNode {
+  std::size_t node = 0;
+  std::array<Wall, 3> walls{};
+  int count = 0;
+};
+
+template <int D> class Boundaries {
+ public:
+  Boundaries() = default;
+  // Sides in the order x_min, x_max, y_min, y_max[, z_min, z_max].
+  Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides);
+
+  // Velocity conditions: fixed -> v = 0, roller -> v_n = 0, friction -> no motion into
+  // the wall (separation allowed).
+  void constrain_velocity(std::vector<Vec<D>>& velocity) const;
+
+  // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
+  // velocity, v* = (m v)/m the unconstrained one and f the total force, sets v^{k+1}, then
+  // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
+  // velocity_move = (v^k + v^{k+1}) / 2.
+  void constrain_end_of_step(GridFields<D>& grid, const Vec<D>& gravity, double dt) const;
+
+  const std::vector<BoundaryNode>& nodes() const { return nodes_; }
+
+ private:
+  std::vector<BoundaryNode> nodes_;
+};
+
+}  // namespace skred

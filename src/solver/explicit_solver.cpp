@@ -1,0 +1,386 @@
+// The explicit MPM/GIMP time step. step() reads like the algorithm lists of Thesis §4.4;
+// each phase is one member function with one tight, OpenMP-parallel loop. Particle-to-grid
+// transfers are lock-free: thread 0 scatters into the grid, every other thread into its own
+// buffer, and a parallel reduction over the nodes adds the buffers up.
+#include "solver/explicit_solver.hpp"
+
+#include <omp.h>
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+
+#include "shape/bspline.hpp"
+#include "shape/gimp.hpp"
+#include "shape/gimp_quadrature.hpp"
+#include "shape/linear.hpp"
+#include "solver/gravity.hpp"
+#include "solver/stress_update.hpp"
+
+namespace skred {
+
+template <int D>
+ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
+                                  std::vector<Material> materials, SolverSettings<D> settings,
+                                  int threads)
+    : grid_(grid), particles_(particles), materials_(std::move(materials)), settings_(settings),
+      threads_(std::max(1, threads)) {
+  grid_.bspline_dofs = settings_.interpolation == Interpolation::Bspline;
+  boundaries_ = Boundaries<D>(grid_, settings_.boundaries);
+  const std::size_t n = grid_.node_count();
+  fields_.resize(n);
+  buffers_.resize(static_cast<std::size_t>(threads_ - 1));
+  for (auto& b : buffers_) b.resize(n);
+}
+
+template <int D> template <class F> decltype(auto) ExplicitSolver<D>::dispatch(F&& f) {
+  switch (settings_.interpolation) {
+    case Interpolation::Linear: return f(LinearKernel<D>{});
+    case Interpolation::Gimp: return f(GimpKernel<D>{});
+    case Interpolation::Bspline: return f(BsplineKernel<D>{});
+    case Interpolation::GimpQuadrature:
+      if (settings_.quadrature_points == 1) return f(GimpQuadratureKernel<D, 1>{});
+      if (settings_.quadrature_points == 3) return f(GimpQuadratureKernel<D, 3>{});
+      return f(GimpQuadratureKernel<D, 2>{});
+  }
+  return f(GimpKernel<D>{});
+}
+
+template <int D> StepStatus ExplicitSolver<D>::step() {
+  return dispatch([this](const auto& kernel) { return step_with(kernel); });
+}
+
+// Thesis §4.4: update-stress-first, update-stress-last, or the averaged scheme, which
+// splits the stress update into two half steps around the momentum update.
+template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
+  const double dt = settings_.dt;
+  gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_);
+  status_ = StepStatus{};
+  if (!map_mass_momentum(kernel)) return status_;
+  nodal_velocity(fields_.velocity);
+  switch (settings_.scheme) {
+    case StressScheme::USF:
+      update_stress_and_map_forces(kernel, dt);
+      update_grid();
+      update_particle_velocity(kernel, /*remap=*/false, /*move=*/true);
+      break;
+    case StressScheme::USL:
+    case StressScheme::Averaged: {
+      const double dt_stress = settings_.scheme == StressScheme::USL ? dt : 0.5 * dt;
+      update_stress_and_map_forces(kernel, settings_.scheme == StressScheme::USL ? 0.0 : dt_stress);
+      update_grid();
+      update_particle_velocity(kernel, /*remap=*/true, /*move=*/false);
+      nodal_velocity(fields_.velocity_new);
+      update_stress_and_move(kernel, dt_stress, /*stress=*/true);
+      break;
+    }
+  }
+  if (!status_.ok) return status_;  // the failing step is steps() + 1, starting at time()
+  time_ += dt;
+  ++steps_;
+  return status_;
+}
+
+// Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, m_i v_i = sum m_p v_p N_ip.
+template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
+  const StencilOffsets<D, K::S> offsets(grid_);
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);
+  std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
+  long bad = LONG_MAX;
+#pragma omp parallel num_threads(threads_) reduction(min : bad)
+  {
+    const int t = omp_get_thread_num();
+    double* mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
+    Vec<D>* mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+    typename K::StencilT st;
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) {
+      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) {
+        bad = std::min(bad, p);
+        continue;
+      }
+      const double m = P.mass[p];
+      const Vec<D> mv = m * P.v[p];
+      for (int k = 0; k < K::StencilT::size; ++k) {
+        const std::size_t i = st.base + offsets.off[k];
+        mass[i] += st.w[k] * m;
+        mom[i] += st.w[k] * mv;
+      }
+    }
+  }
+  reduce_scatter(true, fields_.momentum);
+  if (bad != LONG_MAX) {
+    status_ = {false, bad, "material point left the grid"};
+    return false;
+  }
+  return true;
+}
+
+template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<Vec<D>>& target) {
+  if (buffers_.empty()) return;
+  const long nn = static_cast<long>(fields_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long i = 0; i < nn; ++i) {
+    for (auto& b : buffers_) {
+      if (mass) {
+        fields_.mass[i] += b.mass[i];
+        b.mass[i] = 0.0;
+      }
+      target[i] += b.vec[i];
+      b.vec[i].setZero();
+    }
+  }
+}
+
+// Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions.
+template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& velocity) {
+  const long nn = static_cast<long>(fields_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long i = 0; i < nn; ++i) {
+    const double m = fields_.mass[i];
+    velocity[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m) : Vec<D>::Zero();
+  }
+  boundaries_.constrain_velocity(velocity);
+}
+
+// Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) when
+// dt_stress > 0, then the internal forces f_i = -sum sigma_p V_p grad N_ip (eq. 2.51).
+template <int D>
+template <class K>
+void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_stress) {
+  const StencilOffsets<D, K::S> offsets(grid_);
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  std::fill(fields_.force.begin(), fields_.force.end(), Vec<D>::Zero());
+  const Vec<D>* vel = fields_.velocity.data();
+  double work = 0.0, dissipation = 0.0;
+#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation)
+  {
+    const int t = omp_get_thread_num();
+    Vec<D>* force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
+    typename K::StencilT st;
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) {
+      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;  // reported by the mass map
+      double volume = P.volume0[p] * P.F[p].determinant();
+      if (dt_stress > 0.0) {
+        Mat<D> grad_v = Mat<D>::Zero();
+        for (int k = 0; k < K::StencilT::size; ++k)
+          grad_v.noalias() += vel[st.base + offsets.off[k]] * st.grad[k].transpose();
+        const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress,
+                                              volume * P.dF[p].determinant(), P.stress[p],
+                                              P.state[p], P.dF[p]);
+        work += r.strain_work;
+        dissipation += r.dissipation;
+      }
+      volume *= P.dF[p].determinant();
+      const Sym3& s = P.stress[p];
+      Mat<D> sv;
+      if constexpr (D == 2) {
+        sv << s[0], s[3], s[3], s[1];
+      } else {
+        sv = to_matrix(s);
+      }
+      sv *= -volume;
+      for (int k = 0; k < K::StencilT::size; ++k) force[st.base + offsets.off[k]] += sv * st.grad[k];
+    }
+  }
+  reduce_scatter(false, fields_.force);
+  energy_.strain_energy += work;
+  energy_.plastic_dissipation += dissipation;
+}
+
+// Thesis eq. 2.49 with lumped mass: a_i = (f_i^int + m_i g) / m_i (eq. 2.52 with uniform
+// gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq. 31). Then the
+// boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
+template <int D> void ExplicitSolver<D>::update_grid() {
+  const long nn = static_cast<long>(fields_.size());
+  const Vec<D> g = gravity_now_;
+  const double half_dt = 0.5 * settings_.dt;
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long i = 0; i < nn; ++i) {
+    const double m = fields_.mass[i];
+    const Vec<D> a = m > 0.0 ? Vec<D>(fields_.force[i] / m + g) : Vec<D>::Zero();
+    fields_.accel[i] = a;
+    fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
+  }
+  boundaries_.constrain_end_of_step(fields_, g, settings_.dt);
+}
+
+// Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
+// mapped back to the grid (USL and averaged schemes, step 6 of §4.4). With move (USF),
+// the point is also moved (eq. 2.55 / Post eq. 31) and F updated (eq. 3.2).
+template <int D>
+template <class K>
+void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bool move) {
+  const StencilOffsets<D, K::S> offsets(grid_);
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  const double dt = settings_.dt;
+  if (remap) std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
+  const Vec<D>* acc = fields_.accel.data();
+  const Vec<D>* vel = fields_.velocity_move.data();
+  Vec<D> mdx = Vec<D>::Zero();
+  long bad = LONG_MAX;
+#pragma omp declare reduction(vadd : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
+#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad)
+  {
+    const int t = omp_get_thread_num();
+    Vec<D>* mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+    typename K::StencilT st;
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) {
+      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
+      Vec<D> a = Vec<D>::Zero(), vmove = Vec<D>::Zero();
+      for (int k = 0; k < K::StencilT::size; ++k) {
+        const std::size_t i = st.base + offsets.off[k];
+        a += st.w[k] * acc[i];
+        if (move) vmove += st.w[k] * vel[i];
+      }
+      P.v[p] += dt * a;
+      if (remap) {
+        const Vec<D> mv = P.mass[p] * P.v[p];
+        for (int k = 0; k < K::StencilT::size; ++k) mom[st.base + offsets.off[k]] += st.w[k] * mv;
+      }
+      if (move) {
+        const Vec<D> dx = dt * vmove;
+        P.x[p] += dx;
+        P.F[p] = P.dF[p] * P.F[p];
+        P.dF[p].setIdentity();
+        mdx += P.mass[p] * dx;
+        if (!grid_.inside(P.x[p]) || !std::isfinite(P.v[p].sum() + P.stress[p].sum()) ||
+            !(P.F[p].determinant() > 0.0))
+          bad = std::min(bad, p);
+      }
+    }
+  }
+  if (remap) reduce_scatter(false, fields_.momentum);
+  if (move) {
+    energy_.gravity_work += gravity_now_.dot(mdx);
+    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
+  }
+}
+
+// Second half of USL / averaged (steps 7-8 of §4.4): strain increment from the remapped
+// velocities, stress update, then the position update x_p += dt sum N_ip (v_i + dt/2 a_i)
+// (eq. 2.55, Post eq. 31, with the velocity_move of update_grid) and F^{k+1} = dF F^k (eq. 3.2).
+template <int D>
+template <class K>
+StepStatus ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress, bool stress) {
+  const StencilOffsets<D, K::S> offsets(grid_);
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  const double dt = settings_.dt;
+  const Vec<D>* vel = fields_.velocity_move.data();
+  const Vec<D>* vnew = fields_.velocity_new.data();
+  double work = 0.0, dissipation = 0.0;
+  Vec<D> mdx = Vec<D>::Zero();
+  long bad = LONG_MAX;
+#pragma omp declare reduction(vadd2 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
+#pragma omp parallel for num_threads(threads_) schedule(static) \
+    reduction(+ : work, dissipation) reduction(vadd2 : mdx) reduction(min : bad)
+  for (long p = 0; p < n; ++p) {
+    typename K::StencilT st;
+    if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
+    Mat<D> grad_v = Mat<D>::Zero();
+    Vec<D> vmove = Vec<D>::Zero();
+    for (int k = 0; k < K::StencilT::size; ++k) {
+      const std::size_t i = st.base + offsets.off[k];
+      grad_v.noalias() += vnew[i] * st.grad[k].transpose();
+      vmove += st.w[k] * vel[i];
+    }
+    if (stress) {
+      const double volume = P.volume0[p] * P.F[p].determinant() * P.dF[p].determinant();
+      const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress, volume,
+                                            P.stress[p], P.state[p], P.dF[p]);
+      work += r.strain_work;
+      dissipation += r.dissipation;
+    }
+    const Vec<D> dx = dt * vmove;
+    P.x[p] += dx;
+    P.F[p] = P.dF[p] * P.F[p];
+    P.dF[p].setIdentity();
+    mdx += P.mass[p] * dx;
+    if (!grid_.inside(P.x[p]) || !std::isfinite(P.v[p].sum() + P.stress[p].sum()) ||
+        !(P.F[p].determinant() > 0.0))
+      bad = std::min(bad, p);
+  }
+  energy_.strain_energy += work;
+  energy_.plastic_dissipation += dissipation;
+  energy_.gravity_work += gravity_now_.dot(mdx);
+  if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
+  return status_;
+}
+
+template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
+  const auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
+  Vec<D> mom = Vec<D>::Zero();
+#pragma omp declare reduction(vadd3 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
+#pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass) \
+    reduction(max : vmax) reduction(vadd3 : mom)
+  for (long p = 0; p < n; ++p) {
+    const double m = P.mass[p], s = P.v[p].norm();
+    mass += m;
+    ke += 0.5 * m * s * s;           // eq. 4.15
+    speed_mass += m * s;             // eq. 5.12
+    vmax = std::max(vmax, s);
+    mom += m * P.v[p];
+  }
+  ParticleTotals<D> t;
+  t.mass = mass;
+  t.kinetic_energy = ke;
+  t.momentum = mom;
+  t.mean_speed = mass > 0.0 ? speed_mass / mass : 0.0;
+  t.max_speed = vmax;
+  return t;
+}
+
+template <int D> void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out) {
+  dispatch([&](const auto& kernel) { smoothed_stress_with(kernel, out); });
+}
+
+// Thesis eq. 4.18: sigma_i = sum sigma_p N_ip m_p / m_i; eq. 4.19: sigma_p = sum sigma_i N_ip.
+template <int D>
+template <class K>
+void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>& out) {
+  const StencilOffsets<D, K::S> offsets(grid_);
+  const auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  node_stress_.assign(fields_.size(), Sym3::Zero());
+  std::vector<double>& mass = fields_.mass;
+  std::fill(mass.begin(), mass.end(), 0.0);
+  typename K::StencilT st;
+  for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
+    if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
+    for (int k = 0; k < K::StencilT::size; ++k) {
+      const std::size_t i = st.base + offsets.off[k];
+      mass[i] += st.w[k] * P.mass[p];
+      node_stress_[i] += (st.w[k] * P.mass[p]) * P.stress[p];
+    }
+  }
+  for (std::size_t i = 0; i < mass.size(); ++i)
+    if (mass[i] > 0.0) node_stress_[i] /= mass[i];
+  out.resize(P.size());
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long p = 0; p < n; ++p) {
+    typename K::StencilT s2;
+    Sym3 acc = Sym3::Zero();
+    if (kernel(grid_, P.x[p], P.half0[p], P.F[p], s2))
+      for (int k = 0; k < K::StencilT::size; ++k) acc += s2.w[k] * node_stress_[s2.base + offsets.off[k]];
+    out[p] = acc;
+  }
+}
+
+template <int D> void ExplicitSolver<D>::reset_reference() {
+  particles_.x_ref = particles_.x;
+  energy_.gravity_work = 0.0;
+}
+
+template class ExplicitSolver<2>;
+template class ExplicitSolver<3>;
+
+}  // namespace skred

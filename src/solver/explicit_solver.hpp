@@ -1,0 +1,105 @@
+// The explicit dynamic MPM/GIMP solver (Thesis §2.2.1 and §4.4). One call to step()
+// advances the particles by one time step; each phase of the step is one member function.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/particles.hpp"
+#include "material/material.hpp"
+#include "scenario/scenario.hpp"
+#include "solver/boundary.hpp"
+#include "solver/grid_fields.hpp"
+
+namespace skred {
+
+template <int D> struct SolverSettings {
+  Interpolation interpolation = Interpolation::Gimp;
+  int quadrature_points = 2;
+  StressScheme scheme = StressScheme::Averaged;
+  double dt = 0.0;
+  Vec<D> gravity = Vec<D>::Zero();
+  double gravity_ramp_time = 0.0;
+  std::array<BoundarySide, 2 * D> boundaries{};
+};
+
+// Running totals kept by the solver (energy bookkeeping, Thesis eq. 4.15-4.17, 5.13).
+struct EnergyTotals {
+  double strain_energy = 0.0;        // sum of V (sigma^{k+1} + sigma^k)/2 : d_eps (eq. 4.16)
+  double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
+  double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
+};
+
+// Quantities summed over the particles on demand.
+template <int D> struct ParticleTotals {
+  double mass = 0.0;
+  double kinetic_energy = 0.0;  // eq. 4.15
+  Vec<D> momentum = Vec<D>::Zero();
+  double mean_speed = 0.0;      // mass-weighted mean speed, eq. 5.12
+  double max_speed = 0.0;
+};
+
+// Outcome of one step. A step that fails names the first offending particle.
+struct StepStatus {
+  bool ok = true;
+  long particle = -1;
+  std::string reason;
+};
+
+template <int D> class ExplicitSolver {
+ public:
+  ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles, std::vector<Material> materials,
+                 SolverSettings<D> settings, int threads);
+
+  StepStatus step();
+
+  double time() const { return time_; }
+  long steps() const { return steps_; }
+  double dt() const { return settings_.dt; }
+  const EnergyTotals& energy() const { return energy_; }
+  ParticleTotals<D> totals() const;
+  const GridGeometry<D>& grid() const { return grid_; }
+  const GridFields<D>& fields() const { return fields_; }
+  const SolverSettings<D>& settings() const { return settings_; }
+  int threads() const { return threads_; }
+
+  // Grid-smoothed particle stresses (Thesis eq. 4.18-4.19): stresses mapped to the nodes
+  // weighted by mass, then interpolated back. `out` is resized to the particle count.
+  void smoothed_stress(std::vector<Sym3>& out);
+
+  // Starts a new stage: displacements and gravity work are measured from here.
+  void reset_reference();
+
+ private:
+  template <class K> StepStatus step_with(const K& kernel);
+  // Phases of one step, in the order of Thesis §4.4.
+  template <class K> bool map_mass_momentum(const K& kernel);            // eq. 2.53-2.54
+  void nodal_velocity(std::vector<Vec<D>>& velocity);                    // eq. 2.23
+  template <class K> void update_stress_and_map_forces(const K& kernel, double dt_stress);  // eq. 2.20, 4.1-4.4, 2.51
+  void update_grid();                                                    // eq. 2.49, 5.8-5.11
+  template <class K> void update_particle_velocity(const K& kernel, bool remap, bool move);  // eq. 2.56
+  template <class K> StepStatus update_stress_and_move(const K& kernel, double dt_stress, bool stress);  // eq. 2.55, 3.2
+
+  void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
+  template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
+  template <class F> decltype(auto) dispatch(F&& f);
+
+  GridGeometry<D> grid_;
+  Particles<D>& particles_;
+  std::vector<Material> materials_;
+  SolverSettings<D> settings_;
+  Boundaries<D> boundaries_;
+  GridFields<D> fields_;
+  std::vector<ScatterBuffer<D>> buffers_;  // one per thread beyond the first
+  std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
+  int threads_ = 1;
+  double time_ = 0.0;
+  long steps_ = 0;
+  Vec<D> gravity_now_ = Vec<D>::Zero();
+  EnergyTotals energy_;
+  StepStatus status_;
+};
+
+}  // namespace skred

@@ -1,0 +1,44 @@
+// Nodal fields of the background grid, stored as structure-of-arrays, and the per-thread
+// scatter buffers that make particle-to-grid transfers lock-free.
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/types.hpp"
+
+namespace skred {
+
+template <int D> struct GridFields {
+  std::vector<double> mass;        // m_i (Thesis eq. 2.53)
+  std::vector<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
+  std::vector<Vec<D>> force;       // f_i^int (eq. 2.51); gravity is added in the grid update
+  std::vector<Vec<D>> velocity;    // v_i^k after velocity boundary conditions
+  std::vector<Vec<D>> accel;       // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change
+                                   // handed to the particles (FLIP increment, eq. 2.56)
+  std::vector<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
+  std::vector<Vec<D>> velocity_new;  // v_i^{k+1} remapped from the updated particles
+
+  void resize(std::size_t n) {
+    mass.assign(n, 0.0);
+    momentum.assign(n, Vec<D>::Zero());
+    force.assign(n, Vec<D>::Zero());
+    velocity.assign(n, Vec<D>::Zero());
+    accel.assign(n, Vec<D>::Zero());
+    velocity_move.assign(n, Vec<D>::Zero());
+    velocity_new.assign(n, Vec<D>::Zero());
+  }
+  std::size_t size() const { return mass.size(); }
+};
+
+// What one thread scatters into. Thread 0 writes straight into the grid; threads 1..T-1
+// write into their own buffers, which the reduction adds to the grid and clears again.
+template <int D> struct ScatterBuffer {
+  std::vector<double> mass;
+  std::vector<Vec<D>> vec;  // momentum or force, depending on the pass
+  void resize(std::size_t n) {
+    mass.assign(n, 0.0);
+    vec.assign(n, Vec<D>::Zero());
+  }
+};
+
+}  // namespace skred

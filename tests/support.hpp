@@ -1,0 +1,66 @@
+// Helpers for the simulation tests: material points filling rectangles, a solver built
+// around them, and small measurements on time series.
+#pragma once
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "solver/explicit_solver.hpp"
+
+namespace skred::test {
+
+inline Material elastic(double rho, double E, double nu) {
+  Material m;
+  m.name = "elastic";
+  m.density = rho;
+  m.elastic = {E, nu};
+  return m;
+}
+
+// n x n points per cell of size h filling [x0, x1] x [y0, y1] (edges on cell lines).
+inline void fill_rectangle(Particles<2>& P, const Material& m, double h, int n, double x0,
+                           double y0, double x1, double y1, Vec<2> v = Vec<2>::Zero(),
+                           int material = 0, int body = 0) {
+  const double q = h / n;
+  const int nx = static_cast<int>(std::lround((x1 - x0) / q));
+  const int ny = static_cast<int>(std::lround((y1 - y0) / q));
+  for (int j = 0; j < ny; ++j)
+    for (int i = 0; i < nx; ++i)
+      P.add(Vec<2>(x0 + (i + 0.5) * q, y0 + (j + 0.5) * q), v, m.density * q * q, q * q,
+            Vec<2>(q / 2, q / 2), material, body);
+}
+
+inline GridGeometry<2> grid2(double h, int nx, int ny) {
+  GridGeometry<2> g;
+  g.h = h;
+  g.cells = {nx, ny};
+  return g;
+}
+
+inline BoundarySide side(BoundaryKind k, double mu = 0.0) { return BoundarySide{k, mu}; }
+
+// Times of the downward zero crossings of a sampled signal (linear interpolation).
+inline std::vector<double> zero_crossings(const std::vector<double>& t, const std::vector<double>& y) {
+  std::vector<double> z;
+  for (std::size_t i = 1; i < y.size(); ++i)
+    if (y[i - 1] > 0 && y[i] <= 0) z.push_back(t[i - 1] + (t[i] - t[i - 1]) * y[i - 1] / (y[i - 1] - y[i]));
+  return z;
+}
+
+}  // namespace skred::test
+
+namespace skred::test {
+
+// n x n points per cell whose centres lie inside the disc.
+inline void fill_disc(Particles<2>& P, const Material& m, double h, int n, Vec<2> c, double r,
+                      double domain, Vec<2> v, int body) {
+  const double q = h / n;
+  const int k = static_cast<int>(std::lround(domain / q));
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      const Vec<2> x((i + 0.5) * q, (j + 0.5) * q);
+      if ((x - c).norm() < r) P.add(x, v, m.density * q * q, q * q, Vec<2>(q / 2, q / 2), 0, body);
+    }
+}
+
+}  // namespace skred::test

@@ -1,0 +1,160 @@
+// Shape-function invariants for every kernel in 2D and 3D (partition of unity, zero gradient
+// sum, exact reproduction of linear fields), quadrature GIMP against analytic GIMP
+// (Thesis fig. 3.9-3.10) and the clamped B-spline's behaviour at the walls.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "shape/bspline.hpp"
+#include "shape/gimp.hpp"
+#include "shape/gimp_quadrature.hpp"
+#include "shape/linear.hpp"
+
+using namespace skred;
+
+namespace {
+
+template <int D> GridGeometry<D> make_grid(bool bspline) {
+  GridGeometry<D> g;
+  for (int d = 0; d < D; ++d) {
+    g.origin[d] = -0.3 * (d + 1);
+    g.cells[d] = 7 + d;
+  }
+  g.h = 0.25;
+  g.bspline_dofs = bspline;
+  return g;
+}
+
+// Checks sum N = 1, sum grad N = 0, sum N x_i = x_p and sum x_i (x) grad N = I.
+template <int D, class K>
+void check_invariants(const K& kernel, bool bspline, const Mat<D>& F, double margin) {
+  const GridGeometry<D> g = make_grid<D>(bspline);
+  const StencilOffsets<D, K::S> offsets(g);
+  std::mt19937 rng(42);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const Vec<D> half = Vec<D>::Constant(g.h / 4);
+  int evaluated = 0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = g.origin[d] + margin + u(rng) * (g.h * g.cells[d] - 2 * margin);
+    typename K::StencilT st;
+    ASSERT_TRUE(kernel(g, x, half, F, st)) << "point inside the domain rejected";
+    ++evaluated;
+    double sw = 0;
+    Vec<D> sg = Vec<D>::Zero(), sx = Vec<D>::Zero();
+    Mat<D> sgx = Mat<D>::Zero();
+    for (int k = 0; k < K::StencilT::size; ++k) {
+      const Vec<D> xi = g.node_position(st.base + offsets.off[k]);
+      sw += st.w[k];
+      sg += st.grad[k];
+      sx += st.w[k] * xi;
+      sgx += xi * st.grad[k].transpose();
+      EXPECT_GE(st.w[k], -1e-14);
+    }
+    EXPECT_NEAR(sw, 1.0, 1e-13);
+    EXPECT_LT(sg.norm(), 1e-11);
+    EXPECT_LT((sx - x).norm(), 1e-13);
+    EXPECT_LT((sgx - Mat<D>::Identity()).norm(), 1e-11);
+  }
+  EXPECT_EQ(evaluated, 2000);
+}
+
+template <int D> Mat<D> shear() {
+  Mat<D> F = Mat<D>::Identity();
+  F(0, 1) = 0.4;
+  F(1, 0) = -0.1;
+  F(0, 0) = 1.1;
+  return F;
+}
+
+}  // namespace
+
+TEST(Shape, Linear2D) { check_invariants<2>(LinearKernel<2>{}, false, Mat<2>::Identity(), 0.0); }
+TEST(Shape, Linear3D) { check_invariants<3>(LinearKernel<3>{}, false, Mat<3>::Identity(), 0.0); }
+TEST(Shape, Gimp2D) { check_invariants<2>(GimpKernel<2>{}, false, Mat<2>::Identity(), 0.0625); }
+TEST(Shape, Gimp3D) { check_invariants<3>(GimpKernel<3>{}, false, Mat<3>::Identity(), 0.0625); }
+TEST(Shape, GimpFollowsDetF2D) { check_invariants<2>(GimpKernel<2>{}, false, shear<2>(), 0.1); }
+TEST(Shape, Bspline2D) { check_invariants<2>(BsplineKernel<2>{}, true, Mat<2>::Identity(), 0.0); }
+TEST(Shape, Bspline3D) { check_invariants<3>(BsplineKernel<3>{}, true, Mat<3>::Identity(), 0.0); }
+TEST(Shape, Quadrature1x1) { check_invariants<2>(GimpQuadratureKernel<2, 1>{}, false, shear<2>(), 0.1); }
+TEST(Shape, Quadrature2x2) { check_invariants<2>(GimpQuadratureKernel<2, 2>{}, false, shear<2>(), 0.1); }
+TEST(Shape, Quadrature3x3) { check_invariants<2>(GimpQuadratureKernel<2, 3>{}, false, shear<2>(), 0.1); }
+TEST(Shape, Quadrature3D) { check_invariants<3>(GimpQuadratureKernel<3, 2>{}, false, shear<3>(), 0.1); }
+
+// Thesis fig. 3.9-3.10: L = 1, l_p = 1/4 (2 x 2 points per cell). One Gauss point gives the
+// linear shape functions; 2x2 and 3x3 approach the analytic GIMP functions, and a voxel
+// inside one cell is integrated exactly by 2x2 points.
+TEST(Shape, QuadratureConvergesToAnalyticGimp) {
+  GridGeometry<2> g;
+  g.h = 1.0;
+  g.cells = {8, 8};
+  const Vec<2> half(0.25, 0.25);
+  const StencilOffsets<2, 3> off3(g);
+  const StencilOffsets<2, 4> off4(g);
+  auto weight_error = [&](auto kernel, double& werr, double& gerr, double& inside_err) {
+    werr = gerr = inside_err = 0;
+    for (int a = 0; a <= 200; ++a) {
+      const Vec<2> x(3.0 + a * 0.01, 4.37);
+      GimpKernel<2>::StencilT ref;
+      typename decltype(kernel)::StencilT st;
+      ASSERT_TRUE(GimpKernel<2>{}(g, x, half, Mat<2>::Identity(), ref));
+      ASSERT_TRUE(kernel(g, x, half, Mat<2>::Identity(), st));
+      for (int k = 0; k < 16; ++k) {
+        const std::size_t node = st.base + off4.off[k];
+        double wr = 0;
+        Vec<2> gr = Vec<2>::Zero();
+        for (int j = 0; j < 9; ++j)
+          if (ref.base + off3.off[j] == node) { wr = ref.w[j]; gr = ref.grad[j]; }
+        const double e = std::abs(st.w[k] - wr);
+        werr = std::max(werr, e);
+        gerr = std::max(gerr, (st.grad[k] - gr).norm());
+        const double fx = x[0] - std::floor(x[0]), fy = x[1] - std::floor(x[1]);
+        if (fx >= 0.25 && fx <= 0.75 && fy >= 0.25 && fy <= 0.75) inside_err = std::max(inside_err, e);
+      }
+    }
+  };
+  double w1, g1, i1, w2, g2, i2, w3, g3, i3;
+  weight_error(GimpQuadratureKernel<2, 1>{}, w1, g1, i1);
+  weight_error(GimpQuadratureKernel<2, 2>{}, w2, g2, i2);
+  weight_error(GimpQuadratureKernel<2, 3>{}, w3, g3, i3);
+  std::printf("max |N_quad - N_gimp|: 1pt %.4f  2x2 %.4f  3x3 %.4f; gradient: %.4f %.4f %.4f\n",
+              w1, w2, w3, g1, g2, g3);
+  EXPECT_GT(w1, w2);
+  EXPECT_GT(w2, w3);
+  EXPECT_GT(g1, g2);
+  EXPECT_GT(g2, g3);
+  EXPECT_LT(i2, 1e-14);  // voxel in one cell: 2x2 Gauss points are exact
+  EXPECT_LT(w3, 0.02);
+}
+
+TEST(Shape, BsplineIsInterpolatoryAtWallsAndSmooth) {
+  const int n = 6;
+  double w[4], gr[4];
+  EXPECT_EQ(bspline_1d(0.0, n, w, gr), 0);
+  EXPECT_DOUBLE_EQ(w[0], 1.0);
+  EXPECT_DOUBLE_EQ(w[1] + w[2] + w[3], 0.0);
+  EXPECT_EQ(bspline_1d(n, n, w, gr), n - 1);
+  EXPECT_DOUBLE_EQ(w[3], 1.0);
+  // Values and first derivatives are continuous across every cell boundary.
+  for (int c = 1; c < n; ++c) {
+    double wl[4], gl[4], wr[4], grr[4];
+    const int kl = bspline_1d(c - 1e-12, n, wl, gl);
+    const int kr = bspline_1d(c + 1e-12, n, wr, grr);
+    for (int dof = kl; dof < kl + 4; ++dof) {
+      const double vl = wl[dof - kl], dl = gl[dof - kl];
+      const double vr = (dof >= kr && dof < kr + 4) ? wr[dof - kr] : 0.0;
+      const double dr = (dof >= kr && dof < kr + 4) ? grr[dof - kr] : 0.0;
+      EXPECT_NEAR(vl, vr, 1e-9) << "cell boundary " << c << " dof " << dof;
+      EXPECT_NEAR(dl, dr, 1e-9) << "cell boundary " << c << " dof " << dof;
+    }
+  }
+}
+
+TEST(Shape, PointOutsideTheGridIsRejected) {
+  GridGeometry<2> g;
+  g.cells = {4, 4};
+  LinearKernel<2>::StencilT st;
+  EXPECT_FALSE(LinearKernel<2>{}(g, Vec<2>(-1.5, 0.5), Vec<2>(0.25, 0.25), Mat<2>::Identity(), st));
+  BsplineKernel<2>::StencilT sb;
+  EXPECT_FALSE(BsplineKernel<2>{}(g, Vec<2>(4.01, 0.5), Vec<2>(0.25, 0.25), Mat<2>::Identity(), sb));
+}
