@@ -31,7 +31,7 @@ inline Sym3 to_voigt(const Mat3& m) {
 }
 
 // Double contraction a : b of two symmetric tensors in Voigt storage.
-inline double contract(const Sym3& a, const Sym3& b) {
+[[gnu::always_inline]] inline double contract(const Sym3& a, const Sym3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 

@@ -16,9 +16,17 @@ struct ElasticParams {
   double constrained_modulus() const { return lame_lambda() + 2.0 * shear_modulus(); }
 };
 
+// Lame constants, computed once per material so the time loop does no divisions.
+struct ElasticConstants {
+  double lambda = 0.0, two_g = 0.0;
+  ElasticConstants() = default;
+  explicit ElasticConstants(const ElasticParams& e)
+      : lambda(e.lame_lambda()), two_g(2.0 * e.shear_modulus()) {}
+};
+
 // d_sigma = C : d_eps (Thesis eq. 2.5); strain in tensor components.
-inline Sym3 elastic_increment(const ElasticParams& e, const Sym3& deps) {
-  const double lam = e.lame_lambda(), two_g = 2.0 * e.shear_modulus();
+[[gnu::always_inline]] inline Sym3 elastic_increment(const ElasticConstants& e, const Sym3& deps) {
+  const double lam = e.lambda, two_g = e.two_g;
   const double tr = deps[0] + deps[1] + deps[2];
   Sym3 ds = two_g * deps;
   ds[0] += lam * tr; ds[1] += lam * tr; ds[2] += lam * tr;

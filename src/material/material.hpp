@@ -18,6 +18,10 @@ struct Material {
   Model model = Model::LinearElastic;
   double density = 0.0;  // rho_0 [kg/m^3]
   ElasticParams elastic;
+  ElasticConstants elastic_constants;  // derived from `elastic` by prepare()
+
+  // Computes the derived constants; call after setting the parameters.
+  void prepare() { elastic_constants = ElasticConstants(elastic); }
 
   // P-wave speed used for the CFL time step.
   double wave_speed() const { return std::sqrt(elastic.constrained_modulus() / density); }
@@ -25,10 +29,11 @@ struct Material {
 
 // Updates `stress` by the strain increment `deps` (Thesis eq. 4.2-4.3: S^{k+1} = sigma^k +
 // C : d_eps) and returns the plastic work dissipated per unit volume (zero when elastic).
-inline double update_stress(const Material& m, Sym3& stress, const Sym3& deps, PointState& state) {
+[[gnu::always_inline]] inline double update_stress(const Material& m, Sym3& stress, const Sym3& deps,
+                                                   PointState& state) {
   switch (m.model) {
     case Model::LinearElastic:
-      stress += elastic_increment(m.elastic, deps);
+      stress += elastic_increment(m.elastic_constants, deps);
       state.yielding = 0;
       return 0.0;
   }

@@ -32,7 +32,7 @@ template <int D, int Q> struct GimpQuadratureKernel {
   using StencilT = Stencil<D, S>;
   static constexpr const char* name = "gimp-quadrature";
 
-  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
+  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
                   const Mat<D>& F, StencilT& st) const {
     const double inv_h = 1.0 / g.h;
     // Gauss point positions (in cell units) and their normalised weights (sum 1).

@@ -22,7 +22,7 @@ template <int D> struct LinearKernel {
   using StencilT = Stencil<D, S>;
   static constexpr const char* name = "linear";
 
-  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
+  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
                   const Mat<D>& /*F*/, StencilT& st) const {
     double w1[D][S], g1[D][S];
     std::array<int, D> start{};

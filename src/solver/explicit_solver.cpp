@@ -25,6 +25,7 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
                                   int threads)
     : grid_(grid), particles_(particles), materials_(std::move(materials)), settings_(settings),
       threads_(std::max(1, threads)) {
+  for (Material& m : materials_) m.prepare();
   grid_.bspline_dofs = settings_.interpolation == Interpolation::Bspline;
   boundaries_ = Boundaries<D>(grid_, settings_.boundaries);
   const std::size_t n = grid_.node_count();

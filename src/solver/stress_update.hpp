@@ -7,7 +7,7 @@ namespace skred {
 
 // Symmetric part of a D x D tensor embedded in 3D Voigt form (plane strain: zero
 // out-of-plane components).
-template <int D> inline Sym3 sym_voigt(const Mat<D>& a) {
+template <int D> [[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
   Sym3 s = Sym3::Zero();
   s[0] = a(0, 0);
   s[1] = a(1, 1);
@@ -21,7 +21,7 @@ template <int D> inline Sym3 sym_voigt(const Mat<D>& a) {
 }
 
 // Push-forward sigma = dF S dF^T / det(dF) (Thesis eq. 4.4).
-template <int D> inline Sym3 push_forward(const Mat<D>& dF, const Sym3& S) {
+template <int D> [[gnu::always_inline]] inline Sym3 push_forward(const Mat<D>& dF, const Sym3& S) {
   if constexpr (D == 2) {
     const double J = dF.determinant();
     Mat<2> s2;
@@ -45,7 +45,7 @@ struct StressUpdateResult {
 // material), sigma^{k+1} = dF S dF^T / det dF with dF = I + dt grad v (eq. 3.5, 4.4).
 // `dF_step` accumulates the increment of this time step; `volume` is the current volume.
 template <int D>
-inline StressUpdateResult update_point_stress(const Material& mat, const Mat<D>& grad_v, double dt,
+[[gnu::always_inline]] inline StressUpdateResult update_point_stress(const Material& mat, const Mat<D>& grad_v, double dt,
                                               double volume, Sym3& stress, PointState& state,
                                               Mat<D>& dF_step) {
   const Mat<D> G = dt * grad_v;
