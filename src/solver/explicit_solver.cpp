@@ -19,6 +19,22 @@
 
 namespace skred {
 
+namespace {
+
+// End of a point's step: x^{k+1} = x^k + dx (eq. 2.55) and F^{k+1} = dF F^k (eq. 3.2).
+// False if the point left the grid or became non-finite or inverted.
+template <int D>
+[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, Particles<D>& P, long p,
+                                              const Vec<D>& dx) {
+  P.x[p] += dx;
+  P.F[p] = P.dF[p] * P.F[p];
+  P.dF[p].setIdentity();
+  return grid.inside(P.x[p]) && std::isfinite(P.v[p].sum() + P.stress[p].sum()) &&
+         P.F[p].determinant() > 0.0;
+}
+
+}  // namespace
+
 template <int D>
 ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
                                   std::vector<Material> materials, SolverSettings<D> settings,
@@ -246,14 +262,8 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
         for (int k = 0; k < K::StencilT::size; ++k) mom[st.base + offsets.off[k]] += st.w[k] * mv;
       }
       if (move) {
-        const Vec<D> dx = dt * vmove;
-        P.x[p] += dx;
-        P.F[p] = P.dF[p] * P.F[p];
-        P.dF[p].setIdentity();
-        mdx += P.mass[p] * dx;
-        if (!grid_.inside(P.x[p]) || !std::isfinite(P.v[p].sum() + P.stress[p].sum()) ||
-            !(P.F[p].determinant() > 0.0))
-          bad = std::min(bad, p);
+        mdx += P.mass[p] * dt * vmove;
+        if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
       }
     }
   }
@@ -299,14 +309,8 @@ StepStatus ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_
       work += r.strain_work;
       dissipation += r.dissipation;
     }
-    const Vec<D> dx = dt * vmove;
-    P.x[p] += dx;
-    P.F[p] = P.dF[p] * P.F[p];
-    P.dF[p].setIdentity();
-    mdx += P.mass[p] * dx;
-    if (!grid_.inside(P.x[p]) || !std::isfinite(P.v[p].sum() + P.stress[p].sum()) ||
-        !(P.F[p].determinant() > 0.0))
-      bad = std::min(bad, p);
+    mdx += P.mass[p] * dt * vmove;
+    if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
   }
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
