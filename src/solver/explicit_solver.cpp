@@ -88,7 +88,7 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
       update_grid();
       update_particle_velocity(kernel, /*remap=*/true, /*move=*/false);
       nodal_velocity(fields_.velocity_new);
-      update_stress_and_move(kernel, dt_stress, /*stress=*/true);
+      update_stress_and_move(kernel, dt_stress);
       break;
     }
   }
@@ -279,7 +279,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
 // (eq. 2.55, Post eq. 31, with the velocity_move of update_grid) and F^{k+1} = dF F^k (eq. 3.2).
 template <int D>
 template <class K>
-StepStatus ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress, bool stress) {
+void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress) {
   const StencilOffsets<D, K::S> offsets(grid_);
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
@@ -302,13 +302,11 @@ StepStatus ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_
       grad_v.noalias() += vnew[i] * st.grad[k].transpose();
       vmove += st.w[k] * vel[i];
     }
-    if (stress) {
-      const double volume = P.volume0[p] * P.F[p].determinant() * P.dF[p].determinant();
-      const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress, volume,
-                                            P.stress[p], P.state[p], P.dF[p]);
-      work += r.strain_work;
-      dissipation += r.dissipation;
-    }
+    const double volume = P.volume0[p] * P.F[p].determinant() * P.dF[p].determinant();
+    const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress, volume,
+                                          P.stress[p], P.state[p], P.dF[p]);
+    work += r.strain_work;
+    dissipation += r.dissipation;
     mdx += P.mass[p] * dt * vmove;
     if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
   }
@@ -316,7 +314,6 @@ StepStatus ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_
   energy_.plastic_dissipation += dissipation;
   energy_.gravity_work += gravity_now_.dot(mdx);
   if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
-  return status_;
 }
 
 template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {

@@ -80,7 +80,7 @@ template <int D> class ExplicitSolver {
   template <class K> void update_stress_and_map_forces(const K& kernel, double dt_stress);  // eq. 2.20, 4.1-4.4, 2.51
   void update_grid();                                                    // eq. 2.49, 5.8-5.11
   template <class K> void update_particle_velocity(const K& kernel, bool remap, bool move);  // eq. 2.56
-  template <class K> StepStatus update_stress_and_move(const K& kernel, double dt_stress, bool stress);  // eq. 2.55, 3.2
+  template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
   void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
