@@ -6,9 +6,12 @@
 namespace skred {
 
 struct PointState {
-  double plastic_shear_strain = 0.0;  // accumulated plastic shear strain (deviatoric norm)
-  double plastic_volume_strain = 0.0; // accumulated plastic volumetric strain
-  std::uint8_t yielding = 0;          // 1 if the last update was plastic
+  // Accumulated plastic engineering shear strain, gamma_p = sum 2 sqrt(J2(d_eps_p)) (so that
+  // simple shear gives gamma_p = 2 eps_p_xy). Softening laws are written in terms of it.
+  double plastic_shear_strain = 0.0;
+  double plastic_volume_strain = 0.0;  // accumulated tr(d_eps_p), dilation positive
+  double volume_strain = 0.0;          // accumulated tr(d_eps) ~ ln det F, for the void ratio
+  std::uint8_t yielding = 0;           // 1 if the last update was plastic
 };
 
 }  // namespace skred
