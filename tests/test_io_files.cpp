@@ -139,7 +139,7 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
     for (long i = 0; i < 5; ++i) {
       const double t = 0.1 * i;
       rows.push_back({10 * i, t, 1.0 / (i + 3), 2.5e-7 * i, std::sqrt(2.0) * i, 1e300 / (i + 1),
-                      t / 7, 3 * t, -t, t * 1e-20, 1000 + i});
+                      t / 7, 3 * t, -t, t * 1e-20, 1000 + i, static_cast<int>(i % 2), 0.25 * t, 7 * i});
       series.add(rows.back());
       if (i == 2) {
         series.flush();
@@ -152,10 +152,10 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
   ASSERT_EQ(lines.size(), 6u);
   EXPECT_EQ(lines[0],
             "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,"
-            "mean_speed,max_speed,momentum_x,momentum_y,num_particles");
+            "mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const std::vector<std::string> f = split(lines[i + 1], ',');
-    ASSERT_EQ(f.size(), 12u) << lines[i + 1];
+    ASSERT_EQ(f.size(), 15u) << lines[i + 1];
     const SeriesRow& r = rows[i];
     EXPECT_EQ(std::stol(f[0]), r.step);
     const double expected[] = {r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
@@ -165,6 +165,9 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
                                r.mean_speed, r.max_speed, r.momentum_x, r.momentum_y};
     for (int k = 0; k < 10; ++k) EXPECT_EQ(to_double(f[k + 1]), expected[k]) << "column " << k + 1;
     EXPECT_EQ(std::stol(f[11]), r.num_particles);
+    EXPECT_EQ(std::stoi(f[12]), r.stage);
+    EXPECT_EQ(to_double(f[13]), r.runout);
+    EXPECT_EQ(std::stol(f[14]), r.yielding_points);
   }
   expect_no_tmp_files();
 }
@@ -196,7 +199,8 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"scenario", R"("slope \"A\".toml")"},
       {"interpolation", "\"gimp\""},
       {"scheme", "\"usl\""},
-      {"time_step", "1e-05"}};
+      {"time_step", "1e-05"},
+      {"stages", "[]"}};
   EXPECT_EQ(got, expected);
   EXPECT_EQ(json_string("\x7f"), "\"\x7f\"");
   EXPECT_EQ(json_string("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // a surrogate

@@ -3,10 +3,13 @@
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
+#include <cmath>
 #include <filesystem>
+#include <sstream>
 
 #include "run/bench.hpp"
 #include "run/simulation.hpp"
+#include "run/sweep.hpp"
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
 
@@ -37,6 +40,57 @@ int cmd_check(const std::string& file) {
   return 0;
 }
 
+// "KEY=V1,V2,..." where each item is a number or a range FROM:TO:STEP (TO included).
+skred::SweepOptions parse_sweep_set(const std::string& set) {
+  skred::SweepOptions o;
+  const auto eq = set.find('=');
+  if (eq == std::string::npos || eq == 0 || eq + 1 == set.size())
+    throw CLI::ValidationError("--set", "expected KEY=V1,V2,... or KEY=FROM:TO:STEP, got '" + set + "'");
+  o.key = set.substr(0, eq);
+  std::stringstream items(set.substr(eq + 1));
+  for (std::string item; std::getline(items, item, ',');) {
+    std::vector<double> parts;
+    std::stringstream ps(item);
+    for (std::string x; std::getline(ps, x, ':');) {
+      std::size_t used = 0;
+      double v = 0;
+      try {
+        v = std::stod(x, &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+      if (used != x.size() || x.empty() || !std::isfinite(v))
+        throw CLI::ValidationError("--set", "'" + x + "' is not a number");
+      parts.push_back(v);
+    }
+    if (parts.size() == 1) {
+      o.values.push_back(parts[0]);
+    } else if (parts.size() == 3 && parts[2] > 0 && parts[1] >= parts[0]) {
+      const long n = std::lround(std::floor((parts[1] - parts[0]) / parts[2] + 1e-9));
+      if (n > 1000) throw CLI::ValidationError("--set", "a range may give at most 1000 values");
+      for (long k = 0; k <= n; ++k) o.values.push_back(parts[0] + k * parts[2]);
+    } else {
+      throw CLI::ValidationError("--set", "'" + item + "' must be a number or FROM:TO:STEP with STEP > 0");
+    }
+  }
+  return o;
+}
+
+int cmd_sweep(const std::string& file, const std::string& outdir, const std::string& set, int threads) {
+  skred::SweepOptions o = parse_sweep_set(set);
+  o.threads = threads > 0 ? threads : omp_get_max_threads();
+  const auto rows = skred::run_sweep(file, outdir, o);
+  fmt::print("{:>12} {:>10} {:>10} {:>10} {:>12} {:>10}\n", o.key.substr(0, 12), "status", "runout",
+             "height", "peak speed", "stop time");
+  for (const auto& r : rows)
+    fmt::print("{:>12.6g} {:>10} {:>10.4g} {:>10.4g} {:>12.4g} {:>10.4g}\n", r.value, r.status,
+               r.runout, r.height_end, r.peak_mean_speed, r.stop_time);
+  fmt::print("table: {}\n", (std::filesystem::path(outdir) / "sweep.csv").string());
+  for (const auto& r : rows)
+    if (r.status != "completed") return 2;
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -52,6 +106,14 @@ int main(int argc, char** argv) {
 
   auto* check = app.add_subcommand("check", "Validate a scenario without running it");
   check->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
+
+  std::string set;
+  auto* sweep = app.add_subcommand("sweep", "Run a scenario once per value of one parameter");
+  sweep->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
+  sweep->add_option("--set", set, "KEY=V1,V2,... or KEY=FROM:TO:STEP, e.g. material[sand].friction=15:30:3")
+      ->required();
+  sweep->add_option("-o,--output", outdir, "Output folder (one sub-folder per run, sweep.csv)")->required();
+  sweep->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
 
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged";
@@ -69,6 +131,7 @@ int main(int argc, char** argv) {
   try {
     if (*run) return cmd_run(scenario, outdir, threads);
     if (*check) return cmd_check(scenario);
+    if (*sweep) return cmd_sweep(scenario, outdir, set, threads);
     if (*bench) {
       bo.threads = threads > 0 ? threads : omp_get_max_threads();
       bo.interpolation = interp == "linear" ? skred::Interpolation::Linear

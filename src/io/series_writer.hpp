@@ -18,14 +18,18 @@ struct SeriesRow {
   double momentum_x;
   double momentum_y;
   long num_particles;
+  int stage;             // zero-based stage index
+  double runout;         // front advance since the stage start [m] (StageTracker::runout)
+  long yielding_points;  // points whose last stress update was plastic
 };
 
 // Collects rows in memory; flush() rewrites the whole file atomically, so the file on disk is
 // always complete. Columns:
 //   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,
-//   mean_speed,max_speed,momentum_x,momentum_y,num_particles
+//   mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points
 // with total_energy = kinetic_energy + strain_energy + plastic_dissipation - gravity_work
-// (the energy balance; constant for a conservative run). Every real number is written as the
+// (the energy balance; constant for a conservative run). Gravity work, strain energy
+// (stored elastic) and plastic dissipation are measured from the start of the row's stage. Every real number is written as the
 // shortest decimal that reads back to the identical double.
 class SeriesWriter {
  public:

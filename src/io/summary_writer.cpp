@@ -73,6 +73,31 @@ std::string json_string(const std::string& s) {
   return r;
 }
 
+namespace {
+
+std::string stages_json(const std::vector<StageMeasures>& stages) {
+  std::string out;
+  for (const StageMeasures& m : stages) {
+    const auto num = [](double x) { return json_number(x); };
+    out += fmt::format(
+        "{}\n    {{\"name\": {}, \"start_time\": {}, \"end_time\": {}, \"steps\": {}, "
+        "\"ended_by\": {},\n     \"runout\": {}, \"runout_x_min\": {}, \"runout_x_max\": {}, "
+        "\"height_start\": {}, \"height_end\": {},\n     \"peak_mean_speed\": {}, "
+        "\"peak_time\": {}, \"final_mean_speed\": {}, \"stop_time\": {},\n     "
+        "\"gravity_work\": {}, \"kinetic_energy_change\": {}, \"strain_energy\": {}, "
+        "\"plastic_dissipation\": {},\n     \"plastic_volume\": {}, \"plastic_points\": {}}}",
+        out.empty() ? "" : ",", json_string(m.name), num(m.start_time), num(m.end_time), m.steps,
+        json_string(m.ended_by), num(m.runout), num(m.runout_x_min), num(m.runout_x_max),
+        num(m.height_start), num(m.height_end), num(m.peak_mean_speed), num(m.peak_time),
+        num(m.final_mean_speed), m.stop_time ? num(*m.stop_time) : std::string("null"),
+        num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy),
+        num(m.plastic_dissipation), num(m.plastic_volume), m.plastic_points);
+  }
+  return stages.empty() ? out : out + "\n  ";
+}
+
+}  // namespace
+
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
   const std::string text = fmt::format(
       "{{\n"
@@ -89,12 +114,13 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
       "  \"scheme\": {},\n"
-      "  \"time_step\": {}\n"
+      "  \"time_step\": {},\n"
+      "  \"stages\": [{}]\n"
       "}}\n",
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
       json_number(s.end_time), s.particles, s.cells, json_number(s.wall_seconds),
       json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
-      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step));
+      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), stages_json(s.stages));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

@@ -1,9 +1,33 @@
 // The end-of-run summary (summary.json).
 #pragma once
 #include <filesystem>
+#include <optional>
 #include <string>
+#include <vector>
 
 namespace skred {
+
+// The slide measures of one stage (filled by run/slide_measures).
+struct StageMeasures {
+  std::string name;
+  double start_time = 0.0, end_time = 0.0;  // [s], simulation time
+  long steps = 0;
+  std::string ended_by;  // "duration", "rest" or "unstable"
+  // Runout: how far the front has moved beyond its start position, towards -x and +x
+  // (each >= 0 when the front advances), and the larger of the two.
+  double runout_x_min = 0.0, runout_x_max = 0.0, runout = 0.0;
+  double height_start = 0.0, height_end = 0.0;  // top of the material above its lowest point
+  double peak_mean_speed = 0.0, peak_time = 0.0, final_mean_speed = 0.0;  // eq. 5.12
+  double gravity_work = 0.0;          // eq. 5.13, from the stage start
+  double kinetic_energy_change = 0.0;
+  double strain_energy = 0.0;         // stored elastic energy change
+  double plastic_dissipation = 0.0;
+  double plastic_volume = 0.0;        // volume of the points that yielded during the stage
+  long plastic_points = 0;
+  // Stage time after which the mean speed stayed below the rest speed (or, without a rest
+  // criterion, below 1 % of its peak); empty if the material was still moving at the end.
+  std::optional<double> stop_time;
+};
 
 struct Summary {
   std::string status;  // "completed" or "unstable" or "error"
@@ -20,9 +44,11 @@ struct Summary {
   std::string interpolation;
   std::string scheme;
   double time_step;
+  std::vector<StageMeasures> stages = {};
 };
 
-// Writes `s` as one JSON object (keys named as the fields, in field order) atomically.
+// Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an
+// array of objects keyed like StageMeasures, stop_time null when unset) atomically.
 // Strings are escaped (quotes, backslashes, control characters; invalid UTF-8 bytes become
 // U+FFFD); real numbers are written as the shortest decimal that reads back to the same
 // double, and as null when not finite. Throws std::runtime_error on I/O failure.

@@ -11,7 +11,9 @@
 #include "io/series_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
+#include "scenario/initial_stress.hpp"
 
 namespace skred {
 
@@ -48,8 +50,8 @@ std::string hms(double seconds) {
                    : fmt::format("{:02}:{:02}", s / 60, s % 60);
 }
 
-SeriesRow series_row(const ExplicitSolver<2>& solver, long particles) {
-  const auto t = solver.totals();
+SeriesRow series_row(const ExplicitSolver<2>& solver, const ParticleTotals<2>& t, long particles,
+                     int stage, double runout) {
   const auto& e = solver.energy();
   SeriesRow r{};
   r.step = solver.steps();
@@ -63,6 +65,9 @@ SeriesRow series_row(const ExplicitSolver<2>& solver, long particles) {
   r.momentum_x = t.momentum[0];
   r.momentum_y = t.momentum[1];
   r.num_particles = particles;
+  r.stage = stage;
+  r.runout = runout;
+  r.yielding_points = t.yielding;
   return r;
 }
 
@@ -70,11 +75,13 @@ SeriesRow series_row(const ExplicitSolver<2>& solver, long particles) {
 
 RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
   Particles<2> particles = build_particles(s);
+  apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
   GridGeometry<2> grid;
   grid.origin = s.origin;
   grid.h = s.cell_size;
   grid.cells = s.cells;
-  ExplicitSolver<2> solver(grid, particles, s.materials, solver_settings(s), opt.threads);
+  ExplicitSolver<2> solver(grid, particles, stage_materials(s, s.stages.front()),
+                           solver_settings(s), opt.threads);
 
   fs::create_directories(outdir);
   PvdWriter pvd(outdir);
@@ -92,45 +99,81 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   };
 
   const double dt = solver.dt();
-  const long total_steps = static_cast<long>(std::ceil(s.end_time / dt - 1e-9));
+  long total_steps = 0;  // upper bound: every stage to its full duration
+  for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));
   const long n = static_cast<long>(particles.size());
   const bool tty = isatty(fileno(stderr));
   RunResult res;
   res.particles = n;
 
-  series.add(series_row(solver, n));
-  write_frame();
-  double next_output = s.output_interval, next_series = s.series_interval;
   const auto start = Clock::now();
   double compute_seconds = 0.0;
   auto last_report = start;
   StepStatus status;
-  while (solver.steps() < total_steps) {
-    const auto t0 = Clock::now();
-    status = solver.step();
-    compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
-    if (!status.ok) break;
-    const double t = solver.time();
-    const bool last = solver.steps() == total_steps;
-    if (t >= next_series - 0.5 * dt || last) {
-      series.add(series_row(solver, n));
-      while (next_series <= t + 0.5 * dt) next_series += s.series_interval;
-    }
-    if (t >= next_output - 0.5 * dt || last) {
+  std::vector<StageMeasures> measures;
+  double next_output = 0.0, next_series = 0.0;
+  for (std::size_t k = 0; k < s.stages.size() && status.ok; ++k) {
+    const Stage& st = s.stages[k];
+    if (k > 0) solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
+    else solver.begin_stage(solver.materials(), st.gravity_ramp_time);
+    const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
+    const long first_step = solver.steps();
+    const double stage_start = solver.time();
+    StageTracker tracker(st.name, particles, stage_start, solver.totals().kinetic_energy,
+                         st.rest_speed, st.rest_time);
+    auto sample = [&]() {
+      const ParticleTotals<2> t = solver.totals();
+      series.add(series_row(solver, t, n, static_cast<int>(k), tracker.runout(particles)));
+      const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time;
+      return tracker.observe(solver.time(), t.mean_speed) && !ramping;
+    };
+    sample();
+    if (k == 0) {
       write_frame();
-      while (next_output <= t + 0.5 * dt) next_output += s.output_interval;
+      next_output = s.output_interval;
+      next_series = s.series_interval;
     }
-    const auto now = Clock::now();
-    if (opt.progress && (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last)) {
-      last_report = now;
-      const double elapsed = std::chrono::duration<double>(now - start).count();
-      const double frac = static_cast<double>(solver.steps()) / total_steps;
-      const double pups = compute_seconds > 0 ? n * solver.steps() / compute_seconds : 0.0;
-      fmt::print(stderr, "{}step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
-                 tty ? "\r" : "", solver.steps(), t, 100 * frac, hms(elapsed / frac - elapsed),
-                 pups / 1e6, tty && !last ? "" : "\n");
-      std::fflush(stderr);
+    std::string ended_by = "duration";
+    while (solver.steps() - first_step < stage_steps) {
+      const auto t0 = Clock::now();
+      status = solver.step();
+      compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
+      if (!status.ok) {
+        ended_by = "unstable";
+        break;
+      }
+      const double t = solver.time();
+      const bool last = solver.steps() - first_step == stage_steps;
+      bool at_rest = false;
+      if (t >= next_series - 0.5 * dt || last) {
+        at_rest = sample();
+        while (next_series <= t + 0.5 * dt) next_series += s.series_interval;
+      }
+      if (t >= next_output - 0.5 * dt || last || at_rest) {
+        write_frame();
+        while (next_output <= t + 0.5 * dt) next_output += s.output_interval;
+      }
+      const auto now = Clock::now();
+      if (opt.progress && (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest)) {
+        last_report = now;
+        const double elapsed = std::chrono::duration<double>(now - start).count();
+        const double frac = static_cast<double>(solver.steps()) / total_steps;
+        const double pups = compute_seconds > 0 ? n * solver.steps() / compute_seconds : 0.0;
+        fmt::print(stderr, "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
+                   tty ? "\r" : "", k + 1, st.name, solver.steps(), t, 100 * frac,
+                   hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest) ? "" : "\n");
+        std::fflush(stderr);
+      }
+      if (at_rest) {
+        ended_by = "rest";
+        break;
+      }
     }
+    const ParticleTotals<2> t = solver.totals();
+    const EnergyTotals& e = solver.energy();
+    measures.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
+                                      t.kinetic_energy, e.gravity_work, e.strain_energy,
+                                      e.plastic_dissipation, ended_by));
   }
   res.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   res.steps = solver.steps();
@@ -143,7 +186,6 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
         "unstable at step {} (t = {:.6g} s): particle {} of body '{}' at ({:.6g}, {:.6g}): {}",
         solver.steps() + 1, solver.time(), p, s.bodies[particles.body[p]].name, particles.x[p][0],
         particles.x[p][1], status.reason);
-    series.add(series_row(solver, n));
     write_frame();  // the last state, for diagnosis
   }
   series.flush();
@@ -163,7 +205,9 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   sum.interpolation = to_string(s.interpolation);
   sum.scheme = to_string(s.scheme);
   sum.time_step = dt;
+  sum.stages = measures;
   write_summary_json(outdir / "summary.json", sum);
+  res.stages = std::move(measures);
   return res;
 }
 

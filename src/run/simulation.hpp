@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "io/summary_writer.hpp"
 #include "scenario/scenario.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -22,6 +23,7 @@ struct RunResult {
   long particles = 0;
   double wall_seconds = 0.0;
   double particle_updates_per_second = 0.0;
+  std::vector<StageMeasures> stages;  // slide measures per stage run
 };
 
 // The time step of a scenario: the fixed one, or cfl * h / (fastest P-wave speed +

@@ -61,11 +61,44 @@ template <class F> void for_each_point(const Scenario& s, const Body& body, F&& 
         }
 }
 
-const char* model_name(Model m) {
-  switch (m) {
-    case Model::LinearElastic: return "linear-elastic";
+// The strength parameters of a material, for describe().
+std::string strength_summary(const Material& m) {
+  constexpr double deg = 180.0 / M_PI;
+  switch (m.model) {
+    case Model::LinearElastic: return "";
+    case Model::MohrCoulomb: {
+      const auto& mc = m.mohr_coulomb;
+      std::string t = fmt::format(", friction {:.4g} deg, cohesion {} Pa, dilation {:.4g} deg",
+                                  mc.friction * deg, mc.cohesion, mc.dilation * deg);
+      if (std::isfinite(mc.tension_cutoff)) t += fmt::format(", tension cut-off {} Pa", mc.tension_cutoff);
+      if (mc.max_void_ratio > 0)
+        t += fmt::format(", void ratio {} -> max {}", mc.initial_void_ratio, mc.max_void_ratio);
+      return t;
+    }
+    case Model::Tresca: return fmt::format(", cohesion {} Pa", m.mohr_coulomb.cohesion);
+    case Model::VonMises:
+      return fmt::format(", cohesion {} Pa -> residual {} Pa, softening modulus {} Pa",
+                         m.von_mises.cohesion_peak, m.von_mises.cohesion_residual,
+                         m.von_mises.softening_modulus);
   }
-  return "?";
+  return "";
+}
+
+std::string stage_summary(const Scenario& s, const Stage& st) {
+  std::string t = fmt::format("  {}: {} s", st.name, st.duration);
+  if (st.gravity_ramp_time > 0) t += fmt::format(", gravity ramp {} s", st.gravity_ramp_time);
+  if (st.elastic) t += ", held elastic";
+  if (st.strength_reduction != 1.0) t += fmt::format(", strength reduction {}", st.strength_reduction);
+  for (const auto& o : st.overrides) {
+    t += fmt::format(", {}:", s.materials[static_cast<std::size_t>(o.material)].name);
+    if (o.friction) t += fmt::format(" friction {:.4g} deg", *o.friction * 180.0 / M_PI);
+    if (o.cohesion) t += fmt::format(" cohesion {} Pa", *o.cohesion);
+    if (o.dilation) t += fmt::format(" dilation {:.4g} deg", *o.dilation * 180.0 / M_PI);
+  }
+  if (st.rest_speed > 0)
+    t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed,
+                     st.rest_time);
+  return t;
 }
 
 std::string vec(const Vec<2>& v) { return fmt::format("({}, {})", v[0], v[1]); }
@@ -173,8 +206,9 @@ std::string describe(const Scenario& s) {
                    s.cells[1] * s.cell_size));
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)
-    line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}", m.name,
-                     model_name(m.model), m.density, m.elastic.young, m.elastic.poisson));
+    line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}{}", m.name,
+                     to_string(m.model), m.density, m.elastic.young, m.elastic.poisson,
+                     strength_summary(m)));
   line(fmt::format("bodies ({}):", s.bodies.size()));
   for (const auto& b : s.bodies) {
     const std::string mat = b.material >= 0 && static_cast<std::size_t>(b.material) < s.materials.size()
@@ -184,7 +218,15 @@ std::string describe(const Scenario& s) {
                      shape_summary(b.shape), mat, b.particles_per_cell, b.particles_per_cell,
                      vec(b.velocity)));
   }
-  line(fmt::format("gravity: {} m/s^2, ramp time {} s", vec(s.gravity), s.gravity_ramp_time));
+  line(fmt::format("gravity: {} m/s^2", vec(s.gravity)));
+  switch (s.initial_stress.rule) {
+    case K0Rule::None: break;
+    case K0Rule::Poisson: line("initial stress: K0 = nu / (1 - nu) from the overburden"); break;
+    case K0Rule::Jaky: line("initial stress: K0 = 1 - sin(phi) from the overburden"); break;
+    case K0Rule::Value: line(fmt::format("initial stress: K0 = {} from the overburden", s.initial_stress.k0)); break;
+  }
+  line(fmt::format("stages ({}):", s.stages.size()));
+  for (const auto& st : s.stages) line(stage_summary(s, st));
   line(fmt::format("boundaries: x_min {}, x_max {}, y_min {}, y_max {}",
                    boundary_summary(s.boundaries[0]), boundary_summary(s.boundaries[1]),
                    boundary_summary(s.boundaries[2]), boundary_summary(s.boundaries[3])));

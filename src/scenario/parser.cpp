@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cmath>
 #include <cstring>
 #include <fstream>
@@ -30,6 +31,16 @@ const char* to_string(StressScheme s) {
     case StressScheme::USF: return "usf";
     case StressScheme::USL: return "usl";
     case StressScheme::Averaged: return "averaged";
+  }
+  return "?";
+}
+
+const char* to_string(Model m) {
+  switch (m) {
+    case Model::LinearElastic: return "linear-elastic";
+    case Model::MohrCoulomb: return "mohr-coulomb";
+    case Model::Tresca: return "tresca";
+    case Model::VonMises: return "von-mises";
   }
   return "?";
 }
@@ -85,6 +96,53 @@ void parse_grid(const TableReader& root, Scenario& s) {
   s.cell_size = h;
 }
 
+constexpr double kDeg = M_PI / 180.0;
+
+// Strength keys of the plastic models (Thesis eq. 5.1-5.4; Paper III §C.3.2; Acosta §3.2).
+void parse_strength(const TableReader& t, Material& m) {
+  switch (m.model) {
+    case Model::LinearElastic:
+      t.allow_only({"name", "model", "density", "young", "poisson"});
+      return;
+    case Model::MohrCoulomb: {
+      t.allow_only({"name", "model", "density", "young", "poisson", "friction", "cohesion",
+                    "dilation", "tension_cutoff", "initial_void_ratio", "max_void_ratio"});
+      MohrCoulombParams& mc = m.mohr_coulomb;
+      const double phi_deg = t.number("friction", Range{0.0, 90.0, false, true});
+      mc.friction = phi_deg * kDeg;
+      mc.cohesion = t.number("cohesion", Range::non_negative());
+      if (mc.friction == 0.0 && mc.cohesion == 0.0)
+        t.fail_at("cohesion", "a Mohr-Coulomb material needs friction > 0 or cohesion > 0");
+      mc.dilation = t.number("dilation", Range::closed(0.0, phi_deg), 0.0) * kDeg;
+      if (t.has("tension_cutoff"))
+        mc.tension_cutoff = t.number("tension_cutoff", Range::non_negative());
+      if (t.has("initial_void_ratio") != t.has("max_void_ratio"))
+        t.fail_at(t.has("max_void_ratio") ? "max_void_ratio" : "initial_void_ratio",
+                  "the dilation cut-off needs both initial_void_ratio and max_void_ratio");
+      if (t.has("max_void_ratio")) {
+        mc.initial_void_ratio = t.number("initial_void_ratio", Range::positive());
+        mc.max_void_ratio = t.number("max_void_ratio", Range{mc.initial_void_ratio,
+                                                             INFINITY, true, false});
+      }
+      return;
+    }
+    case Model::Tresca:
+      t.allow_only({"name", "model", "density", "young", "poisson", "cohesion"});
+      m.mohr_coulomb.cohesion = t.number("cohesion", Range::positive());
+      return;
+    case Model::VonMises: {
+      t.allow_only({"name", "model", "density", "young", "poisson", "cohesion",
+                    "residual_cohesion", "softening_modulus"});
+      VonMisesParams& vm = m.von_mises;
+      vm.cohesion_peak = t.number("cohesion", Range::positive());
+      vm.cohesion_residual = t.number("residual_cohesion", Range::closed(0.0, vm.cohesion_peak),
+                                      vm.cohesion_peak);
+      vm.softening_modulus = t.number("softening_modulus", Range{-INFINITY, 0.0, false, false}, 0.0);
+      return;
+    }
+  }
+}
+
 void parse_materials(const TableReader& root, Scenario& s) {
   const auto tables = root.array_of_tables("material");
   if (tables.empty())
@@ -92,7 +150,6 @@ void parse_materials(const TableReader& root, Scenario& s) {
          "at least one [[material]] table is required");
   std::map<std::string, Location> seen;
   for (const auto& t : tables) {
-    t.allow_only({"name", "model", "density", "young", "poisson"});
     Material m;
     m.name = t.string("name");
     if (m.name.empty()) t.fail_at("name", "must not be empty");
@@ -100,12 +157,25 @@ void parse_materials(const TableReader& root, Scenario& s) {
       t.fail_at("name", fmt::format("duplicate material name \"{}\" (first defined on line {})",
                                     m.name, it->second.line));
     seen.emplace(m.name, t.where("name"));
-    m.model = t.choice<Model>("model", {{"linear-elastic", Model::LinearElastic}});
+    const auto M = [](Model x) { return std::pair{to_string(x), x}; };
+    m.model = t.choice<Model>("model", {M(Model::LinearElastic), M(Model::MohrCoulomb),
+                                        M(Model::Tresca), M(Model::VonMises)});
+    parse_strength(t, m);
     m.density = t.number("density", Range::positive());
     m.elastic.young = t.number("young", Range::positive());
     m.elastic.poisson = t.number("poisson", Range{0.0, 0.5, false, true});
     s.materials.push_back(std::move(m));
   }
+}
+
+// Index of the material called `name`, or a message listing the defined ones.
+int material_index(const TableReader& t, std::string_view key, const Scenario& s) {
+  const std::string name = t.string(key);
+  for (std::size_t m = 0; m < s.materials.size(); ++m)
+    if (s.materials[m].name == name) return static_cast<int>(m);
+  std::string names;
+  for (const auto& m : s.materials) names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", m.name);
+  t.fail_at(key, fmt::format("no [[material]] is named \"{}\"; defined: {}", name, names));
 }
 
 // High corner of the grid and the tolerance for "inside the grid" tests.
@@ -193,15 +263,7 @@ void parse_bodies(const TableReader& root, Scenario& s) {
       case Kind::Disc: b.shape = parse_disc(t, s); break;
     }
     b.name = t.string("name", fmt::format("body-{}", i));
-    const std::string mat = t.string("material");
-    b.material = -1;
-    for (std::size_t m = 0; m < s.materials.size(); ++m)
-      if (s.materials[m].name == mat) b.material = static_cast<int>(m);
-    if (b.material < 0) {
-      std::string names;
-      for (const auto& m : s.materials) names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", m.name);
-      t.fail_at("material", fmt::format("no [[material]] is named \"{}\"; defined: {}", mat, names));
-    }
+    b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
     b.velocity = t.vec2("velocity", Vec<2>::Zero());
     if (!has_points(s, b))
@@ -262,7 +324,10 @@ void parse_boundary(const TableReader& root, Scenario& s) {
 }
 
 void parse_solver(const TableReader& root, Scenario& s) {
-  const TableReader t = *root.table("solver", true);
+  // [solver] may be left out when [[stage]] tables give the end time.
+  static const toml::table empty;
+  const TableReader t = root.table("solver", !root.has("stage"))
+                            .value_or(TableReader(empty, "solver", s.source));
   t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl"});
   const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
   s.interpolation = t.choice<Interpolation>(
@@ -274,9 +339,99 @@ void parse_solver(const TableReader& root, Scenario& s) {
   s.scheme = t.choice<StressScheme>(
       "scheme", {S(StressScheme::USF), S(StressScheme::USL), S(StressScheme::Averaged)},
       StressScheme::Averaged);
-  s.end_time = t.number("end_time", Range::positive());
+  // With [[stage]] tables the stage durations give the end time (parse_stages).
+  if (root.has("stage")) {
+    if (t.has("end_time"))
+      t.fail_at("end_time", "the [[stage]] durations set the end time; remove solver.end_time");
+  } else {
+    s.end_time = t.number("end_time", Range::positive());
+  }
   s.time_step = t.has("time_step") ? t.number("time_step", Range::positive()) : 0.0;
   s.cfl = t.number("cfl", Range{0.0, 1.0, true, false}, 0.3);
+}
+
+void parse_initial_stress(const TableReader& root, Scenario& s) {
+  const auto t = root.table("initial_stress", false);
+  if (!t) return;
+  t->allow_only({"k0"});
+  InitialStress& is = s.initial_stress;
+  const toml::node* n = t->find("k0");
+  if (!n) t->fail_missing("k0");
+  if (n->is_number()) {
+    is.rule = K0Rule::Value;
+    is.k0 = t->number("k0", Range::closed(0.0, 10.0));
+    return;
+  }
+  if (!n->is_string()) t->fail_type("k0", "\"poisson\", \"jaky\" or a number");
+  is.rule = t->choice<K0Rule>("k0", {{"poisson", K0Rule::Poisson}, {"jaky", K0Rule::Jaky}});
+}
+
+MaterialOverride parse_override(const TableReader& t, const Scenario& s) {
+  t.allow_only({"name", "friction", "cohesion", "dilation"});
+  MaterialOverride o;
+  o.material = material_index(t, "name", s);
+  const Material& m = s.materials[static_cast<std::size_t>(o.material)];
+  const bool mc = m.model == Model::MohrCoulomb;
+  if (!mc && (t.has("friction") || t.has("dilation")))
+    t.fail_at(t.has("friction") ? "friction" : "dilation",
+              fmt::format("material \"{}\" is {}; only mohr-coulomb has a friction or dilation "
+                          "angle", m.name, to_string(m.model)));
+  if (!m.plastic() && t.has("cohesion"))
+    t.fail_at("cohesion", fmt::format("material \"{}\" is linear-elastic and has no cohesion", m.name));
+  if (t.has("friction")) o.friction = t.number("friction", Range{0.0, 90.0, false, true}) * kDeg;
+  if (t.has("cohesion"))
+    o.cohesion = t.number("cohesion", m.model == Model::MohrCoulomb ? Range::non_negative()
+                                                                    : Range::positive());
+  if (t.has("dilation")) o.dilation = t.number("dilation", Range{0.0, 90.0, false, true}) * kDeg;
+  const double phi = o.friction.value_or(m.mohr_coulomb.friction);
+  if (o.dilation.value_or(m.mohr_coulomb.dilation) > phi + 1e-12)
+    t.fail_at(o.dilation ? "dilation" : "friction",
+              "the dilation angle must not exceed the friction angle");
+  if (mc && phi == 0.0 && o.cohesion.value_or(m.mohr_coulomb.cohesion) == 0.0)
+    t.fail_at(o.cohesion ? "cohesion" : "friction", "the material would have no strength left");
+  return o;
+}
+
+void parse_stages(const TableReader& root, Scenario& s) {
+  const auto tables = root.array_of_tables("stage");
+  if (tables.empty()) {  // one implicit stage: [solver] end_time with the [gravity] ramp
+    Stage st;
+    st.name = "run";
+    st.duration = s.end_time;
+    st.gravity_ramp_time = s.gravity_ramp_time;
+    s.stages.push_back(st);
+    return;
+  }
+  if (s.gravity_ramp_time > 0)
+    fail(s.source, root.table("gravity", true)->where("ramp_time"), "gravity.ramp_time",
+         "with [[stage]] tables give the ramp per stage (stage.gravity_ramp_time)");
+  s.end_time = 0.0;
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const TableReader& t = tables[i];
+    t.allow_only({"name", "duration", "gravity_ramp_time", "elastic", "strength_reduction",
+                  "material", "rest_speed", "rest_time"});
+    Stage st;
+    st.name = t.string("name", fmt::format("stage-{}", i));
+    st.duration = t.number("duration", Range::positive());
+    st.gravity_ramp_time = t.number("gravity_ramp_time", Range::non_negative(), 0.0);
+    if (st.gravity_ramp_time > st.duration)
+      t.fail_at("gravity_ramp_time", fmt::format("the ramp ({} s) is longer than the stage ({} s)",
+                                                 st.gravity_ramp_time, st.duration));
+    if (t.has("elastic")) {
+      const auto v = t.find("elastic")->value<bool>();
+      if (!v) t.fail_type("elastic", "a boolean (true or false)");
+      st.elastic = *v;
+    }
+    st.strength_reduction = t.number("strength_reduction", Range{1.0, 100.0, false, false}, 1.0);
+    for (const auto& m : t.array_of_tables("material")) st.overrides.push_back(parse_override(m, s));
+    st.rest_speed = t.number("rest_speed", Range::non_negative(), 0.0);
+    if (t.has("rest_time") && st.rest_speed == 0.0)
+      t.fail_at("rest_time", "only allowed together with rest_speed > 0");
+    st.rest_time = t.number("rest_time", Range::positive(), 0.0);
+    if (st.rest_speed > 0.0 && !t.has("rest_time")) t.fail_missing("rest_time");
+    s.end_time += st.duration;
+    s.stages.push_back(std::move(st));
+  }
 }
 
 void parse_output(const TableReader& root, Scenario& s) {
@@ -292,17 +447,90 @@ void parse_output(const TableReader& root, Scenario& s) {
 
 }  // namespace
 
-Scenario parse_scenario(const std::string& text, const std::string& source) {
-  toml::table doc;
+namespace {
+
+toml::table parse_toml(const std::string& text, const std::string& source) {
   try {
-    doc = toml::parse(std::string_view(text), std::string_view(source));
+    return toml::parse(std::string_view(text), std::string_view(source));
   } catch (const toml::parse_error& e) {
     const Location at = location_of(e.source(), Location{1, 1});
     throw ScenarioError(fmt::format("{}:{}:{}: syntax error: {}", source, at.line, at.column,
                                     e.description()));
   }
+}
+
+// Sets the value at a key path such as "material[0].friction" or "material[sand].friction"
+// (an array element chosen by its name key) or "stage[1].material[0].cohesion".
+void set_key(toml::table& doc, const std::string& path, double value, const std::string& source) {
+  const auto bad = [&](const std::string& why) {
+    throw ScenarioError(fmt::format("{}: key '{}': {}", source, path, why));
+  };
+  toml::table* table = &doc;
+  std::size_t pos = 0;
+  while (true) {
+    const std::size_t dot = path.find('.', pos);
+    std::string part = path.substr(pos, dot == std::string::npos ? std::string::npos : dot - pos);
+    std::string index;
+    if (const auto open = part.find('['); open != std::string::npos) {
+      if (part.back() != ']') bad("expected NAME[INDEX] in the key path");
+      index = part.substr(open + 1, part.size() - open - 2);
+      part.resize(open);
+    }
+    if (part.empty()) bad("empty component in the key path");
+    if (dot == std::string::npos) {
+      if (!index.empty()) bad("the last component must name a value, not an array element");
+      const toml::node* old = table->get(part);
+      if (old && old->is_integer() && value == std::floor(value))
+        table->insert_or_assign(part, static_cast<std::int64_t>(value));
+      else
+        table->insert_or_assign(part, value);
+      return;
+    }
+    toml::node* next = table->get(part);
+    if (!next) bad(fmt::format("'{}' is not in the scenario", part));
+    if (!index.empty()) {
+      toml::array* arr = next->as_array();
+      if (!arr) bad(fmt::format("'{}' is not an array of tables", part));
+      toml::node* element = nullptr;
+      char* end = nullptr;
+      const long k = std::strtol(index.c_str(), &end, 10);
+      if (end && *end == '\0' && k >= 0 && static_cast<std::size_t>(k) < arr->size()) {
+        element = arr->get(static_cast<std::size_t>(k));
+      } else {
+        for (auto& e : *arr)
+          if (auto* t = e.as_table(); t && t->get("name") && t->get("name")->value<std::string>() == index)
+            element = &e;
+      }
+      if (!element) bad(fmt::format("'{}' has no element '{}'", part, index));
+      next = element;
+    }
+    table = next->as_table();
+    if (!table) bad(fmt::format("'{}' is not a table", part));
+    pos = dot + 1;
+  }
+}
+
+Scenario parse_document(const toml::table& doc, const std::string& source);
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& text, const std::string& source) {
+  return parse_document(parse_toml(text, source), source);
+}
+
+Scenario parse_scenario(const std::string& text, const std::string& source,
+                        const std::vector<std::pair<std::string, double>>& overrides) {
+  toml::table doc = parse_toml(text, source);
+  for (const auto& [key, value] : overrides) set_key(doc, key, value, source);
+  return parse_document(doc, source);
+}
+
+namespace {
+
+Scenario parse_document(const toml::table& doc, const std::string& source) {
   const TableReader root(doc, "", source);
-  root.allow_only({"title", "grid", "material", "body", "gravity", "boundary", "solver", "output"});
+  root.allow_only({"title", "grid", "material", "body", "initial_stress", "gravity", "boundary",
+                   "solver", "stage", "output"});
   Scenario s;
   s.source = source;
   s.title = root.string("title", std::string());
@@ -311,12 +539,16 @@ Scenario parse_scenario(const std::string& text, const std::string& source) {
   parse_bodies(root, s);
   parse_gravity(root, s);
   parse_boundary(root, s);
+  parse_initial_stress(root, s);
   parse_solver(root, s);
+  parse_stages(root, s);
   parse_output(root, s);
   return s;
 }
 
-Scenario load_scenario(const std::string& path) {
+}  // namespace
+
+std::string read_scenario_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in)
     throw ScenarioError(fmt::format("{}: cannot open scenario file: {}", path,
@@ -324,7 +556,9 @@ Scenario load_scenario(const std::string& path) {
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ScenarioError(fmt::format("{}: cannot read scenario file", path));
-  return parse_scenario(text.str(), path);
+  return text.str();
 }
+
+Scenario load_scenario(const std::string& path) { return parse_scenario(read_scenario_text(path), path); }
 
 }  // namespace skred

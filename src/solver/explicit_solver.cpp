@@ -71,7 +71,7 @@ template <int D> StepStatus ExplicitSolver<D>::step() {
 // splits the stress update into two half steps around the momentum update.
 template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   const double dt = settings_.dt;
-  gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_);
+  gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (!map_mass_momentum(kernel)) return status_;
   nodal_velocity(fields_.velocity);
@@ -320,9 +320,10 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   const auto& P = particles_;
   const long n = static_cast<long>(P.size());
   double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
+  long yielding = 0;
   Vec<D> mom = Vec<D>::Zero();
 #pragma omp declare reduction(vadd3 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass) \
+#pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass, yielding) \
     reduction(max : vmax) reduction(vadd3 : mom)
   for (long p = 0; p < n; ++p) {
     const double m = P.mass[p], s = P.v[p].norm();
@@ -331,6 +332,7 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
     speed_mass += m * s;             // eq. 5.12
     vmax = std::max(vmax, s);
     mom += m * P.v[p];
+    yielding += P.state[p].yielding;
   }
   ParticleTotals<D> t;
   t.mass = mass;
@@ -338,6 +340,7 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   t.momentum = mom;
   t.mean_speed = mass > 0.0 ? speed_mass / mass : 0.0;
   t.max_speed = vmax;
+  t.yielding = yielding;
   return t;
 }
 
@@ -379,7 +382,16 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
 
 template <int D> void ExplicitSolver<D>::reset_reference() {
   particles_.x_ref = particles_.x;
-  energy_.gravity_work = 0.0;
+  energy_ = EnergyTotals{};
+}
+
+template <int D>
+void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double gravity_ramp_time) {
+  materials_ = std::move(materials);
+  for (Material& m : materials_) m.prepare();
+  settings_.gravity_ramp_time = gravity_ramp_time;
+  ramp_start_ = time_;
+  reset_reference();
 }
 
 template class ExplicitSolver<2>;

@@ -39,6 +39,7 @@ template <int D> struct ParticleTotals {
   Vec<D> momentum = Vec<D>::Zero();
   double mean_speed = 0.0;      // mass-weighted mean speed, eq. 5.12
   double max_speed = 0.0;
+  long yielding = 0;            // points whose last stress update was plastic
 };
 
 // Outcome of one step. A step that fails names the first offending particle.
@@ -69,8 +70,13 @@ template <int D> class ExplicitSolver {
   // weighted by mass, then interpolated back. `out` is resized to the particle count.
   void smoothed_stress(std::vector<Sym3>& out);
 
-  // Starts a new stage: displacements and gravity work are measured from here.
+  // Starts a new stage at the current time: the materials (the stage's strength, or held
+  // elastic) and the gravity ramp (Thesis eq. 4.13, measured from now; 0: full gravity)
+  // change, and displacements, gravity work, strain energy and plastic dissipation are
+  // measured from here.
+  void begin_stage(std::vector<Material> materials, double gravity_ramp_time);
   void reset_reference();
+  const std::vector<Material>& materials() const { return materials_; }
 
  private:
   template <class K> StepStatus step_with(const K& kernel);
@@ -96,6 +102,7 @@ template <int D> class ExplicitSolver {
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
   int threads_ = 1;
   double time_ = 0.0;
+  double ramp_start_ = 0.0;  // time at which the gravity ramp starts
   long steps_ = 0;
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;

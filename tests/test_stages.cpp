@@ -1,0 +1,261 @@
+// Initial stress (K0, Thesis eq. 5.6-5.7, Post eq. 51), staged analysis and parameter sweeps,
+// checked against closed forms: the overburden stress rho g d, and the strain energy of a
+// column under its own weight, U = w rho^2 g^2 H^3 / (6 M).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "run/simulation.hpp"
+#include "run/sweep.hpp"
+#include "scenario/build.hpp"
+#include "scenario/initial_stress.hpp"
+
+namespace fs = std::filesystem;
+using namespace skred;
+
+namespace {
+
+// A column of width w and height H on a fixed base between rollers; `extra` is appended.
+std::string column_text(const std::string& extra, double young = 1e6, double poisson = 0.0) {
+  std::ostringstream t;
+  t << R"(
+[grid]
+size = [0.02, 0.12]
+cell_size = 0.005
+[[material]]
+name = "soil"
+model = "linear-elastic"
+density = 1800.0
+young = )" << young << "\npoisson = " << poisson << R"(
+[[body]]
+name = "column"
+material = "soil"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [0.02, 0.1]
+[gravity]
+acceleration = [0.0, -9.81]
+[boundary]
+x_min = "roller"
+x_max = "roller"
+y_min = "fixed"
+[solver]
+cfl = 0.3
+)" << extra;
+  return t.str();
+}
+
+fs::path temp_dir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("skred_stages_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+std::string read(const fs::path& f) {
+  std::ifstream in(f);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace
+
+TEST(InitialStress, K0FromOverburdenMatchesRhoGDepth) {
+  for (const char* rule : {"\"poisson\"", "0.7"}) {
+    const Scenario s = parse_scenario(
+        column_text(std::string("end_time = 0.1\n[initial_stress]\nk0 = ") + rule + "\n", 1e6, 0.3),
+        "k0.toml");
+    Particles<2> P = build_particles(s);
+    apply_initial_stress(s, P);
+    const double k0 = std::string(rule) == "0.7" ? 0.7 : 0.3 / 0.7;  // Thesis eq. 5.7
+    for (std::size_t p = 0; p < P.size(); ++p) {
+      const double depth = 0.1 - P.x[p][1];
+      const double syy = -1800.0 * 9.81 * depth;  // Thesis eq. 5.6
+      EXPECT_NEAR(P.stress[p][1], syy, 1e-9 * std::abs(syy)) << rule << " p " << p;
+      EXPECT_NEAR(P.stress[p][0], k0 * syy, 1e-9 * std::abs(syy));
+      EXPECT_NEAR(P.stress[p][2], k0 * syy, 1e-9 * std::abs(syy));
+      EXPECT_EQ(P.stress[p][3], 0.0);
+    }
+  }
+}
+
+TEST(InitialStress, LayeredBodiesAndJakyRule) {
+  // A heavy Mohr-Coulomb layer (phi = 30 deg) over a light elastic one; different point
+  // spacings. Overburden: rho_top g t_top + rho_bottom g (d - t_top).
+  const std::string text = R"(
+[grid]
+size = [1.0, 2.0]
+cell_size = 0.1
+[[material]]
+name = "light"
+model = "linear-elastic"
+density = 1000.0
+young = 1e7
+poisson = 0.25
+[[material]]
+name = "sand"
+model = "mohr-coulomb"
+density = 2000.0
+young = 1e7
+poisson = 0.3
+friction = 30.0
+cohesion = 0.0
+[[body]]
+material = "light"
+particles_per_cell = 2
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [1.0, 1.0]
+[[body]]
+material = "sand"
+particles_per_cell = 4
+shape = "rectangle"
+min = [0.0, 1.0]
+max = [1.0, 1.5]
+[gravity]
+acceleration = [0.0, -10.0]
+[initial_stress]
+k0 = "jaky"
+[solver]
+end_time = 0.1
+)";
+  const Scenario s = parse_scenario(text, "layers.toml");
+  Particles<2> P = build_particles(s);
+  apply_initial_stress(s, P);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const double y = P.x[p][1];
+    const double syy = y >= 1.0 ? -2000.0 * 10.0 * (1.5 - y) : -(2000.0 * 10.0 * 0.5 + 1000.0 * 10.0 * (1.0 - y));
+    const double k0 = y >= 1.0 ? 1.0 - std::sin(M_PI / 6) : 0.25 / 0.75;  // Post eq. 51 / Thesis eq. 5.7
+    EXPECT_NEAR(P.stress[p][1], syy, 1e-9 * std::abs(syy)) << "y = " << y;
+    EXPECT_NEAR(P.stress[p][0], k0 * syy, 1e-9 * std::abs(syy)) << "y = " << y;
+  }
+}
+
+TEST(Stages, MaterialsOfAStageApplyOverridesReductionAndElasticHold) {
+  const std::string text = R"(
+[grid]
+size = [1.0, 1.0]
+cell_size = 0.1
+[[material]]
+name = "sand"
+model = "mohr-coulomb"
+density = 2000.0
+young = 1e7
+poisson = 0.3
+friction = 30.0
+cohesion = 5000.0
+dilation = 10.0
+[[body]]
+material = "sand"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [1.0, 0.5]
+[[stage]]
+name = "equilibrium"
+duration = 0.1
+elastic = true
+[[stage]]
+name = "trigger"
+duration = 0.2
+[[stage.material]]
+name = "sand"
+cohesion = 0.0
+[[stage]]
+name = "srf"
+duration = 0.1
+strength_reduction = 1.5
+)";
+  const Scenario s = parse_scenario(text, "stages.toml");
+  ASSERT_EQ(s.stages.size(), 3u);
+  EXPECT_DOUBLE_EQ(s.end_time, 0.4);
+  EXPECT_EQ(stage_materials(s, s.stages[0])[0].model, Model::LinearElastic);
+  const Material trig = stage_materials(s, s.stages[1])[0];
+  EXPECT_EQ(trig.model, Model::MohrCoulomb);
+  EXPECT_EQ(trig.mohr_coulomb.cohesion, 0.0);
+  EXPECT_DOUBLE_EQ(trig.mohr_coulomb.friction, M_PI / 6);
+  const Material srf = stage_materials(s, s.stages[2])[0];
+  EXPECT_NEAR(srf.mohr_coulomb.cohesion, 5000.0 / 1.5, 1e-9);
+  EXPECT_NEAR(std::tan(srf.mohr_coulomb.friction), std::tan(M_PI / 6) / 1.5, 1e-12);
+  EXPECT_NEAR(std::tan(srf.mohr_coulomb.dilation), std::tan(M_PI / 18) / 1.5, 1e-12);
+}
+
+TEST(Stages, GravityStageStoresTheClosedFormEnergyAndRestEndsTheNextStage) {
+  // Stage 1 ramps gravity in (Thesis eq. 4.13); at equilibrium the stored strain energy is
+  // U = w rho^2 g^2 H^3 / (6 E) (nu = 0) and, for a slow ramp, equals the work of gravity.
+  // Stage 2 holds the column; its mean speed is already below the rest speed, so it ends by
+  // the rest criterion after rest_time instead of running its full duration.
+  const Scenario s = parse_scenario(column_text(R"(
+[[stage]]
+name = "gravity"
+duration = 0.34
+gravity_ramp_time = 0.34
+[[stage]]
+name = "hold"
+duration = 1.0
+rest_speed = 1e-4
+rest_time = 0.02
+[output]
+interval = 0.1
+)"), "staged.toml");
+  const fs::path out = temp_dir("column");
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  const RunResult r = run_simulation(s, out, opt);
+  ASSERT_TRUE(r.completed) << r.message;
+  ASSERT_EQ(r.stages.size(), 2u);
+  const double U = 0.02 * std::pow(1800.0 * 9.81, 2) * std::pow(0.1, 3) / (6 * 1e6);
+  const StageMeasures& g = r.stages[0];
+  std::printf("gravity stage: U = %.6g (exact %.6g), W_g = %.6g, final mean speed %.3g\n",
+              g.strain_energy, U, g.gravity_work, g.final_mean_speed);
+  EXPECT_NEAR(g.strain_energy, U, 0.01 * U);
+  EXPECT_NEAR(g.gravity_work, g.strain_energy, 0.002 * U);
+  EXPECT_EQ(g.ended_by, "duration");
+  const StageMeasures& h = r.stages[1];
+  EXPECT_EQ(h.ended_by, "rest");
+  EXPECT_LT(h.end_time - h.start_time, 0.1);
+  EXPECT_GE(h.end_time - h.start_time, 0.02);
+  ASSERT_TRUE(h.stop_time.has_value());
+  EXPECT_LT(std::abs(h.gravity_work), 0.01 * U);  // measured from the stage start
+  EXPECT_NEAR(h.runout, 0.0, 1e-4);
+  EXPECT_NEAR(h.height_end, 0.1 - 0.5 * 1800 * 9.81 * 0.01 / 1e6, 2e-5);  // settlement rho g H^2 / 2E
+  const std::string summary = read(out / "summary.json");
+  EXPECT_NE(summary.find("\"ended_by\": \"rest\""), std::string::npos);
+  EXPECT_NE(read(out / "series.csv").find(",1,"), std::string::npos);  // stage column
+  fs::remove_all(out);
+}
+
+TEST(Sweep, OneRowPerValueAndBadKeysNamed) {
+  const fs::path dir = temp_dir("sweep");
+  fs::create_directories(dir);
+  const fs::path file = dir / "column.toml";
+  std::ofstream(file) << column_text("end_time = 0.01\n[output]\ninterval = 0.01\n");
+  SweepOptions o;
+  o.key = "material[soil].young";
+  o.values = {1e6, 4e6};
+  o.progress = false;
+  const auto rows = run_sweep(file.string(), dir / "out", o);
+  ASSERT_EQ(rows.size(), 2u);
+  const std::string table = read(dir / "out" / "sweep.csv");
+  EXPECT_EQ(table.rfind(sweep_header(o.key), 0), 0u);
+  EXPECT_NE(table.find("1000000,completed,run_000,"), std::string::npos);
+  EXPECT_NE(table.find("4000000,completed,run_001,"), std::string::npos);
+  EXPECT_TRUE(fs::exists(dir / "out" / "run_001" / "summary.json"));
+  // The stiffer column's time step is shorter: more steps for the same end time.
+  EXPECT_GT(rows[1].steps, rows[0].steps);
+  o.key = "material[clay].young";
+  try {
+    run_sweep(file.string(), dir / "out2", o);
+    ADD_FAILURE() << "no error for an unknown material";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("material[clay].young"), std::string::npos) << e.what();
+  }
+  o.key = "material[0].young";
+  o.values = {1e6, -1.0};  // validated before any run starts
+  EXPECT_THROW(run_sweep(file.string(), dir / "out3", o), ScenarioError);
+  EXPECT_FALSE(fs::exists(dir / "out3" / "run_000"));
+  fs::remove_all(dir);
+}
