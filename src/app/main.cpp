@@ -118,7 +118,10 @@ int main(int argc, char** argv) {
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
-  bench->add_option("--particles", bo.particles, "Approximate number of particles")->check(CLI::Range(100L, 100000000L));
+  bench->add_option("--problem", bo.problem, "block (elastic, adjustable size) | column (Mohr-Coulomb collapse)")
+      ->check(CLI::IsMember({"block", "column"}));
+  bench->add_option("--refine", bo.refine, "column: cells per 0.05 m (particles x refine^2)")->check(CLI::Range(1, 20));
+  bench->add_option("--particles", bo.particles, "block: approximate number of particles")->check(CLI::Range(100L, 100000000L));
   bench->add_option("--steps", bo.steps, "Timed steps per repeat")->check(CLI::Range(1, 1000000));
   bench->add_option("--repeats", bo.repeats, "Repeats (the median is reported)")->check(CLI::Range(1, 1000));
   bench->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
@@ -142,8 +145,11 @@ int main(int argc, char** argv) {
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
       const auto r = skred::run_bench(bo);
-      fmt::print("bench: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
-                 r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp, scheme);
+      fmt::print("bench {}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
+                 bo.problem, r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
+                 bo.problem == "column" ? "usf" : scheme);
+      if (bo.problem == "column")
+        fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s\n", r.status, r.runout, bo.steps * 1e-4);
       for (double u : r.updates_per_second) fmt::print("  run: {:.3f} M particle-updates/s\n", u / 1e6);
       fmt::print("median: {:.3f} M particle-updates/s ({:.3f} M per thread)\n", r.median / 1e6,
                  r.median / 1e6 / bo.threads);

@@ -21,6 +21,10 @@ template <int D> struct Particles {
   std::vector<std::int32_t> material;  // index into the scenario's material table
   std::vector<std::int32_t> body;      // index into the scenario's body table
   std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
+  // Elastic part of F (F = Fe Fp, Post eq. 67-74), identity at the reference state, and the
+  // stress of that reference state (sigma_initial of Post eq. 77).
+  std::vector<Mat<D>> Fe;
+  std::vector<Sym3> stress_ref;
 
   // Per-step scratch: the deformation-gradient increment of the current step. F_p stays at
   // its start-of-step value while the weighting functions are evaluated, and is updated once
@@ -32,7 +36,7 @@ template <int D> struct Particles {
   void reserve(std::size_t n) {
     x.reserve(n); x_ref.reserve(n); v.reserve(n); mass.reserve(n); volume0.reserve(n);
     half0.reserve(n); F.reserve(n); stress.reserve(n); material.reserve(n); body.reserve(n);
-    state.reserve(n); dF.reserve(n);
+    state.reserve(n); dF.reserve(n); Fe.reserve(n); stress_ref.reserve(n);
   }
 
   // Appends one undeformed, stress-free material point.
@@ -42,6 +46,7 @@ template <int D> struct Particles {
     volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
     stress.push_back(Sym3::Zero()); material.push_back(mat); body.push_back(bod);
     state.push_back(PointState{}); dF.push_back(Mat<D>::Identity());
+    Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(Sym3::Zero());
   }
 
   // Current volume V_p = det(F_p) V_p^0.

@@ -7,8 +7,10 @@
 
 #include "core/types.hpp"
 #include "material/elastic.hpp"
+#include "material/mohr_coulomb.hpp"
 #include "material/plastic_params.hpp"
 #include "material/state.hpp"
+#include "material/von_mises.hpp"
 
 namespace skred {
 
@@ -21,10 +23,15 @@ struct Material {
   ElasticParams elastic;
   ElasticConstants elastic_constants;  // derived from `elastic` by prepare()
   MohrCoulombParams mohr_coulomb;       // MohrCoulomb and Tresca (friction = dilation = 0)
+  MohrCoulombConstants mohr_coulomb_constants;  // derived by prepare()
   VonMisesParams von_mises;             // VonMises
 
   // Computes the derived constants; call after setting the parameters.
-  void prepare() { elastic_constants = ElasticConstants(elastic); }
+  void prepare() {
+    elastic_constants = ElasticConstants(elastic);
+    if (model == Model::Tresca) mohr_coulomb.friction = mohr_coulomb.dilation = 0.0;
+    mohr_coulomb_constants = MohrCoulombConstants(mohr_coulomb);
+  }
 
   // P-wave speed used for the CFL time step.
   double wave_speed() const { return std::sqrt(elastic.constrained_modulus() / density); }
@@ -47,16 +54,23 @@ struct Material {
 };
 
 // Updates `stress` by the strain increment `deps` (Thesis eq. 4.2-4.3: S^{k+1} = sigma^k +
-// C : d_eps) and returns the plastic work dissipated per unit volume (zero when elastic).
-[[gnu::always_inline]] inline double update_stress(const Material& m, Sym3& stress, const Sym3& deps,
-                                                   PointState& state) {
+// C : d_eps, then the model's return, eq. 5.2-5.4) and returns the plastic strain increment
+// (zero when the step is elastic). `state` is updated by the model.
+[[gnu::always_inline]] inline Sym3 update_stress(const Material& m, Sym3& stress, const Sym3& deps,
+                                                 PointState& state) {
   switch (m.model) {
     case Model::LinearElastic:
       stress += elastic_increment(m.elastic_constants, deps);
+      state.volume_strain += deps[0] + deps[1] + deps[2];
       state.yielding = 0;
-      return 0.0;
+      return Sym3::Zero();
+    case Model::MohrCoulomb:
+    case Model::Tresca:
+      return mohr_coulomb_update(m.elastic_constants, m.mohr_coulomb_constants, stress, deps, state);
+    case Model::VonMises:
+      return von_mises_update(m.elastic_constants, m.von_mises, stress, deps, state);
   }
-  return 0.0;
+  return Sym3::Zero();
 }
 
 }  // namespace skred

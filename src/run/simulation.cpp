@@ -38,6 +38,7 @@ SolverSettings<2> solver_settings(const Scenario& s) {
   st.gravity = s.gravity;
   st.gravity_ramp_time = s.gravity_ramp_time;
   st.boundaries = s.boundaries;
+  st.pic_fraction = s.pic_fraction;
   return st;
 }
 

@@ -328,7 +328,8 @@ void parse_solver(const TableReader& root, Scenario& s) {
   static const toml::table empty;
   const TableReader t = root.table("solver", !root.has("stage"))
                             .value_or(TableReader(empty, "solver", s.source));
-  t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl"});
+  t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl",
+                "pic_fraction"});
   const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
   s.interpolation = t.choice<Interpolation>(
       "interpolation", {I(Interpolation::Linear), I(Interpolation::Gimp),
@@ -348,6 +349,7 @@ void parse_solver(const TableReader& root, Scenario& s) {
   }
   s.time_step = t.has("time_step") ? t.number("time_step", Range::positive()) : 0.0;
   s.cfl = t.number("cfl", Range{0.0, 1.0, true, false}, 0.3);
+  s.pic_fraction = t.number("pic_fraction", Range::closed(0.0, 1.0), 0.0);
 }
 
 void parse_initial_stress(const TableReader& root, Scenario& s) {

@@ -102,6 +102,7 @@ struct Scenario {
   double end_time = 0.0;
   double time_step = 0.0;  // fixed time step; 0 means "from the CFL number"
   double cfl = 0.3;
+  double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

@@ -188,8 +188,8 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
           grad_v.noalias() += vel[st.base + offsets.off[k]] * st.grad[k].transpose();
         const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress,
                                               volume * P.dF[p].determinant(), P.stress[p],
-                                              P.state[p], P.dF[p]);
-        work += r.strain_work;
+                                              P.state[p], P.dF[p], P.Fe[p]);
+        work += r.strain_energy;
         dissipation += r.dissipation;
       }
       volume *= P.dF[p].determinant();
@@ -224,6 +224,15 @@ template <int D> void ExplicitSolver<D>::update_grid() {
     fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
   }
   boundaries_.constrain_end_of_step(fields_, g, settings_.dt);
+  if (settings_.pic_fraction > 0.0) {  // v_i^{k+1} for the PIC part of the particle update
+    const double dt = settings_.dt;
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (long i = 0; i < nn; ++i) {
+      const double m = fields_.mass[i];
+      fields_.velocity_new[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.accel[i])
+                                        : Vec<D>::Zero();
+    }
+  }
 }
 
 // Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
@@ -239,6 +248,8 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   if (remap) std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
   const Vec<D>* acc = fields_.accel.data();
   const Vec<D>* vel = fields_.velocity_move.data();
+  const Vec<D>* vnew = fields_.velocity_new.data();
+  const double alpha = settings_.pic_fraction;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
 #pragma omp declare reduction(vadd : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
@@ -257,6 +268,11 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
         if (move) vmove += st.w[k] * vel[i];
       }
       P.v[p] += dt * a;
+      if (alpha > 0.0) {  // PIC/FLIP blend: v_p <- (1 - alpha) v_p^FLIP + alpha sum N_ip v_i^{k+1}
+        Vec<D> pic = Vec<D>::Zero();
+        for (int k = 0; k < K::StencilT::size; ++k) pic += st.w[k] * vnew[st.base + offsets.off[k]];
+        P.v[p] = (1.0 - alpha) * P.v[p] + alpha * pic;
+      }
       if (remap) {
         const Vec<D> mv = P.mass[p] * P.v[p];
         for (int k = 0; k < K::StencilT::size; ++k) mom[st.base + offsets.off[k]] += st.w[k] * mv;
@@ -304,8 +320,8 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
     }
     const double volume = P.volume0[p] * P.F[p].determinant() * P.dF[p].determinant();
     const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress, volume,
-                                          P.stress[p], P.state[p], P.dF[p]);
-    work += r.strain_work;
+                                          P.stress[p], P.state[p], P.dF[p], P.Fe[p]);
+    work += r.strain_energy;
     dissipation += r.dissipation;
     mdx += P.mass[p] * dt * vmove;
     if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);

@@ -23,11 +23,15 @@ template <int D> struct SolverSettings {
   Vec<D> gravity = Vec<D>::Zero();
   double gravity_ramp_time = 0.0;
   std::array<BoundarySide, 2 * D> boundaries{};
+  // Fraction of PIC in the particle velocity update (0: the pure force-based FLIP update of
+  // Thesis eq. 2.56). A small value damps the velocity noise FLIP leaves on points that the
+  // grid no longer moves (the null space of the particle-to-grid map).
+  double pic_fraction = 0.0;
 };
 
 // Running totals kept by the solver (energy bookkeeping, Thesis eq. 4.15-4.17, 5.13).
 struct EnergyTotals {
-  double strain_energy = 0.0;        // sum of V (sigma^{k+1} + sigma^k)/2 : d_eps (eq. 4.16)
+  double strain_energy = 0.0;        // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
   double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
 };
