@@ -6,11 +6,16 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
+#include "io/atomic_file.hpp"
+#include "io/grid_writer.hpp"
 #include "io/pvd_writer.hpp"
 #include "io/series_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "post/material_strength.hpp"
 #include "scenario/build.hpp"
 
 namespace skred {
@@ -66,6 +71,27 @@ SeriesRow series_row(const ExplicitSolver<2>& solver, long particles) {
   return r;
 }
 
+// Copies the scenario file into the output folder as scenario.toml, for the report (post).
+void copy_scenario(const std::string& source, const fs::path& outdir) {
+  const fs::path target = outdir / "scenario.toml";
+  std::error_code ec;
+  if (!fs::is_regular_file(source) || fs::equivalent(source, target, ec)) return;
+  std::ifstream in(source, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  write_file_atomically(target, [&](std::ostream& os) { os << text.str(); });
+}
+
+// The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
+// smoothed_stress() call, and its entry in grid.pvd (post).
+void write_grid_frame(const ExplicitSolver<2>& solver, const fs::path& outdir, int frame,
+                      PvdWriter& index) {
+  const std::string name = fmt::format("grid_{:06}.vtr", frame);
+  write_grid_vtr(outdir / name, solver.grid(),
+                 {solver.node_mass(), solver.node_velocity(), solver.node_stress()});
+  index.add(solver.time(), name);
+}
+
 }  // namespace
 
 RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
@@ -78,14 +104,19 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
 
   fs::create_directories(outdir);
   PvdWriter pvd(outdir);
+  copy_scenario(s.source, outdir);
+  PvdWriter grid_pvd(outdir, "grid.pvd");  // post: grid node fields per frame
+  const std::vector<MaterialStrength> strength = material_strengths(s.materials);
   SeriesWriter series(outdir / "series.csv");
   std::vector<Sym3> smoothed;
   int frame = 0;
   auto write_frame = [&]() {
     solver.smoothed_stress(smoothed);
+    write_grid_frame(solver, outdir, frame, grid_pvd);  // post: after smoothed_stress()
     const std::string name = fmt::format("particles_{:06}.vtu", frame++);
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
+    extra.strength = &strength;  // post: relative yield
     write_particles_vtu(outdir / name, particles, extra);
     pvd.add(solver.time(), name);
     series.flush();
