@@ -40,9 +40,17 @@ inline std::pair<int, std::string> run_command(const std::string& command) {
 
 inline std::pair<int, std::string> run_python(const std::string& script,
                                               const std::vector<std::string>& args) {
-  std::string cmd = std::string(kPython) + " " +
-                    shell_quote(std::string(SKRED_SOURCE_DIR) + "/tests/scripts/" + script);
-  for (const std::string& a : args) cmd += " " + shell_quote(a);
+  // Built with += : GCC 12 gives a false -Wrestrict for "literal" + std::string&& when inlined.
+  std::string path = SKRED_SOURCE_DIR;
+  path += "/tests/scripts/";
+  path += script;
+  std::string cmd = kPython;
+  cmd += ' ';
+  cmd += shell_quote(path);
+  for (const std::string& a : args) {
+    cmd += ' ';
+    cmd += shell_quote(a);
+  }
   return run_command(cmd);
 }
 

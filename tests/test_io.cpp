@@ -14,72 +14,12 @@
 
 #include "io/vtu_writer.hpp"
 #include "io_test_util.hpp"
+#include "vtu_test_util.hpp"
 
 using namespace skred;
 using namespace skred::iotest;
 
 namespace {
-
-// What tests/scripts/read_vtu.py reports about a file.
-struct VtuArray {
-  int components = 0;
-  std::string vtk_class;
-  std::map<int, std::string> component_names;
-  std::map<std::pair<int, int>, double> values;  // (cell, component) -> value
-};
-struct VtuInfo {
-  long cells = -1, points = -1, point_arrays = -1;
-  std::map<int, int> cell_type;
-  std::map<int, std::vector<int>> cell_points;
-  std::map<int, Vec<2>> point;
-  std::map<std::string, VtuArray> arrays;
-};
-
-// Reads `file` with VTK's XML reader (through /usr/bin/python3) and parses the report.
-VtuInfo read_vtu(const std::filesystem::path& file, const std::string& cells = "") {
-  require_python_vtk();
-  std::vector<std::string> args = {file.string()};
-  std::istringstream ids(cells);
-  for (std::string id; ids >> id;) args.push_back(id);
-  const auto [status, out] = run_python("read_vtu.py", args);
-  EXPECT_EQ(status, 0) << out;
-  EXPECT_EQ(out.find("ERROR"), std::string::npos) << out;
-  VtuInfo info;
-  std::istringstream lines(out);
-  std::string line;
-  while (std::getline(lines, line)) {
-    std::istringstream in(line);
-    std::string key;
-    in >> key;
-    if (key == "cells") in >> info.cells;
-    else if (key == "points") in >> info.points;
-    else if (key == "pointarrays") in >> info.point_arrays;
-    else if (key == "celltype") { int c; in >> c; in >> info.cell_type[c]; }
-    else if (key == "cellpoints") {
-      int c, id;
-      in >> c;
-      while (in >> id) info.cell_points[c].push_back(id);
-    } else if (key == "point") {
-      int i; std::string x, y, z;
-      in >> i >> x >> y >> z;
-      info.point[i] = Vec<2>(to_double(x), to_double(y));
-      EXPECT_EQ(to_double(z), 0.0);
-    } else if (key == "array") {
-      std::string name; in >> name;
-      in >> info.arrays[name].components >> info.arrays[name].vtk_class;
-    } else if (key == "compname") {
-      std::string name; int k; in >> name >> k;
-      in >> info.arrays[name].component_names[k];
-    } else if (key == "value") {
-      std::string name, v; int c, k;
-      in >> name >> c >> k >> v;
-      info.arrays[name].values[{c, k}] = to_double(v);
-    } else {
-      ADD_FAILURE() << "unexpected line from read_vtu.py: " << line;
-    }
-  }
-  return info;
-}
 
 Particles<2> two_particles() {
   Particles<2> P;
@@ -116,7 +56,13 @@ TEST_F(IoTest, VtuRoundTripsThroughVtkReader) {
       {"det_F", {1, "vtkDoubleArray"}},           {"plastic_shear_strain", {1, "vtkDoubleArray"}},
       {"yielding", {1, "vtkUnsignedCharArray"}},  {"material_id", {1, "vtkIntArray"}},
       {"body_id", {1, "vtkIntArray"}},            {"smoothed_stress", {6, "vtkDoubleArray"}},
-      {"smoothed_p", {1, "vtkDoubleArray"}},      {"smoothed_q", {1, "vtkDoubleArray"}}};
+      {"smoothed_p", {1, "vtkDoubleArray"}},      {"smoothed_q", {1, "vtkDoubleArray"}},
+      // post-processing fields (test_post_files.cpp checks their values)
+      {"speed", {1, "vtkDoubleArray"}},           {"F", {9, "vtkDoubleArray"}},
+      {"engineering_strain", {6, "vtkDoubleArray"}}, {"green_strain", {6, "vtkDoubleArray"}},
+      {"hencky_strain", {6, "vtkDoubleArray"}},   {"principal_stress", {3, "vtkDoubleArray"}},
+      {"principal_angle", {1, "vtkDoubleArray"}}, {"smoothed_principal_stress", {3, "vtkDoubleArray"}},
+      {"smoothed_principal_angle", {1, "vtkDoubleArray"}}};
   ASSERT_EQ(info.arrays.size(), expected.size());
   for (const auto& [name, spec] : expected) {
     ASSERT_TRUE(info.arrays.count(name)) << "missing cell array " << name;
@@ -177,7 +123,7 @@ TEST_F(IoTest, VtuWithoutSmoothedStressAndEmpty) {
   write_particles_vtu(file, two_particles());
   const VtuInfo info = read_vtu(file);
   EXPECT_EQ(info.cells, 2);
-  EXPECT_EQ(info.arrays.size(), 11u);
+  EXPECT_EQ(info.arrays.size(), 18u);  // 11 + speed, F, 3 strains, principal stress and angle
   EXPECT_FALSE(info.arrays.count("smoothed_stress"));
 
   write_particles_vtu(file, Particles<2>{});  // overwrites atomically

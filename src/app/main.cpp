@@ -1,4 +1,4 @@
-// skred command line: run a scenario, check a scenario, or measure throughput.
+// skred command line: run a scenario, check a scenario, measure throughput, or draw results.
 #include <fmt/core.h>
 #include <omp.h>
 
@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/post_cli.hpp"
 #include "run/bench.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
@@ -130,7 +131,10 @@ int main(int argc, char** argv) {
   bench->add_option("--quadrature-points", bo.quadrature_points, "1, 2 or 3")->check(CLI::Range(1, 3));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")->check(CLI::IsMember({"usf", "usl", "averaged"}));
 
+  skred::PostCommands post(app);  // render, report
+
   CLI11_PARSE(app, argc, argv);
+  if (post.chosen()) return post.run();
   try {
     if (*run) return cmd_run(scenario, outdir, threads);
     if (*check) return cmd_check(scenario);

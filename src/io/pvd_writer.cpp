@@ -30,7 +30,8 @@ std::string xml_attribute_escape(const std::string& s) {
 
 }  // namespace
 
-PvdWriter::PvdWriter(const std::filesystem::path& folder) : file_(folder / "particles.pvd") {}
+PvdWriter::PvdWriter(const std::filesystem::path& folder, const std::string& name)
+    : file_(folder / name) {}
 
 void PvdWriter::add(double time, const std::string& vtu_filename) {
   if (!std::isfinite(time))

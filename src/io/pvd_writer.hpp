@@ -1,4 +1,4 @@
-// The ParaView collection index (particles.pvd) listing every particle output with its time.
+// A ParaView collection index (particles.pvd, grid.pvd) listing every output file with its time.
 #pragma once
 #include <cstddef>
 #include <filesystem>
@@ -8,12 +8,13 @@ namespace skred {
 
 class PvdWriter {
  public:
-  // The index is `folder`/particles.pvd. Nothing is written until the first add().
-  explicit PvdWriter(const std::filesystem::path& folder);
+  // The index is `folder`/`name` (particles.pvd unless told otherwise, e.g. grid.pvd).
+  // Nothing is written until the first add().
+  explicit PvdWriter(const std::filesystem::path& folder, const std::string& name = "particles.pvd");
 
   // Appends a DataSet entry for `vtu_filename` (relative to the output folder, as ParaView
   // resolves it against the .pvd's directory) at simulated time `time`, then rewrites
-  // particles.pvd atomically, so the index on disk is always complete and valid.
+  // the index atomically, so the index on disk is always complete and valid.
   // Throws std::invalid_argument for a non-finite time, std::runtime_error on I/O failure.
   void add(double time, const std::string& vtu_filename);
 

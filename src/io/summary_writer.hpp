@@ -13,9 +13,10 @@ struct StageMeasures {
   double start_time = 0.0, end_time = 0.0;  // [s], simulation time
   long steps = 0;
   std::string ended_by;  // "duration", "rest" or "unstable"
-  // Runout: how far the front has moved beyond its start position, towards -x and +x
-  // (each >= 0 when the front advances), and the larger of the two.
+  // Runout: how far the front of the moving mass (points displaced more than half a cell)
+  // has advanced beyond its start position, towards -x and +x, and the larger of the two.
   double runout_x_min = 0.0, runout_x_max = 0.0, runout = 0.0;
+  double max_displacement = 0.0;  // largest point displacement in the stage [m]
   double height_start = 0.0, height_end = 0.0;  // top of the material above its lowest point
   double peak_mean_speed = 0.0, peak_time = 0.0, final_mean_speed = 0.0;  // eq. 5.12
   double gravity_work = 0.0;          // eq. 5.13, from the stage start

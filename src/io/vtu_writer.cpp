@@ -13,60 +13,19 @@
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/vtu_blocks.hpp"
 
 namespace skred {
 
 namespace {
 
+using namespace vtu;
+
 constexpr std::uint8_t kVtkQuad = 9;
 constexpr std::size_t kChunk = 1 << 15;  // particles converted per buffer fill
 
-// One binary block of the appended section. Every block holds a fixed number of bytes per
-// material point (points: 4 corners x 3 coordinates; connectivity: 4 ids; cell data: one
-// tuple), so all blocks are filled chunk by chunk over the particles.
-struct Block {
-  const char* section;  // "Points", "Cells" or "CellData"
-  std::string name;
-  const char* type;
-  int components;
-  std::size_t value_bytes;
-  std::size_t values_per_particle;
-  std::vector<std::string> component_names;
-  std::function<void(std::size_t begin, std::size_t end, unsigned char* out)> fill;
-
-  std::size_t bytes_per_particle() const { return value_bytes * values_per_particle; }
-};
-
-template <class T> inline unsigned char* put(unsigned char* out, T value) {
-  std::memcpy(out, &value, sizeof value);
-  return out + sizeof value;
-}
-
-inline unsigned char* put_sym3(unsigned char* out, const Sym3& s) {
-  std::memcpy(out, s.data(), 6 * sizeof(double));
-  return out + 6 * sizeof(double);
-}
-
-// A cell-data block of `components` doubles per particle computed by f(p, out) -> out.
-template <class F>
-Block doubles(std::string name, int components, F f, std::vector<std::string> names = {}) {
-  return Block{"CellData", std::move(name), "Float64", components, sizeof(double),
-               static_cast<std::size_t>(components), std::move(names),
-               [f](std::size_t b, std::size_t e, unsigned char* out) {
-                 for (std::size_t p = b; p < e; ++p) out = f(p, out);
-               }};
-}
-
-template <class T>
-Block integers(std::string name, const char* type, const std::vector<T>& values) {
-  return Block{"CellData", std::move(name), type, 1, sizeof(T), 1, {},
-               [&values](std::size_t b, std::size_t e, unsigned char* out) {
-                 std::memcpy(out, values.data() + b, (e - b) * sizeof(T));
-               }};
-}
-
 std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extra) {
-  const std::vector<std::string> voigt = {"xx", "yy", "zz", "xy", "yz", "xz"};
+  const std::vector<std::string>& voigt = voigt_names();
   std::vector<Block> blocks;
 
   blocks.push_back({"Points", "", "Float64", 3, sizeof(double), 12, {},
@@ -140,7 +99,15 @@ std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extr
       return put(o, deviatoric_stress(s[p]));
     }));
   }
+  add_post_blocks(blocks, P, extra);
   return blocks;
+}
+
+template <class T>
+void check_optional(const std::vector<T>* v, const char* name, std::size_t n) {
+  if (v && v->size() != n)
+    throw std::invalid_argument(fmt::format(
+        "write_particles_vtu: {} has {} entries for {} particles", name, v->size(), n));
 }
 
 void check_sizes(const Particles<2>& P, const ParticleFields& extra) {
@@ -150,10 +117,15 @@ void check_sizes(const Particles<2>& P, const ParticleFields& extra) {
                                P.material.size(), P.body.size(), P.state.size()};
   for (std::size_t s : sizes)
     if (s != n) throw std::invalid_argument("write_particles_vtu: particle arrays differ in size");
-  if (extra.smoothed_stress && extra.smoothed_stress->size() != n)
-    throw std::invalid_argument(fmt::format(
-        "write_particles_vtu: smoothed_stress has {} entries for {} particles",
-        extra.smoothed_stress->size(), n));
+  check_optional(extra.smoothed_stress, "smoothed_stress", n);
+  check_optional(extra.elastic_F, "elastic_F", n);
+  check_optional(extra.stress_from_elastic_F, "stress_from_elastic_F", n);
+  if (extra.strength)
+    for (std::size_t p = 0; p < n; ++p)
+      if (P.material[p] < 0 || static_cast<std::size_t>(P.material[p]) >= extra.strength->size())
+        throw std::invalid_argument(fmt::format(
+            "write_particles_vtu: particle {} has material {} but strength lists {} materials", p,
+            P.material[p], extra.strength->size()));
 }
 
 std::string xml_header(const std::vector<Block>& blocks, std::size_t n) {

@@ -5,24 +5,43 @@
 
 #include "core/particles.hpp"
 #include "core/types.hpp"
+#include "post/material_strength.hpp"
 
 namespace skred {
 
-// Optional per-particle fields computed by the solver, written when present.
+// Optional inputs, written when present; default-constructed, only the always-present fields
+// are written, so older callers keep working.
 struct ParticleFields {
-  const std::vector<Sym3>* smoothed_stress = nullptr;  // grid-smoothed stress (Thesis eq. 4.18-4.19), may be null
+  // Grid-smoothed stress (Post eq. 57-58, Thesis eq. 4.18-4.19), one per particle.
+  const std::vector<Sym3>* smoothed_stress = nullptr;
+  // Strength of each material, indexed by P.material[p]: enables relative_yield (Post eq. 66).
+  const std::vector<MaterialStrength>* strength = nullptr;
+  // Elastic part Fe of F = Fe Fp (Post eq. 67-73), one per particle: enables Fe and Fp.
+  const std::vector<Mat3>* elastic_F = nullptr;
+  // Stress recomputed from Fe, sigma_initial + E : (Fe - I) (Post eq. 75-77), one per particle.
+  const std::vector<Sym3>* stress_from_elastic_F = nullptr;
 };
 
 // Writes every material point as its deformed voxel: a VTK_QUAD whose corners, counter-
 // clockwise, are x_p + F_p (+-l0x, +-l0y) with l0 = P.half0[p] (Thesis eq. 3.6-3.12), z = 0.
-// Cell data (Float64 unless noted): velocity (3), displacement x - x_ref (3), stress (6,
-// Voigt xx,yy,zz,xy,yz,xz), mean_stress_p, deviatoric_stress_q, volume (det F V0), det_F,
-// plastic_shear_strain, yielding (UInt8), material_id and body_id (Int32), and with
-// extra.smoothed_stress: smoothed_stress (6), smoothed_p, smoothed_q.
-// Binary appended raw encoding, header_type UInt64, the machine's byte order. The file is
-// written atomically (write_file_atomically). Throws std::invalid_argument if the particle
-// arrays or the smoothed stress do not all have P.size() entries, std::runtime_error on I/O
-// failure.
+// Cell data (Float64 unless noted; symmetric tensors as 6 Voigt components xx,yy,zz,xy,yz,xz
+// with tensor shear; full tensors as 9 components row by row xx,xy,xz,yx,...,zz):
+//   always: velocity (3), speed, displacement x - x_ref (3), stress (6), mean_stress_p,
+//   deviatoric_stress_q, principal_stress (3: s1 <= s2 <= s3, Post eq. 59), principal_angle
+//   (degrees, Post eq. 60), volume (det F V0), det_F, F (9), engineering_strain (6, eq. 63),
+//   green_strain (6, eq. 64), hencky_strain (6, eq. 65), plastic_shear_strain, yielding
+//   (UInt8), material_id and body_id (Int32);
+//   with strength: relative_yield (eq. 66; NaN for materials without strength);
+//   with smoothed_stress: smoothed_stress (6), smoothed_p, smoothed_q,
+//   smoothed_principal_stress (3), smoothed_principal_angle, and with strength also
+//   smoothed_relative_yield;
+//   with elastic_F: Fe (9) and Fp = Fe^-1 F (9, eq. 74), F embedded in 3D with F_zz = 1;
+//   with stress_from_elastic_F: stress_from_Fe (6).
+// docs/post-processing.md describes every field. Binary appended raw encoding, header_type
+// UInt64, the machine's byte order. The file is written atomically (write_file_atomically).
+// Throws std::invalid_argument if the particle arrays or an optional per-particle input do not
+// all have P.size() entries, or a material id has no strength entry; std::runtime_error on
+// I/O failure.
 void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
                          const ParticleFields& extra = {});
 

@@ -84,7 +84,7 @@ end_time = 1.0
     grid.cells = s.cells;
     SolverSettings<2> st = solver_settings(s);
     ExplicitSolver<2> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
-    const MaterialExtent start = material_extent(P);
+    const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)
       if (!solver.step().ok) {
@@ -95,7 +95,8 @@ end_time = 1.0
     res.particles = static_cast<long>(P.size());
     res.nodes = static_cast<long>(grid.node_count());
     res.updates_per_second.push_back(static_cast<double>(P.size()) * solver.steps() / sec);
-    res.runout = material_extent(P).x_max - start.x_max;
+    res.runout = runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]),
+                           s.cell_size, 0.5 * s.cell_size).x_max;
   }
   return res;
 }

@@ -6,11 +6,17 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <sstream>
 
+#include "io/atomic_file.hpp"
+#include "io/grid_writer.hpp"
 #include "io/pvd_writer.hpp"
 #include "io/series_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "post/elastic_plastic_split.hpp"
+#include "post/material_strength.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
@@ -72,6 +78,27 @@ SeriesRow series_row(const ExplicitSolver<2>& solver, const ParticleTotals<2>& t
   return r;
 }
 
+// Copies the scenario file into the output folder as scenario.toml, for the report (post).
+void copy_scenario(const std::string& source, const fs::path& outdir) {
+  const fs::path target = outdir / "scenario.toml";
+  std::error_code ec;
+  if (!fs::is_regular_file(source) || fs::equivalent(source, target, ec)) return;
+  std::ifstream in(source, std::ios::binary);
+  std::ostringstream text;
+  text << in.rdbuf();
+  write_file_atomically(target, [&](std::ostream& os) { os << text.str(); });
+}
+
+// The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
+// smoothed_stress() call, and its entry in grid.pvd (post).
+void write_grid_frame(const ExplicitSolver<2>& solver, const fs::path& outdir, int frame,
+                      PvdWriter& index) {
+  const std::string name = fmt::format("grid_{:06}.vtr", frame);
+  write_grid_vtr(outdir / name, solver.grid(),
+                 {solver.node_mass(), solver.node_velocity(), solver.node_stress()});
+  index.add(solver.time(), name);
+}
+
 }  // namespace
 
 RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
@@ -86,14 +113,32 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
 
   fs::create_directories(outdir);
   PvdWriter pvd(outdir);
+  copy_scenario(s.source, outdir);
+  PvdWriter grid_pvd(outdir, "grid.pvd");  // post: grid node fields per frame
+  // Strength of the current stage's materials (as plastic, also in an elastic stage), for the
+  // relative yield function; Fe and the stress recomputed from it (Post eq. 67-77).
+  std::vector<MaterialStrength> strength = material_strengths(s.materials);
+  std::vector<Mat3> elastic_F;
+  std::vector<Sym3> stress_from_Fe;
   SeriesWriter series(outdir / "series.csv");
   std::vector<Sym3> smoothed;
   int frame = 0;
   auto write_frame = [&]() {
     solver.smoothed_stress(smoothed);
+    write_grid_frame(solver, outdir, frame, grid_pvd);  // post: after smoothed_stress()
     const std::string name = fmt::format("particles_{:06}.vtu", frame++);
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
+    extra.strength = &strength;  // post: relative yield
+    elastic_F.resize(particles.size());
+    stress_from_Fe.resize(particles.size());
+    for (std::size_t p = 0; p < particles.size(); ++p) {
+      elastic_F[p] = embed3<2>(particles.Fe[p], 1.0);
+      const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
+      stress_from_Fe[p] = stress_from_elastic_F(particles.stress_ref[p], elastic_F[p], mat.elastic_constants);
+    }
+    extra.elastic_F = &elastic_F;
+    extra.stress_from_elastic_F = &stress_from_Fe;
     write_particles_vtu(outdir / name, particles, extra);
     pvd.add(solver.time(), name);
     series.flush();
@@ -115,13 +160,17 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   double next_output = 0.0, next_series = 0.0;
   for (std::size_t k = 0; k < s.stages.size() && status.ok; ++k) {
     const Stage& st = s.stages[k];
+    Stage as_plastic = st;
+    as_plastic.elastic = false;
+    strength = material_strengths(stage_materials(s, as_plastic));
     if (k > 0) solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
     else solver.begin_stage(solver.materials(), st.gravity_ramp_time);
     const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
     const long first_step = solver.steps();
     const double stage_start = solver.time();
     StageTracker tracker(st.name, particles, stage_start, solver.totals().kinetic_energy,
-                         st.rest_speed, st.rest_time);
+                         st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
+                         s.cells[0] * s.cell_size);
     auto sample = [&]() {
       const ParticleTotals<2> t = solver.totals();
       series.add(series_row(solver, t, n, static_cast<int>(k), tracker.runout(particles)));

@@ -22,9 +22,11 @@ MaterialExtent material_extent(const Particles<2>& P) {
 }
 
 StageTracker::StageTracker(std::string name, const Particles<2>& P, double time,
-                           double kinetic_energy, double rest_speed, double rest_time)
+                           double kinetic_energy, double rest_speed, double rest_time,
+                           double x0, double width, double length)
     : start_(material_extent(P)), kinetic_start_(kinetic_energy), rest_speed_(rest_speed),
-      rest_time_(rest_time) {
+      rest_time_(rest_time), threshold_(0.5 * width), x0_(x0), width_(width), length_(length) {
+  profile_ = surface_profile(P, x0_, width_, bins());
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
@@ -48,9 +50,44 @@ bool StageTracker::observe(double time, double mean_speed) {
   return time - *quiet_since_ >= rest_time_ * (1.0 - 1e-9);
 }
 
+std::vector<double> surface_profile(const Particles<2>& P, double x0, double width, int bins) {
+  std::vector<double> top(static_cast<std::size_t>(bins), -INFINITY);
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const Vec<2> r = P.F[p].cwiseAbs() * P.half0[p];  // half extent of the deformed voxel
+    const int lo = std::max(0, static_cast<int>(std::floor((P.x[p][0] - r[0] - x0) / width)));
+    const int hi = std::min(bins - 1, static_cast<int>(std::floor((P.x[p][0] + r[0] - x0) / width)));
+    for (int b = lo; b <= hi; ++b)
+      top[static_cast<std::size_t>(b)] = std::max(top[static_cast<std::size_t>(b)], P.x[p][1] + r[1]);
+  }
+  return top;
+}
+
+Runout runout_of(const std::vector<double>& before, const std::vector<double>& after,
+                 double width, double threshold) {
+  Runout r;
+  const int n = static_cast<int>(before.size());
+  const auto raised = [&](int b) { return after[b] > before[b] + threshold; };
+  for (int dir : {+1, -1}) {
+    // Tip: the outermost column the deposit has raised; toe: the outermost column, inward of
+    // the tip, whose original surface stood above the original surface at the tip.
+    int tip = -1;
+    for (int k = 0; k < n; ++k) {
+      const int b = dir > 0 ? n - 1 - k : k;
+      if (raised(b)) { tip = b; break; }
+    }
+    if (tip < 0) continue;
+    int toe = tip;
+    for (int b = tip; b >= 0 && b < n; b -= dir)
+      if (before[b] > before[tip] + threshold) { toe = b; break; }
+    const double advance = std::abs(tip - toe) * width;
+    (dir > 0 ? r.x_max : r.x_min) = advance;
+  }
+  return r;
+}
+
 double StageTracker::runout(const Particles<2>& P) const {
-  const MaterialExtent e = material_extent(P);
-  return std::max(start_.x_min - e.x_min, e.x_max - start_.x_max);
+  const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
+  return std::max(r.x_min, r.x_max);
 }
 
 StageMeasures StageTracker::finish(const Particles<2>& P, double time, long steps,
@@ -62,9 +99,12 @@ StageMeasures StageTracker::finish(const Particles<2>& P, double time, long step
   m.end_time = time;
   m.steps = steps;
   m.ended_by = ended_by;
-  m.runout_x_min = start_.x_min - e.x_min;
-  m.runout_x_max = e.x_max - start_.x_max;
-  m.runout = std::max(m.runout_x_min, m.runout_x_max);
+  const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
+  m.runout_x_min = r.x_min;
+  m.runout_x_max = r.x_max;
+  m.runout = std::max(r.x_min, r.x_max);
+  for (std::size_t p = 0; p < P.size(); ++p)
+    m.max_displacement = std::max(m.max_displacement, (P.x[p] - P.x_ref[p]).norm());
   m.height_end = e.y_max - e.y_min;
   m.gravity_work = gravity_work;
   m.kinetic_energy_change = kinetic_energy - kinetic_start_;

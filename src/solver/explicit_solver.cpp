@@ -372,6 +372,7 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
   const auto& P = particles_;
   const long n = static_cast<long>(P.size());
   node_stress_.assign(fields_.size(), Sym3::Zero());
+  node_velocity_.assign(fields_.size(), Vec<D>::Zero());
   std::vector<double>& mass = fields_.mass;
   std::fill(mass.begin(), mass.end(), 0.0);
   typename K::StencilT st;
@@ -381,10 +382,14 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
       const std::size_t i = st.base + offsets.off[k];
       mass[i] += st.w[k] * P.mass[p];
       node_stress_[i] += (st.w[k] * P.mass[p]) * P.stress[p];
+      node_velocity_[i] += (st.w[k] * P.mass[p]) * P.v[p];
     }
   }
   for (std::size_t i = 0; i < mass.size(); ++i)
-    if (mass[i] > 0.0) node_stress_[i] /= mass[i];
+    if (mass[i] > 0.0) {
+      node_stress_[i] /= mass[i];
+      node_velocity_[i] /= mass[i];
+    }
   out.resize(P.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (long p = 0; p < n; ++p) {

@@ -74,6 +74,12 @@ template <int D> class ExplicitSolver {
   // weighted by mass, then interpolated back. `out` is resized to the particle count.
   void smoothed_stress(std::vector<Sym3>& out);
 
+  // Nodal fields of the last smoothed_stress() call, flat-indexed like grid(), for the grid
+  // output file: mass m_i, velocity sum N_ip m_p v_p / m_i and stress sigma_i (eq. 4.18).
+  const std::vector<double>& node_mass() const { return fields_.mass; }
+  const std::vector<Vec<D>>& node_velocity() const { return node_velocity_; }
+  const std::vector<Sym3>& node_stress() const { return node_stress_; }
+
   // Starts a new stage at the current time: the materials (the stage's strength, or held
   // elastic) and the gravity ramp (Thesis eq. 4.13, measured from now; 0: full gravity)
   // change, and displacements, gravity work, strain energy and plastic dissipation are
@@ -104,6 +110,7 @@ template <int D> class ExplicitSolver {
   GridFields<D> fields_;
   std::vector<ScatterBuffer<D>> buffers_;  // one per thread beyond the first
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
+  std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing
   int threads_ = 1;
   double time_ = 0.0;
   double ramp_start_ = 0.0;  // time at which the gravity ramp starts

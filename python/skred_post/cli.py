@@ -1,0 +1,99 @@
+"""Command line of the post-processing: `render` and `report` (run by `skred render` and
+`skred report`, which check their options first and pass them on unchanged)."""
+import argparse
+import os
+import sys
+
+from .data import PostError, frames_index, load_frame
+
+
+def field_slug(style):
+    return style.pattern or style.field.replace(":", "_")
+
+
+def cmd_render(a):
+    from .render import Style, bounds, check_style, draw_frame, save
+    from .scenario_info import body_names_of
+    import matplotlib
+    if a.cmap not in matplotlib.colormaps:
+        raise PostError(f"unknown colour map '{a.cmap}'; e.g. viridis, plasma, coolwarm, RdBu_r")
+    pattern = "stripes" if a.stripes else "checkerboard" if a.checkerboard else None
+    style = Style(field=a.field, cmap=a.cmap, vrange=tuple(a.range) if a.range else None,
+                  pattern=pattern, pattern_width=a.pattern_width, pattern_angle=a.pattern_angle,
+                  arrows=a.arrows, crosses=a.crosses, sample=a.sample, dpi=a.dpi,
+                  body_names=body_names_of(a.outdir))
+    pictures = os.path.join(a.outdir, "pictures")
+    if a.series:
+        from .series import plot_series
+        out = a.output or os.path.join(pictures, "series.png")
+        save(plot_series(a.outdir, dpi=a.dpi), out)
+        print(f"wrote {out}")
+        return 0
+    if a.all:
+        from .animate import render_all
+        out = a.output or os.path.join(pictures, field_slug(style) + ".gif")
+        render_all(a.outdir, style, out, fps=a.fps)
+        return 0
+    frame = load_frame(a.outdir, a.step)
+    check_style(frame, style)
+    xlim, ylim = bounds([frame])
+    fig, info = draw_frame(frame, style, xlim, ylim)
+    out = a.output or os.path.join(pictures, f"{field_slug(style)}_{frame.step:06}.png")
+    save(fig, out, info, a.info)
+    print(f"wrote {out}")
+    return 0
+
+
+def cmd_report(a):
+    from .report import write_report
+    if not frames_index(a.outdir):
+        raise PostError(f"{a.outdir}/particles.pvd lists no frames")
+    out = a.output or os.path.join(a.outdir, "report.html")
+    write_report(a.outdir, out, a.field)
+    print(f"wrote {out}")
+    return 0
+
+
+def parser():
+    p = argparse.ArgumentParser(prog="skred", description="skred post-processing")
+    sub = p.add_subparsers(dest="command", required=True)
+    r = sub.add_parser("render", help="PNG of a frame, GIF of all frames, or the time series")
+    r.add_argument("outdir")
+    r.add_argument("--field", default="speed", help="NAME or NAME:COMPONENT (default: speed)")
+    g = r.add_mutually_exclusive_group()
+    g.add_argument("--step", type=int, default=-1, help="frame number (default: the last)")
+    g.add_argument("--all", action="store_true", help="every frame, and an animated GIF")
+    g.add_argument("--series", action="store_true", help="the series.csv plots")
+    r.add_argument("-o", "--output")
+    r.add_argument("--arrows", action="store_true")
+    r.add_argument("--crosses", action="store_true")
+    pat = r.add_mutually_exclusive_group()
+    pat.add_argument("--stripes", action="store_true")
+    pat.add_argument("--checkerboard", action="store_true")
+    r.add_argument("--pattern-width", type=float, help="stripe width [m] (default: 4 voxels)")
+    r.add_argument("--pattern-angle", type=float, default=0.0, help="stripe direction [deg]")
+    r.add_argument("--range", type=float, nargs=2, metavar=("MIN", "MAX"))
+    r.add_argument("--cmap", default="viridis")
+    r.add_argument("--sample", type=int, default=4, help="overlays: 1 particle per N x N voxels")
+    r.add_argument("--fps", type=float, default=8.0)
+    r.add_argument("--dpi", type=int, default=100)
+    r.add_argument("--info", help="write where the axes and colour bar are (JSON)")
+    r.set_defaults(run=cmd_render)
+    rep = sub.add_parser("report", help="self-contained HTML report")
+    rep.add_argument("outdir")
+    rep.add_argument("-o", "--output")
+    rep.add_argument("--field", default="speed")
+    rep.set_defaults(run=cmd_report)
+    return p
+
+
+def main(argv):
+    a = parser().parse_args(argv)
+    if not os.path.isdir(a.outdir):
+        print(f"skred: {a.outdir} is not a folder", file=sys.stderr)
+        return 1
+    try:
+        return a.run(a)
+    except PostError as e:
+        print(f"skred: {e}", file=sys.stderr)
+        return 1

@@ -1,0 +1,172 @@
+"""Reading skred's result folder: the PVD indexes, particle VTU frames (with VTK's own XML
+reader, python3-vtk9), series.csv and summary.json, and picking a scalar out of a field."""
+import csv
+import json
+import math
+import os
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass, field
+
+import numpy as np
+from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+
+class PostError(Exception):
+    """A problem with the user's request or the result files; printed without a traceback."""
+
+
+@dataclass
+class Frame:
+    """One particle output step: deformed voxels and their cell data."""
+    path: str
+    time: float
+    step: int                      # index of the frame in particles.pvd
+    quads: np.ndarray              # (n, 4, 2) corners of the deformed voxels [m]
+    arrays: dict = field(default_factory=dict)       # name -> (n,) or (n, k) array
+    components: dict = field(default_factory=dict)   # name -> list of component names
+
+    @property
+    def size(self):
+        return len(self.quads)
+
+    def centres(self):
+        return self.quads.mean(axis=1)
+
+
+def read_pvd(outdir, name="particles.pvd"):
+    """[(time, absolute file path)] in the order of the index."""
+    path = os.path.join(outdir, name)
+    if not os.path.isfile(path):
+        raise PostError(f"{path} not found: is {outdir} the output folder of `skred run`?")
+    root = ET.parse(path).getroot()
+    return [(float(d.get("timestep")), os.path.join(outdir, d.get("file")))
+            for d in root.iter("DataSet")]
+
+
+def read_frame(path, time=math.nan, step=-1):
+    reader = vtkXMLUnstructuredGridReader()
+    reader.SetFileName(path)
+    reader.Update()
+    if reader.GetErrorCode() != 0:
+        raise PostError(f"VTK cannot read {path}")
+    grid = reader.GetOutput()
+    n = grid.GetNumberOfCells()
+    if n == 0 or grid.GetPoints() is None:
+        quads = np.zeros((0, 4, 2))
+    else:
+        points = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
+        cells = grid.GetCells()
+        offsets = vtk_to_numpy(cells.GetOffsetsArray())
+        if not np.all(np.diff(offsets) == 4):
+            raise PostError(f"{path}: expected one quadrilateral (deformed voxel) per cell")
+        quads = points[vtk_to_numpy(cells.GetConnectivityArray()).reshape(-1, 4)]
+    frame = Frame(path, time, step, quads)
+    data = grid.GetCellData()
+    for a in range(data.GetNumberOfArrays()):
+        arr = data.GetArray(a)
+        values = vtk_to_numpy(arr).astype(float)
+        frame.arrays[arr.GetName()] = values
+        k = arr.GetNumberOfComponents()
+        frame.components[arr.GetName()] = [arr.GetComponentName(c) or str(c) for c in range(k)]
+    return frame
+
+
+def frames_index(outdir):
+    """[(step, time, path)] of every particle frame."""
+    return [(i, t, p) for i, (t, p) in enumerate(read_pvd(outdir))]
+
+
+def load_frame(outdir, step):
+    index = frames_index(outdir)
+    if not index:
+        raise PostError(f"{outdir}/particles.pvd lists no frames")
+    if step < 0:
+        step += len(index)
+    if not 0 <= step < len(index):
+        raise PostError(f"step {step} out of range: {outdir} has frames 0..{len(index) - 1}")
+    i, t, p = index[step]
+    return read_frame(p, t, i)
+
+
+UNITS = {
+    "velocity": "m/s", "speed": "m/s", "displacement": "m", "volume": "m³/m",
+    "principal_angle": "°", "smoothed_principal_angle": "°",
+}
+
+
+def unit_of(name):
+    if name in UNITS:
+        return UNITS[name]
+    if "stress" in name or name.endswith("_p") or name.endswith("_q") or name == "stress_from_Fe":
+        return "Pa"
+    return "-"
+
+
+def select(frame, spec):
+    """Values (n,) and a label for a field spec NAME or NAME:COMPONENT. COMPONENT is a component
+    name (xx, yy, s1, ...), an index, or `mag` (magnitude). A vector field (velocity,
+    displacement) without a component means its magnitude."""
+    name, _, comp = spec.partition(":")
+    if name not in frame.arrays:
+        raise PostError(f"field '{name}' is not in {os.path.basename(frame.path)}; fields: "
+                        + ", ".join(sorted(frame.arrays)))
+    values = frame.arrays[name]
+    names = frame.components[name]
+    unit = unit_of(name)
+    if values.ndim == 1:
+        if comp:
+            raise PostError(f"field '{name}' has a single component; drop ':{comp}'")
+        return values, f"{name} [{unit}]"
+    if comp in ("", "mag", "magnitude"):
+        if comp == "" and values.shape[1] != 3:
+            raise PostError(f"field '{name}' has components {', '.join(names)}: "
+                            f"choose one, e.g. {name}:{names[0]}")
+        return np.linalg.norm(values, axis=1), f"|{name}| [{unit}]"
+    if comp in names:
+        k = names.index(comp)
+    elif comp.isdigit() and int(comp) < values.shape[1]:
+        k = int(comp)
+    else:
+        raise PostError(f"field '{name}' has no component '{comp}'; components: "
+                        + ", ".join(names) + ", mag")
+    return values[:, k], f"{name} {names[k]} [{unit}]"
+
+
+def reference_centres(frame):
+    """Centre of each voxel at the stage start, x_ref = x - displacement (Post eq. 56)."""
+    x = frame.centres()
+    if "displacement" in frame.arrays:
+        x = x - frame.arrays["displacement"][:, :2]
+    return x
+
+
+def voxel_size(frame):
+    """Median reference edge length of the voxels, sqrt(volume / det F)."""
+    if frame.size == 0:
+        return 1.0
+    if "volume" in frame.arrays and "det_F" in frame.arrays:
+        area = frame.arrays["volume"] / frame.arrays["det_F"]
+        return float(np.sqrt(np.median(area)))
+    edges = np.linalg.norm(frame.quads[:, 1] - frame.quads[:, 0], axis=1)
+    return float(np.median(edges))
+
+
+def read_series(outdir):
+    """series.csv as {column: array}."""
+    path = os.path.join(outdir, "series.csv")
+    if not os.path.isfile(path):
+        raise PostError(f"{path} not found")
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise PostError(f"{path} has no rows")
+    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+
+
+def read_summary(outdir):
+    path = os.path.join(outdir, "summary.json")
+    if not os.path.isfile(path):
+        return None
+    with open(path) as f:
+        return json.load(f)

@@ -1,0 +1,214 @@
+"""Pictures of one particle frame with matplotlib (Agg): the deformed voxels as polygons
+(Post §5.1), coloured by a field with a colour bar (§5.3), or by body with stripes or a
+checkerboard laid out in the reference configuration (§5.2, thesis fig. C.4); velocity
+arrows (§6, fig. 9) and principal-stress crosses (§7.2, fig. 12) as overlays."""
+import json
+import math
+import os
+from dataclasses import dataclass
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+from matplotlib import colors as mcolors  # noqa: E402
+from matplotlib.cm import ScalarMappable  # noqa: E402
+from matplotlib.collections import LineCollection, PolyCollection  # noqa: E402
+from matplotlib.patches import Patch  # noqa: E402
+
+from .data import PostError, reference_centres, select, voxel_size  # noqa: E402
+
+BACKGROUND = "white"
+BAD_COLOUR = "#c8c8c8"  # NaN or infinite values (e.g. relative yield of an elastic material)
+
+
+@dataclass
+class Style:
+    field: str = "speed"
+    cmap: str = "viridis"
+    vrange: tuple = None          # (vmin, vmax) or None for the data's range
+    pattern: str = None           # None, "stripes" or "checkerboard"
+    pattern_width: float = None   # stripe width [m]; default 4 voxels
+    pattern_angle: float = 0.0    # stripe direction [degrees from x]
+    arrows: bool = False
+    crosses: bool = False
+    sample: int = 4               # overlays: one particle per sample x sample voxels
+    width: float = 8.0            # figure size [inch]
+    height: float = 6.0
+    dpi: int = 100
+    body_names: dict = None       # body id -> name, for the pattern legend
+
+
+def finite_range(values_list):
+    """(min, max) over the finite values of several arrays, widened if empty or flat."""
+    lo, hi = math.inf, -math.inf
+    for v in values_list:
+        v = v[np.isfinite(v)]
+        if v.size:
+            lo, hi = min(lo, float(v.min())), max(hi, float(v.max()))
+    if lo > hi:
+        return 0.0, 1.0
+    if lo == hi:
+        pad = abs(lo) * 1e-3 or 1.0
+        return lo - pad, hi + pad
+    return lo, hi
+
+
+def bounds(frames, margin=0.05):
+    """Axis limits holding every voxel of every frame, with a margin."""
+    pts = [f.quads.reshape(-1, 2) for f in frames if f.size]
+    if not pts:
+        return (0.0, 1.0), (0.0, 1.0)
+    p = np.concatenate(pts)
+    lo, hi = p.min(axis=0), p.max(axis=0)
+    span = max(float((hi - lo).max()), 1e-12)
+    lo, hi = lo - margin * span, hi + margin * span
+    return (float(lo[0]), float(hi[0])), (float(lo[1]), float(hi[1]))
+
+
+def subsample(centres, spacing):
+    """Indices of one particle per square bin of side `spacing`, the one nearest its centre."""
+    if len(centres) == 0:
+        return np.zeros(0, dtype=int)
+    keys = np.floor(centres / spacing).astype(np.int64)
+    dist = np.linalg.norm(centres - (keys + 0.5) * spacing, axis=1)
+    order = np.lexsort((dist, keys[:, 1], keys[:, 0]))
+    k = keys[order]
+    first = np.ones(len(order), dtype=bool)
+    first[1:] = np.any(k[1:] != k[:-1], axis=1)
+    return np.sort(order[first])
+
+
+def pattern_colours(frame, style):
+    """Body colour in two shades, alternating by stripe or checkerboard square of the voxel's
+    reference position x_ref (Post §5.2)."""
+    width = style.pattern_width or 4.0 * voxel_size(frame)
+    a = math.radians(style.pattern_angle)
+    x = reference_centres(frame)
+    along = x[:, 0] * math.cos(a) + x[:, 1] * math.sin(a)
+    across = -x[:, 0] * math.sin(a) + x[:, 1] * math.cos(a)
+    band = np.floor(across / width).astype(np.int64)
+    if style.pattern == "checkerboard":
+        band = band + np.floor(along / width).astype(np.int64)
+    dark = (band % 2) == 1
+    bodies = frame.arrays.get("body_id", np.zeros(frame.size)).astype(int)
+    palette = plt.get_cmap("tab10")
+    base = np.array([palette(b % 10) for b in bodies]).reshape(-1, 4)
+    light = base.copy()
+    light[:, :3] = 0.45 * base[:, :3] + 0.55  # mixed with white
+    return np.where(dark[:, None], base, light), sorted(set(bodies.tolist())), palette
+
+
+def in_plane_principal(stress):
+    """Larger and smaller in-plane principal stress and the direction of the larger one
+    (Post eq. 59-60), from Voigt stresses (n, 6)."""
+    xx, yy, xy = stress[:, 0], stress[:, 1], stress[:, 3]
+    c, r = 0.5 * (xx + yy), np.hypot(0.5 * (xx - yy), xy)
+    return c + r, c - r, 0.5 * np.arctan2(2.0 * xy, xx - yy)
+
+
+def draw_crosses(ax, frame, idx, spacing):
+    """Principal-stress crosses (Post fig. 12): black for compression, red for tension, arm
+    length proportional to |sigma| (the largest magnitude shown gets 0.45 spacing)."""
+    name = "smoothed_stress" if "smoothed_stress" in frame.arrays else "stress"
+    s_major, s_minor, theta = in_plane_principal(frame.arrays[name][idx])
+    scale = max(float(np.max(np.abs(np.concatenate([s_major, s_minor])), initial=0.0)), 1e-300)
+    centres = frame.centres()[idx]
+    segments, colours = [], []
+    for sig, ang in ((s_major, theta), (s_minor, theta + 0.5 * math.pi)):
+        half = 0.45 * spacing * np.abs(sig) / scale
+        d = np.stack([np.cos(ang), np.sin(ang)], axis=1) * half[:, None]
+        segments += list(np.stack([centres - d, centres + d], axis=1))
+        colours += ["#d62728" if s > 0 else "black" for s in sig]
+    ax.add_collection(LineCollection(segments, colors=colours, linewidths=1.0, zorder=4))
+    return name
+
+
+def draw_arrows(ax, frame, idx, spacing):
+    """Velocity arrows on a subsample (Post fig. 9b); the fastest shown is 0.8 spacing long."""
+    v = frame.arrays["velocity"][idx, :2]
+    vmax = float(np.max(np.linalg.norm(v, axis=1), initial=0.0))
+    if vmax == 0.0:
+        return
+    c = frame.centres()[idx]
+    ax.quiver(c[:, 0], c[:, 1], v[:, 0], v[:, 1], angles="xy", scale_units="xy",
+              scale=vmax / (0.8 * spacing), width=0.003, color="black", zorder=5)
+
+
+def draw_frame(frame, style, xlim, ylim, vrange=None):
+    """The figure of one frame and a dict describing where things are in the picture."""
+    fig = plt.figure(figsize=(style.width, style.height), dpi=style.dpi, facecolor=BACKGROUND)
+    ax = fig.add_axes([0.11, 0.1, 0.7, 0.8], facecolor=BACKGROUND)
+    cax = None
+    info = {"cmap": None, "vmin": None, "vmax": None}
+    if style.pattern:
+        faces, bodies, palette = pattern_colours(frame, style)
+        names = style.body_names or {}
+        ax.legend(handles=[Patch(color=palette(b % 10), label=names.get(b, f"body {b}"))
+                           for b in bodies], loc="upper left", bbox_to_anchor=(1.02, 1.0), fontsize="small")
+        what = f"deformation ({style.pattern} in the reference configuration)"
+    else:
+        values, label = select(frame, style.field)
+        vmin, vmax = vrange or style.vrange or finite_range([values])
+        norm = mcolors.Normalize(vmin=vmin, vmax=vmax)
+        cmap = plt.get_cmap(style.cmap).with_extremes(bad=BAD_COLOUR)
+        faces = cmap(norm(np.where(np.isfinite(values), values, np.nan)))
+        cax = fig.add_axes([0.85, 0.1, 0.03, 0.8])
+        fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=cax, label=label)
+        info.update(cmap=style.cmap, vmin=vmin, vmax=vmax)
+        what = label
+    ax.add_collection(PolyCollection(frame.quads, facecolors=faces, edgecolors=faces,
+                                     linewidths=0.3, zorder=2))
+    spacing = style.sample * voxel_size(frame)
+    idx = subsample(frame.centres(), spacing) if (style.arrows or style.crosses) else None
+    overlays = []
+    if style.crosses:
+        source = draw_crosses(ax, frame, idx, spacing)
+        overlays.append(f"crosses: principal {source.replace('_', ' ')} (red tension)")
+    if style.arrows:
+        draw_arrows(ax, frame, idx, spacing)
+        overlays.append("arrows: velocity")
+    if overlays:
+        what += "\n" + ", ".join(overlays)
+    ax.set_xlim(*xlim)
+    ax.set_ylim(*ylim)
+    ax.set_aspect("equal", adjustable="box")
+    ax.set_xlabel("x [m]")
+    ax.set_ylabel("y [m]")
+    ax.set_title(f"{what}\nt = {frame.time:.4g} s (frame {frame.step})", fontsize="medium")
+    fig.canvas.draw()
+    info.update(image_size=[int(round(v)) for v in fig.canvas.get_width_height()],
+                axes=pixel_box(fig, ax), xlim=list(xlim), ylim=list(ylim),
+                colorbar=pixel_box(fig, cax) if cax else None)
+    return fig, info
+
+
+def pixel_box(fig, ax):
+    """[left, top, right, bottom] of an axes in image pixels (origin top-left)."""
+    b = ax.get_window_extent()
+    h = fig.canvas.get_width_height()[1]
+    return [b.x0, h - b.y1, b.x1, h - b.y0]
+
+
+def save(fig, path, info=None, info_path=None):
+    """Writes the PNG via a temporary name and a rename (never a half-written picture)."""
+    os.makedirs(os.path.dirname(os.path.abspath(path)), exist_ok=True)
+    tmp = path + ".tmp"
+    fig.savefig(tmp, format="png", dpi=fig.dpi, facecolor=fig.get_facecolor())
+    plt.close(fig)
+    os.replace(tmp, path)
+    if info_path:
+        with open(info_path + ".tmp", "w") as f:
+            json.dump(info, f, indent=1)
+        os.replace(info_path + ".tmp", info_path)
+
+
+def check_style(frame, style):
+    """Raises PostError early for a field that the frame does not have."""
+    if not style.pattern:
+        select(frame, style.field)
+    if style.arrows and "velocity" not in frame.arrays:
+        raise PostError("--arrows needs the velocity field")
+    if style.crosses and "stress" not in frame.arrays:
+        raise PostError("--crosses needs the stress field")

@@ -1,0 +1,103 @@
+#include "io/grid_writer.hpp"
+
+#include <fmt/format.h>
+
+#include <bit>
+#include <cstdint>
+#include <iterator>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "io/atomic_file.hpp"
+
+namespace skred {
+
+namespace {
+
+// One appended array: its XML attributes and its values.
+struct Array {
+  std::string name;
+  int components;
+  std::vector<std::string> component_names;
+  std::vector<double> values;
+};
+
+std::string header(const GridGeometry<2>& g, const std::vector<Array>& coords,
+                   const std::vector<Array>& point_data) {
+  constexpr bool little = std::endian::native == std::endian::little;
+  std::string h;
+  auto out = std::back_inserter(h);
+  const int nx = g.nodes(0) - 1, ny = g.nodes(1) - 1;
+  fmt::format_to(out,
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"{}\" "
+                 "header_type=\"UInt64\">\n"
+                 "  <RectilinearGrid WholeExtent=\"0 {} 0 {} 0 0\">\n"
+                 "    <Piece Extent=\"0 {} 0 {} 0 0\">\n",
+                 little ? "LittleEndian" : "BigEndian", nx, ny, nx, ny);
+  std::size_t offset = 0;
+  auto arrays = [&](const char* section, const std::vector<Array>& list) {
+    fmt::format_to(out, "      <{}>\n", section);
+    for (const Array& a : list) {
+      fmt::format_to(out, "        <DataArray type=\"Float64\" Name=\"{}\"", a.name);
+      if (a.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", a.components);
+      for (std::size_t c = 0; c < a.component_names.size(); ++c)
+        fmt::format_to(out, " ComponentName{}=\"{}\"", c, a.component_names[c]);
+      fmt::format_to(out, " format=\"appended\" offset=\"{}\"/>\n", offset);
+      offset += sizeof(std::uint64_t) + a.values.size() * sizeof(double);
+    }
+    fmt::format_to(out, "      </{}>\n", section);
+  };
+  arrays("PointData", point_data);
+  arrays("Coordinates", coords);
+  h += "    </Piece>\n  </RectilinearGrid>\n  <AppendedData encoding=\"raw\">\n_";
+  return h;
+}
+
+}  // namespace
+
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
+                    const GridNodeFields& f) {
+  const std::size_t n = grid.node_count();
+  if (f.mass.size() != n || f.velocity.size() != n || f.stress.size() != n)
+    throw std::invalid_argument(fmt::format(
+        "write_grid_vtr: {} nodes but mass/velocity/stress have {}/{}/{} entries", n,
+        f.mass.size(), f.velocity.size(), f.stress.size()));
+
+  std::vector<Array> coords;
+  for (int d = 0; d < 2; ++d) {
+    Array a{d == 0 ? "x" : "y", 1, {}, {}};
+    for (int j = 0; j < grid.nodes(d); ++j) a.values.push_back(grid.origin[d] + grid.node_coordinate(d, j));
+    coords.push_back(std::move(a));
+  }
+  coords.push_back({"z", 1, {}, {0.0}});
+
+  std::vector<Array> data = {{"mass", 1, {}, {}},
+                             {"velocity", 3, {}, {}},
+                             {"stress", 6, {"xx", "yy", "zz", "xy", "yz", "xz"}, {}},
+                             {"mean_stress_p", 1, {}, {}},
+                             {"deviatoric_stress_q", 1, {}, {}}};
+  for (Array& a : data) a.values.reserve(n * static_cast<std::size_t>(a.components));
+  for (std::size_t i = 0; i < n; ++i) {
+    data[0].values.push_back(f.mass[i]);
+    data[1].values.insert(data[1].values.end(), {f.velocity[i][0], f.velocity[i][1], 0.0});
+    data[2].values.insert(data[2].values.end(), f.stress[i].data(), f.stress[i].data() + 6);
+    data[3].values.push_back(mean_stress(f.stress[i]));        // Post eq. 61
+    data[4].values.push_back(deviatoric_stress(f.stress[i]));  // Post eq. 62
+  }
+
+  const std::string head = header(grid, coords, data);
+  write_file_atomically(file, [&](std::ostream& os) {
+    os.write(head.data(), static_cast<std::streamsize>(head.size()));
+    for (const auto* list : {&data, &coords})
+      for (const Array& a : *list) {
+        const std::uint64_t bytes = a.values.size() * sizeof(double);
+        os.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
+        os.write(reinterpret_cast<const char*>(a.values.data()), static_cast<std::streamsize>(bytes));
+      }
+    os << "\n  </AppendedData>\n</VTKFile>\n";
+  });
+}
+
+}  // namespace skred

@@ -1,0 +1,29 @@
+// Grid node fields as a VTK XML RectilinearGrid (.vtr) for ParaView (Post §7.1): the
+// background grid of one output step with its nodal mass, velocity and stress.
+#pragma once
+#include <filesystem>
+#include <span>
+
+#include "core/grid.hpp"
+#include "core/types.hpp"
+
+namespace skred {
+
+// Nodal arrays, flat-indexed like GridGeometry (axis 0 fastest), each grid.node_count() long.
+struct GridNodeFields {
+  std::span<const double> mass;      // m_i = sum_p N_ip m_p
+  std::span<const Vec<2>> velocity;  // v_i = sum_p N_ip m_p v_p / m_i (0 where m_i = 0)
+  std::span<const Sym3> stress;      // sigma_i = sum_p N_ip m_p sigma_p / m_i (Post eq. 57)
+};
+
+// Writes every node of `grid`, ghost nodes included, as a point of a rectilinear grid (one
+// coordinate array per axis, from GridGeometry::node_coordinate, so the uneven spacing of
+// the cubic B-spline's Greville abscissae is kept; z = 0). Point data (Float64): mass,
+// velocity (3, z = 0), stress (6, Voigt xx,yy,zz,xy,yz,xz), mean_stress_p and
+// deviatoric_stress_q of the nodal stress. Binary appended raw encoding, header_type UInt64,
+// written atomically. Throws std::invalid_argument if an array does not have
+// grid.node_count() entries, std::runtime_error on I/O failure.
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
+                    const GridNodeFields& fields);
+
+}  // namespace skred
