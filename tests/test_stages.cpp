@@ -259,3 +259,52 @@ TEST(Sweep, OneRowPerValueAndBadKeysNamed) {
   EXPECT_FALSE(fs::exists(dir / "out3" / "run_000"));
   fs::remove_all(dir);
 }
+
+TEST(Walls, ClosedWallsAreImpenetrableFreeSidesAreNot) {
+  // A block thrown at 5 m/s against the x_max wall: a roller wall stops it at the wall (no
+  // point passes it); with a free side the run stops as unstable, naming the point that left.
+  for (const char* side : {"\"roller\"", "\"free\""}) {
+    std::ostringstream t;
+    t << R"(
+[grid]
+size = [1.0, 1.0]
+cell_size = 0.05
+[[material]]
+name = "soil"
+model = "tresca"
+density = 2000.0
+young = 1e6
+poisson = 0.3
+cohesion = 2000.0
+[[body]]
+material = "soil"
+shape = "rectangle"
+min = [0.6, 0.0]
+max = [0.9, 0.2]
+velocity = [5.0, 0.0]
+[boundary]
+y_min = "roller"
+y_max = "roller"
+x_max = )" << side << R"(
+[solver]
+end_time = 0.1
+scheme = "usf"
+[output]
+interval = 0.1
+)";
+    const Scenario s = parse_scenario(t.str(), "wall.toml");
+    const fs::path out = temp_dir("wall");
+    RunOptions opt;
+    opt.progress = false;
+    const RunResult r = run_simulation(s, out, opt);
+    if (std::string(side) == "\"roller\"") {
+      ASSERT_TRUE(r.completed) << r.message;
+      const std::string vtu = read(out / "particles_000001.vtu");
+      EXPECT_FALSE(vtu.empty());
+    } else {
+      EXPECT_FALSE(r.completed);
+      EXPECT_NE(r.message.find("left the grid"), std::string::npos) << r.message;
+    }
+    fs::remove_all(out);
+  }
+}

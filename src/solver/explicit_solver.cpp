@@ -22,11 +22,18 @@ namespace skred {
 namespace {
 
 // End of a point's step: x^{k+1} = x^k + dx (eq. 2.55) and F^{k+1} = dF F^k (eq. 3.2).
-// False if the point left the grid or became non-finite or inverted.
+// A point that would cross a fixed, roller or frictional wall is stopped at the wall (the
+// walls are impenetrable; interpolated velocities next to a wall can overshoot it by a
+// fraction of a step). False if the point left the grid through a free side or became
+// non-finite or inverted.
 template <int D>
-[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, Particles<D>& P, long p,
-                                              const Vec<D>& dx) {
+[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls,
+                                              Particles<D>& P, long p, const Vec<D>& dx) {
   P.x[p] += dx;
+  for (int d = 0; d < D; ++d) {
+    P.x[p][d] = std::max(P.x[p][d], walls.lo[d]);
+    P.x[p][d] = std::min(P.x[p][d], walls.hi[d]);
+  }
   P.F[p] = P.dF[p] * P.F[p];
   P.dF[p].setIdentity();
   return grid.inside(P.x[p]) && std::isfinite(P.v[p].sum() + P.stress[p].sum()) &&
@@ -44,6 +51,13 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   for (Material& m : materials_) m.prepare();
   grid_.bspline_dofs = settings_.interpolation == Interpolation::Bspline;
   boundaries_ = Boundaries<D>(grid_, settings_.boundaries);
+  for (int d = 0; d < D; ++d) {
+    const double lo = grid_.origin[d], hi = grid_.origin[d] + grid_.h * grid_.cells[d];
+    const bool closed_lo = settings_.boundaries[2 * d].kind != BoundaryKind::Free;
+    const bool closed_hi = settings_.boundaries[2 * d + 1].kind != BoundaryKind::Free;
+    walls_.lo[d] = closed_lo ? lo : -INFINITY;
+    walls_.hi[d] = closed_hi ? hi : INFINITY;
+  }
   const std::size_t n = grid_.node_count();
   fields_.resize(n);
   buffers_.resize(static_cast<std::size_t>(threads_ - 1));
@@ -279,7 +293,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
       }
       if (move) {
         mdx += P.mass[p] * dt * vmove;
-        if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
+        if (!move_point<D>(grid_, walls_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
       }
     }
   }
@@ -324,7 +338,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
     work += r.strain_energy;
     dissipation += r.dissipation;
     mdx += P.mass[p] * dt * vmove;
-    if (!move_point<D>(grid_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
+    if (!move_point<D>(grid_, walls_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
   }
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;

@@ -53,6 +53,11 @@ struct StepStatus {
   std::string reason;
 };
 
+// Positions of the closed (fixed, roller, frictional) walls; +-inf on free sides.
+template <int D> struct WallBox {
+  Vec<D> lo = Vec<D>::Constant(-INFINITY), hi = Vec<D>::Constant(INFINITY);
+};
+
 template <int D> class ExplicitSolver {
  public:
   ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles, std::vector<Material> materials,
@@ -107,6 +112,7 @@ template <int D> class ExplicitSolver {
   std::vector<Material> materials_;
   SolverSettings<D> settings_;
   Boundaries<D> boundaries_;
+  WallBox<D> walls_;
   GridFields<D> fields_;
   std::vector<ScatterBuffer<D>> buffers_;  // one per thread beyond the first
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
