@@ -3,8 +3,14 @@
 // L = 25, E = 100, rho = 1, nu = 0, v0 = 0.1, b1 = pi/(2L), w1 = b1 c, period T = 10.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
 #include <numbers>
+#include <sstream>
 
+#include "run/simulation.hpp"
+#include "scenario/scenario.hpp"
 #include "support.hpp"
 
 using namespace skred;
@@ -96,4 +102,37 @@ TEST(VibratingBar, DisplacementConvergesUnderRefinement) {
     EXPECT_GT(r1, 1.0);
     EXPECT_GT(r2, 1.0);
   }
+}
+
+// The shipped example file (examples/vibrating_bar.toml) reproduces R1 through the scenario
+// path: the sine initial velocity, the walls and the series output.
+TEST(VibratingBar, ExampleFileMatchesTheExactSolution) {
+  const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/vibrating_bar.toml");
+  const std::filesystem::path out = std::filesystem::temp_directory_path() / "skred_bar_example";
+  std::filesystem::remove_all(out);
+  RunOptions opt;
+  opt.progress = false;
+  const RunResult r = run_simulation(s, out, opt);
+  ASSERT_TRUE(r.completed) << r.message;
+  std::ifstream csv(out / "series.csv");
+  std::string line;
+  std::getline(csv, line);
+  std::vector<double> t, vcm;
+  while (std::getline(csv, line)) {
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
+    t.push_back(std::stod(f[1]));
+    vcm.push_back(std::stod(f[9]) / (rho * L));  // momentum_x / bar mass
+  }
+  std::filesystem::remove_all(out);
+  const double amp = *std::max_element(vcm.begin(), vcm.end());
+  const auto z = zero_crossings(t, vcm);
+  ASSERT_GE(z.size(), 3u);
+  const double period = (z.back() - z.front()) / (z.size() - 1);
+  const double exact_amp = v0 / (beta * L), exact_period = 2 * std::numbers::pi / omega;
+  std::printf("example: v_cm amplitude %.6f (exact %.6f), period %.4f (exact %.4f)\n", amp,
+              exact_amp, period, exact_period);
+  EXPECT_NEAR(amp, exact_amp, 0.01 * exact_amp);
+  EXPECT_NEAR(period, exact_period, 0.01 * exact_period);
 }

@@ -31,7 +31,8 @@ double scenario_time_step(const Scenario& s) {
   double c = 0.0;
   for (const Material& m : s.materials) c = std::max(c, m.wave_speed());
   double v = 0.0;
-  for (const Body& b : s.bodies) v = std::max(v, b.velocity.norm());
+  for (const Body& b : s.bodies)
+    v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());
   return s.cfl * s.cell_size / (c + v);
 }
 

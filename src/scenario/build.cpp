@@ -190,7 +190,11 @@ Particles<2> build_particles(const Scenario& s) {
     const double volume = sub * sub;
     const Vec<2> half = Vec<2>::Constant(0.5 * sub);
     for_each_point(s, b, [&](const Vec<2>& x) {
-      p.add(x, b.velocity, mat.density * volume, volume, half, b.material, static_cast<int>(i));
+      Vec<2> v = b.velocity;
+      const SineVelocity& sv = b.velocity_sine;
+      if (sv.wavelength > 0.0)
+        v += sv.amplitude * std::sin(2.0 * M_PI * (x[sv.axis] - sv.origin) / sv.wavelength);
+      p.add(x, v, mat.density * volume, volume, half, b.material, static_cast<int>(i));
       return true;
     });
   }

@@ -201,7 +201,8 @@ void check_inside(const TableReader& t, std::string_view key, const Scenario& s,
 }
 
 Shape parse_rectangle(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "min", "max"});
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "min", "max"});
   Rectangle r{b.vec2("min"), b.vec2("max")};
   if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
     b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components",
@@ -212,7 +213,8 @@ Shape parse_rectangle(const TableReader& b, const Scenario& s) {
 }
 
 Shape parse_polygon(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "vertices"});
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "vertices"});
   if (!b.has("vertices")) b.fail_missing("vertices");
   const auto* arr = b.find("vertices")->as_array();
   if (!arr) b.fail_type("vertices", "an array of [x, y] pairs");
@@ -236,7 +238,8 @@ Shape parse_polygon(const TableReader& b, const Scenario& s) {
 }
 
 Shape parse_disc(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "shape", "center", "radius"});
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "center", "radius"});
   Disc c{b.vec2("center"), b.number("radius", Range::positive())};
   check_inside(b, "center", s, c.center, "centre");
   const Vec<2> r = Vec<2>::Constant(c.radius);
@@ -266,6 +269,13 @@ void parse_bodies(const TableReader& root, Scenario& s) {
     b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
     b.velocity = t.vec2("velocity", Vec<2>::Zero());
+    if (const auto vs = t.table("velocity_sine", false)) {
+      vs->allow_only({"amplitude", "wavelength", "axis", "origin"});
+      b.velocity_sine.amplitude = vs->vec2("amplitude");
+      b.velocity_sine.wavelength = vs->number("wavelength", Range::positive());
+      b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}}, 0);
+      b.velocity_sine.origin = vs->number("origin", Range::any(), 0.0);
+    }
     if (!has_points(s, b))
       t.fail_at("shape", fmt::format("body \"{}\" contains no material point: it covers no "
                                      "sub-cell centre (spacing {} m); enlarge it, refine the grid "

@@ -28,12 +28,22 @@ struct Polygon { std::vector<Vec<2>> vertices; };
 struct Disc { Vec<2> center; double radius = 0.0; };
 using Shape = std::variant<Rectangle, Polygon, Disc>;
 
+// A sine-shaped initial velocity added to the body's uniform one (for mode shapes such as
+// reference R1): v(x) += amplitude sin(2 pi (x[axis] - origin) / wavelength).
+struct SineVelocity {
+  Vec<2> amplitude = Vec<2>::Zero();  // [m/s]
+  double wavelength = 0.0;            // [m]; 0: none
+  int axis = 0;                       // 0: along x, 1: along y
+  double origin = 0.0;                // [m]; where the sine is zero
+};
+
 struct Body {
   std::string name;
   Shape shape;
   int material = 0;              // index into Scenario::materials
   int particles_per_cell = 2;    // n: n x n material points per grid cell
   Vec<2> velocity = Vec<2>::Zero();  // initial velocity
+  SineVelocity velocity_sine = {};   // added to `velocity`
 };
 
 // Initial stress from the weight of the soil above each point (Thesis eq. 5.6-5.7):
