@@ -118,11 +118,7 @@ TEST(Slides, SoilColumnCollapsesSymmetricallyAndComesToRest) {
   const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   Particles<2> P = build_particles(s);
   apply_initial_stress(s, P);
-  GridGeometry<2> g;
-  g.origin = s.origin;
-  g.h = s.cell_size;
-  g.cells = s.cells;
-  ExplicitSolver<2> solver(g, P, stage_materials(s, s.stages[0]), solver_settings(s), 2);
+  ExplicitSolver<2> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), solver_settings(s), 2);
   double peak = 0.0, last = 0.0;
   for (int k = 0; k < 3000; ++k) {
     ASSERT_TRUE(solver.step().ok) << "step " << k;
@@ -202,11 +198,7 @@ TEST(Slides, ElasticPartOfFIsAllOfFWithoutPlasticityOrRotation) {
   // gravity deforms without rotation, so Fe = F and Fp = Fe^-1 F = I to round-off.
   const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/elastic_column.toml");
   Particles<2> P = build_particles(s);
-  GridGeometry<2> g;
-  g.origin = s.origin;
-  g.h = s.cell_size;
-  g.cells = s.cells;
-  ExplicitSolver<2> solver(g, P, s.materials, solver_settings(s), 1);
+  ExplicitSolver<2> solver(scenario_grid(s), P, s.materials, solver_settings(s), 1);
   for (int k = 0; k < 400; ++k) ASSERT_TRUE(solver.step().ok);
   double worst = 0.0, strain = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p) {

@@ -78,12 +78,8 @@ end_time = 1.0
   for (int r = 0; r < opt.repeats; ++r) {
     Particles<2> P = build_particles(s);
     apply_initial_stress(s, P);
-    GridGeometry<2> grid;
-    grid.origin = s.origin;
-    grid.h = s.cell_size;
-    grid.cells = s.cells;
-    SolverSettings<2> st = solver_settings(s);
-    ExplicitSolver<2> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
+    const GridGeometry<2> grid = scenario_grid(s);
+    ExplicitSolver<2> solver(grid, P, stage_materials(s, s.stages[0]), solver_settings(s), opt.threads);
     const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)

@@ -49,6 +49,14 @@ SolverSettings<2> solver_settings(const Scenario& s) {
   return st;
 }
 
+GridGeometry<2> scenario_grid(const Scenario& s) {
+  GridGeometry<2> grid;
+  grid.origin = s.origin;
+  grid.h = s.cell_size;
+  grid.cells = s.cells;
+  return grid;
+}
+
 namespace {
 
 std::string hms(double seconds) {
@@ -105,11 +113,7 @@ void write_grid_frame(const ExplicitSolver<2>& solver, const fs::path& outdir, i
 RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
   Particles<2> particles = build_particles(s);
   apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
-  GridGeometry<2> grid;
-  grid.origin = s.origin;
-  grid.h = s.cell_size;
-  grid.cells = s.cells;
-  ExplicitSolver<2> solver(grid, particles, stage_materials(s, s.stages.front()),
+  ExplicitSolver<2> solver(scenario_grid(s), particles, stage_materials(s, s.stages.front()),
                            solver_settings(s), opt.threads);
 
   fs::create_directories(outdir);
@@ -164,8 +168,7 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
     Stage as_plastic = st;
     as_plastic.elastic = false;
     strength = material_strengths(stage_materials(s, as_plastic));
-    if (k > 0) solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
-    else solver.begin_stage(solver.materials(), st.gravity_ramp_time);
+    solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
     const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
     const long first_step = solver.steps();
     const double stage_start = solver.time();

@@ -32,6 +32,9 @@ double scenario_time_step(const Scenario& s);
 
 SolverSettings<2> solver_settings(const Scenario& s);
 
+// The background grid of a scenario (origin, cell size, cells per axis).
+GridGeometry<2> scenario_grid(const Scenario& s);
+
 RunResult run_simulation(const Scenario& s, const std::filesystem::path& outdir, const RunOptions& opt);
 
 }  // namespace skred
