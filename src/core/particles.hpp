@@ -26,17 +26,12 @@ template <int D> struct Particles {
   std::vector<Mat<D>> Fe;
   std::vector<Sym3> stress_ref;
 
-  // Per-step scratch: the deformation-gradient increment of the current step. F_p stays at
-  // its start-of-step value while the weighting functions are evaluated, and is updated once
-  // at the end of the step (F^{k+1} = dF F^k, Thesis eq. 3.2).
-  std::vector<Mat<D>> dF;
-
   std::size_t size() const { return x.size(); }
 
   void reserve(std::size_t n) {
     x.reserve(n); x_ref.reserve(n); v.reserve(n); mass.reserve(n); volume0.reserve(n);
     half0.reserve(n); F.reserve(n); stress.reserve(n); material.reserve(n); body.reserve(n);
-    state.reserve(n); dF.reserve(n); Fe.reserve(n); stress_ref.reserve(n);
+    state.reserve(n); Fe.reserve(n); stress_ref.reserve(n);
   }
 
   // Appends one undeformed, stress-free material point.
@@ -45,7 +40,7 @@ template <int D> struct Particles {
     x.push_back(pos); x_ref.push_back(pos); v.push_back(vel); mass.push_back(m);
     volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
     stress.push_back(Sym3::Zero()); material.push_back(mat); body.push_back(bod);
-    state.push_back(PointState{}); dF.push_back(Mat<D>::Identity());
+    state.push_back(PointState{});
     Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(Sym3::Zero());
   }
 

@@ -9,7 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shape/stencil.hpp"
+#include "shape/separable.hpp"
 
 namespace skred {
 
@@ -63,21 +63,33 @@ inline int bspline_1d(double xi, int n, double* w, double* g) {
 template <int D> struct BsplineKernel {
   static constexpr int S = 4;
   using StencilT = Stencil<D, S>;
+  using Shape = Separable<D, S>;
+  using Packed = PackedSeparable<D, S, 1>;
   static constexpr const char* name = "bspline";
 
-  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
-                  const Mat<D>& /*F*/, StencilT& st) const {
-    double w1[D][S], g1[D][S];
+  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
+                                    const Mat<D>& /*F*/, Shape& sh) const {
     std::array<int, D> start{};
     const double inv_h = 1.0 / g.h;
     for (int d = 0; d < D; ++d) {
       const double xi = (x[d] - g.origin[d]) * inv_h;
       if (!(xi >= 0.0 && xi <= g.cells[d])) return false;  // no basis outside the domain
-      start[d] = bspline_1d(xi, g.cells[d], w1[d], g1[d]);
-      for (int a = 0; a < S; ++a) g1[d][a] *= inv_h;
+      start[d] = bspline_1d(xi, g.cells[d], sh.w[d], sh.g[d]);
+      for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
     }
-    if (!block_base<D, S>(g, start, st.base)) return false;
-    tensor_product<D, S>(w1, g1, st);
+    return block_base<D, S>(g, start, sh.base);
+  }
+  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
+  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
+                                   const Vec<D>& /*half0*/, Shape& sh) const {
+    p.unpack(sh);
+  }
+
+  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                  StencilT& st) const {
+    Shape sh;
+    if (!shape(g, x, half0, F, sh)) return false;
+    expand(sh, st);
     return true;
   }
 };

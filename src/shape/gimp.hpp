@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shape/stencil.hpp"
+#include "shape/separable.hpp"
 
 namespace skred {
 
@@ -20,28 +20,57 @@ namespace skred {
   else { const double s = L + l - r; w = s * s / (4 * L * l); g = -s / (2 * L * l); }
 }
 
+// Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
+// is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length. Nodes n - 1,
+// n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d, without branches.
+[[gnu::always_inline]] inline void gimp_3nodes(double e, double lam, double* w, double* g) {
+  const double inv = 1.0 / lam;
+  const double sl = std::max(lam - e, 0.0), sr = std::max(lam + e, 0.0);  // overlaps of the tails
+  const bool left = e <= -lam, right = e >= lam;  // the point's domain lies within one cell
+  w[0] = left ? -e : 0.25 * sl * sl * inv;
+  g[0] = left ? -1.0 : -0.5 * sl * inv;
+  w[2] = right ? e : 0.25 * sr * sr * inv;
+  g[2] = right ? 1.0 : 0.5 * sr * inv;
+  const bool linear = left || right;
+  w[1] = linear ? 1.0 - std::abs(e) : 1.0 - 0.5 * (e * e + lam * lam) * inv;
+  g[1] = linear ? (e > 0.0 ? -1.0 : 1.0) : -e * inv;
+}
+
 template <int D> struct GimpKernel {
   static constexpr int S = 3;
   using StencilT = Stencil<D, S>;
+  using Shape = Separable<D, S>;
+  using Packed = PackedSeparable<D, S, 1>;  // the middle weight is at least 1/2
   static constexpr const char* name = "gimp";
 
-  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
-                  const Mat<D>& F, StencilT& st) const {
+  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
+                                    const Mat<D>& F, Shape& sh) const {
     const double J = F.determinant();
     const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : std::cbrt(J);
-    double w1[D][S], g1[D][S];
+    const double inv_h = 1.0 / g.h;
     std::array<int, D> start{};
-    const double L = g.h;
     for (int d = 0; d < D; ++d) {
       // The half-length is kept within (0, L/2] so the support spans three nodes.
-      const double l = std::clamp(half0[d] * scale, 1e-12 * L, 0.5 * L);
-      const double xi = (x[d] - g.origin[d]) / L;
-      const int n = static_cast<int>(std::floor(xi + 0.5));  // nearest node
-      start[d] = n - 1 + GridGeometry<D>::pad;
-      for (int a = 0; a < S; ++a) gimp_1d((xi - (n - 1 + a)) * L, L, l, w1[d][a], g1[d][a]);
+      const double lam = std::clamp(half0[d] * scale * inv_h, 1e-12, 0.5);
+      const double xi = (x[d] - g.origin[d]) * inv_h;
+      const double n = std::floor(xi + 0.5);  // nearest node
+      start[d] = static_cast<int>(n) - 1 + GridGeometry<D>::pad;
+      gimp_3nodes(xi - n, lam, sh.w[d], sh.g[d]);
+      for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
     }
-    if (!block_base<D, S>(g, start, st.base)) return false;
-    tensor_product<D, S>(w1, g1, st);
+    return block_base<D, S>(g, start, sh.base);
+  }
+  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
+  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
+                                   const Vec<D>& /*half0*/, Shape& sh) const {
+    p.unpack(sh);
+  }
+
+  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                  StencilT& st) const {
+    Shape sh;
+    if (!shape(g, x, half0, F, sh)) return false;
+    expand(sh, st);
     return true;
   }
 };

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "shape/linear.hpp"
+#include "shape/separable.hpp"
 
 namespace skred {
 
@@ -24,16 +25,34 @@ template <> struct GaussLegendre<3> {
   static constexpr double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 };
 
+// Not separable: between the phases of a step the solver keeps the start-of-step F and
+// evaluates the stencil again (x_p does not change before the end of the step).
+template <int D> struct QuadratureState {
+  Mat<D> F;
+};
+
 template <int D, int Q> struct GimpQuadratureKernel {
   // A Gauss point's two nodes per axis must lie in a block of four: the deformed voxel may
   // span at most three cells per axis.
   static constexpr int S = 4;
   static constexpr int NGP = ipow(Q, D);
   using StencilT = Stencil<D, S>;
+  using Shape = StencilT;
+  using Packed = QuadratureState<D>;
   static constexpr const char* name = "gimp-quadrature";
 
-  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
-                  const Mat<D>& F, StencilT& st) const {
+  void store(Packed& p, const Shape& /*sh*/, const Mat<D>& F) const { p.F = F; }
+  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& g, const Vec<D>& x,
+                                   const Vec<D>& half0, Shape& sh) const {
+    shape(g, x, half0, p.F, sh);
+  }
+  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                  StencilT& st) const {
+    return shape(g, x, half0, F, st);
+  }
+
+  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
+                                    const Mat<D>& F, StencilT& st) const {
     const double inv_h = 1.0 / g.h;
     // Gauss point positions (in cell units) and their normalised weights (sum 1).
     Vec<D> xi_gp[NGP];

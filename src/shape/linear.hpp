@@ -2,13 +2,13 @@
 #pragma once
 #include <cmath>
 
-#include "shape/stencil.hpp"
+#include "shape/separable.hpp"
 
 namespace skred {
 
 // 1D linear weights for a point at xi (cell units, measured from the low wall). Returns the
 // padded index of the first of the two nodes.
-inline int linear_1d(double xi, int cells, double inv_h, double* w, double* g) {
+[[gnu::always_inline]] inline int linear_1d(double xi, int cells, double inv_h, double* w, double* g) {
   int c = static_cast<int>(std::floor(xi));
   if (c == cells) c = cells - 1;  // a point exactly on the high wall belongs to the last cell
   const double f = xi - c;
@@ -20,17 +20,29 @@ inline int linear_1d(double xi, int cells, double inv_h, double* w, double* g) {
 template <int D> struct LinearKernel {
   static constexpr int S = 2;
   using StencilT = Stencil<D, S>;
+  using Shape = Separable<D, S>;
+  using Packed = PackedSeparable<D, S, 0>;  // w[0] = 1 - f, as linear_1d computes it
   static constexpr const char* name = "linear";
 
-  [[gnu::always_inline]] bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
-                  const Mat<D>& /*F*/, StencilT& st) const {
-    double w1[D][S], g1[D][S];
+  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
+                                    const Mat<D>& /*F*/, Shape& sh) const {
     std::array<int, D> start{};
     const double inv_h = 1.0 / g.h;
     for (int d = 0; d < D; ++d)
-      start[d] = linear_1d((x[d] - g.origin[d]) * inv_h, g.cells[d], inv_h, w1[d], g1[d]);
-    if (!block_base<D, S>(g, start, st.base)) return false;
-    tensor_product<D, S>(w1, g1, st);
+      start[d] = linear_1d((x[d] - g.origin[d]) * inv_h, g.cells[d], inv_h, sh.w[d], sh.g[d]);
+    return block_base<D, S>(g, start, sh.base);
+  }
+  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
+  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
+                                   const Vec<D>& /*half0*/, Shape& sh) const {
+    p.unpack(sh);
+  }
+
+  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                  StencilT& st) const {
+    Shape sh;
+    if (!shape(g, x, half0, F, sh)) return false;
+    expand(sh, st);
     return true;
   }
 };

@@ -10,10 +10,6 @@
 #include <climits>
 #include <cmath>
 
-#include "shape/bspline.hpp"
-#include "shape/gimp.hpp"
-#include "shape/gimp_quadrature.hpp"
-#include "shape/linear.hpp"
 #include "solver/gravity.hpp"
 #include "solver/stress_update.hpp"
 
@@ -21,23 +17,18 @@ namespace skred {
 
 namespace {
 
-// End of a point's step: x^{k+1} = x^k + dx (eq. 2.55) and F^{k+1} = dF F^k (eq. 3.2).
-// A point that would cross a fixed, roller or frictional wall is stopped at the wall (the
-// walls are impenetrable; interpolated velocities next to a wall can overshoot it by a
-// fraction of a step). False if the point left the grid through a free side or became
+// End of a point's step: x^{k+1} = x^k + dx (eq. 2.55); F^{k+1} was formed by the stress
+// update (eq. 3.2). A point that would cross a fixed, roller or frictional wall is stopped at
+// the wall (the walls are impenetrable; interpolated velocities next to a wall can overshoot
+// it by a fraction of a step). False if the point left the grid through a free side or became
 // non-finite or inverted.
 template <int D>
 [[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls,
-                                              Particles<D>& P, long p, const Vec<D>& dx) {
-  P.x[p] += dx;
-  for (int d = 0; d < D; ++d) {
-    P.x[p][d] = std::max(P.x[p][d], walls.lo[d]);
-    P.x[p][d] = std::min(P.x[p][d], walls.hi[d]);
-  }
-  P.F[p] = P.dF[p] * P.F[p];
-  P.dF[p].setIdentity();
-  return grid.inside(P.x[p]) && std::isfinite(P.v[p].sum() + P.stress[p].sum()) &&
-         P.F[p].determinant() > 0.0;
+                                              Vec<D>& x, const Vec<D>& dx, const Vec<D>& v,
+                                              const Sym3& stress, const Mat<D>& F) {
+  x += dx;
+  for (int d = 0; d < D; ++d) x[d] = std::min(std::max(x[d], walls.lo[d]), walls.hi[d]);
+  return grid.inside(x) && std::isfinite(v.sum() + stress.sum()) && F.determinant() > 0.0;
 }
 
 }  // namespace
@@ -112,33 +103,48 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
   return status_;
 }
 
-// Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, m_i v_i = sum m_p v_p N_ip.
+template <int D> template <class K> std::vector<typename K::Packed>& ExplicitSolver<D>::shapes() {
+  using Store = std::vector<typename K::Packed>;
+  if (!std::holds_alternative<Store>(shapes_)) shapes_.template emplace<Store>();
+  Store& store = std::get<Store>(shapes_);
+  if (store.size() != particles_.size()) store.resize(particles_.size());  // only when n changes
+  return store;
+}
+
+// Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, m_i v_i = sum m_p v_p N_ip. The weighting
+// functions evaluated here are kept for the rest of the step.
 template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
-  const StencilOffsets<D, K::S> offsets(grid_);
+  const NodeStrides<D> strides(grid_);
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
+  typename K::Packed* __restrict shape = shapes<K>().data();
+  const Vec<D>* __restrict x = P.x.data();
+  const Vec<D>* __restrict v = P.v.data();
+  const Vec<D>* __restrict half0 = P.half0.data();
+  const Mat<D>* __restrict F = P.F.data();
+  const double* __restrict pmass = P.mass.data();
   std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);
   std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
   long bad = LONG_MAX;
 #pragma omp parallel num_threads(threads_) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
-    double* mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
-    Vec<D>* mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
-    typename K::StencilT st;
+    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
+    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) {
-      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) {
+      typename K::Shape sh;
+      if (!kernel.shape(grid_, x[p], half0[p], F[p], sh)) {
         bad = std::min(bad, p);
         continue;
       }
-      const double m = P.mass[p];
-      const Vec<D> mv = m * P.v[p];
-      for (int k = 0; k < K::StencilT::size; ++k) {
-        const std::size_t i = st.base + offsets.off[k];
-        mass[i] += st.w[k] * m;
-        mom[i] += st.w[k] * mv;
-      }
+      kernel.store(shape[p], sh, F[p]);
+      const double m = pmass[p];
+      const Vec<D> mv = m * v[p];
+      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
+        mass[i] += w * m;
+        mom[i] += w * mv;
+      });
     }
   }
   reduce_scatter(true, fields_.momentum);
@@ -181,41 +187,48 @@ template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& vel
 template <int D>
 template <class K>
 void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_stress) {
-  const StencilOffsets<D, K::S> offsets(grid_);
+  const NodeStrides<D> strides(grid_);
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
+  const typename K::Packed* __restrict shape = shapes<K>().data();
+  const Vec<D>* __restrict x = P.x.data();
+  const Vec<D>* __restrict half0 = P.half0.data();
+  const double* __restrict volume0 = P.volume0.data();
+  const std::int32_t* __restrict material = P.material.data();
+  Mat<D>* __restrict F = P.F.data();
+  Mat<D>* __restrict Fe = P.Fe.data();
+  Sym3* __restrict stress = P.stress.data();
+  PointState* __restrict state = P.state.data();
+  const Material* mats = materials_.data();
   std::fill(fields_.force.begin(), fields_.force.end(), Vec<D>::Zero());
-  const Vec<D>* vel = fields_.velocity.data();
+  const Vec<D>* __restrict vel = fields_.velocity.data();
   double work = 0.0, dissipation = 0.0;
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation)
   {
     const int t = omp_get_thread_num();
-    Vec<D>* force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
-    typename K::StencilT st;
+    Vec<D>* __restrict force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) {
-      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;  // reported by the mass map
-      double volume = P.volume0[p] * P.F[p].determinant();
+      typename K::Shape sh;
+      kernel.load(shape[p], grid_, x[p], half0[p], sh);
+      double volume;
       if (dt_stress > 0.0) {
         Mat<D> grad_v = Mat<D>::Zero();
-        for (int k = 0; k < K::StencilT::size; ++k)
-          grad_v.noalias() += vel[st.base + offsets.off[k]] * st.grad[k].transpose();
-        const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress,
-                                              volume * P.dF[p].determinant(), P.stress[p],
-                                              P.state[p], P.dF[p], P.Fe[p]);
+        for_each_node(sh, strides, [&](std::size_t i, double, const Vec<D>& g) {
+          grad_v.noalias() += vel[i] * g.transpose();
+        });
+        const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
+                                              stress[p], state[p], F[p], Fe[p]);
         work += r.strain_energy;
         dissipation += r.dissipation;
-      }
-      volume *= P.dF[p].determinant();
-      const Sym3& s = P.stress[p];
-      Mat<D> sv;
-      if constexpr (D == 2) {
-        sv << s[0], s[3], s[3], s[1];
+        volume = r.volume;
       } else {
-        sv = to_matrix(s);
+        volume = volume0[p] * F[p].determinant();
       }
-      sv *= -volume;
-      for (int k = 0; k < K::StencilT::size; ++k) force[st.base + offsets.off[k]] += sv * st.grad[k];
+      const Mat<D> sv = -volume * sym_block<D>(stress[p]);
+      for_each_node(sh, strides, [&](std::size_t i, double, const Vec<D>& g) {
+        force[i].noalias() += sv * g;
+      });
     }
   }
   reduce_scatter(false, fields_.force);
@@ -251,18 +264,25 @@ template <int D> void ExplicitSolver<D>::update_grid() {
 
 // Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
 // mapped back to the grid (USL and averaged schemes, step 6 of §4.4). With move (USF),
-// the point is also moved (eq. 2.55 / Post eq. 31) and F updated (eq. 3.2).
+// the point is also moved (eq. 2.55 / Post eq. 31).
 template <int D>
 template <class K>
 void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bool move) {
-  const StencilOffsets<D, K::S> offsets(grid_);
+  const NodeStrides<D> strides(grid_);
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
+  const typename K::Packed* __restrict shape = shapes<K>().data();
+  Vec<D>* __restrict x = P.x.data();
+  Vec<D>* __restrict v = P.v.data();
+  const Vec<D>* __restrict half0 = P.half0.data();
+  const double* __restrict pmass = P.mass.data();
+  const Mat<D>* __restrict F = P.F.data();
+  const Sym3* __restrict stress = P.stress.data();
   if (remap) std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
-  const Vec<D>* acc = fields_.accel.data();
-  const Vec<D>* vel = fields_.velocity_move.data();
-  const Vec<D>* vnew = fields_.velocity_new.data();
+  const Vec<D>* __restrict acc = fields_.accel.data();
+  const Vec<D>* __restrict vel = fields_.velocity_move.data();
+  const Vec<D>* __restrict vnew = fields_.velocity_new.data();
   const double alpha = settings_.pic_fraction;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
@@ -270,30 +290,31 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
 #pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
-    Vec<D>* mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
-    typename K::StencilT st;
+    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) {
-      if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
+      typename K::Shape sh;
+      kernel.load(shape[p], grid_, x[p], half0[p], sh);
       Vec<D> a = Vec<D>::Zero(), vmove = Vec<D>::Zero();
-      for (int k = 0; k < K::StencilT::size; ++k) {
-        const std::size_t i = st.base + offsets.off[k];
-        a += st.w[k] * acc[i];
-        if (move) vmove += st.w[k] * vel[i];
-      }
-      P.v[p] += dt * a;
+      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
+        a += w * acc[i];
+        if (move) vmove += w * vel[i];
+      });
+      Vec<D> vp = v[p] + dt * a;
       if (alpha > 0.0) {  // PIC/FLIP blend: v_p <- (1 - alpha) v_p^FLIP + alpha sum N_ip v_i^{k+1}
         Vec<D> pic = Vec<D>::Zero();
-        for (int k = 0; k < K::StencilT::size; ++k) pic += st.w[k] * vnew[st.base + offsets.off[k]];
-        P.v[p] = (1.0 - alpha) * P.v[p] + alpha * pic;
+        for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { pic += w * vnew[i]; });
+        vp = (1.0 - alpha) * vp + alpha * pic;
       }
+      v[p] = vp;
       if (remap) {
-        const Vec<D> mv = P.mass[p] * P.v[p];
-        for (int k = 0; k < K::StencilT::size; ++k) mom[st.base + offsets.off[k]] += st.w[k] * mv;
+        const Vec<D> mv = pmass[p] * vp;
+        for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { mom[i] += w * mv; });
       }
       if (move) {
-        mdx += P.mass[p] * dt * vmove;
-        if (!move_point<D>(grid_, walls_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
+        mdx += pmass[p] * dt * vmove;
+        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]))
+          bad = std::min(bad, p);
       }
     }
   }
@@ -305,17 +326,30 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
 }
 
 // Second half of USL / averaged (steps 7-8 of §4.4): strain increment from the remapped
-// velocities, stress update, then the position update x_p += dt sum N_ip (v_i + dt/2 a_i)
-// (eq. 2.55, Post eq. 31, with the velocity_move of update_grid) and F^{k+1} = dF F^k (eq. 3.2).
+// velocities, stress update (with F^{k+1} = dF F, eq. 3.2), then the position update
+// x_p += dt sum N_ip (v_i + dt/2 a_i) (eq. 2.55, Post eq. 31, with the velocity_move of
+// update_grid).
 template <int D>
 template <class K>
 void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress) {
-  const StencilOffsets<D, K::S> offsets(grid_);
+  const NodeStrides<D> strides(grid_);
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
-  const Vec<D>* vel = fields_.velocity_move.data();
-  const Vec<D>* vnew = fields_.velocity_new.data();
+  const typename K::Packed* __restrict shape = shapes<K>().data();
+  Vec<D>* __restrict x = P.x.data();
+  const Vec<D>* __restrict v = P.v.data();
+  const Vec<D>* __restrict half0 = P.half0.data();
+  const double* __restrict pmass = P.mass.data();
+  const double* __restrict volume0 = P.volume0.data();
+  const std::int32_t* __restrict material = P.material.data();
+  Mat<D>* __restrict F = P.F.data();
+  Mat<D>* __restrict Fe = P.Fe.data();
+  Sym3* __restrict stress = P.stress.data();
+  PointState* __restrict state = P.state.data();
+  const Material* mats = materials_.data();
+  const Vec<D>* __restrict vel = fields_.velocity_move.data();
+  const Vec<D>* __restrict vnew = fields_.velocity_new.data();
   double work = 0.0, dissipation = 0.0;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
@@ -323,22 +357,21 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
 #pragma omp parallel for num_threads(threads_) schedule(static) \
     reduction(+ : work, dissipation) reduction(vadd2 : mdx) reduction(min : bad)
   for (long p = 0; p < n; ++p) {
-    typename K::StencilT st;
-    if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
+    typename K::Shape sh;
+    kernel.load(shape[p], grid_, x[p], half0[p], sh);
     Mat<D> grad_v = Mat<D>::Zero();
     Vec<D> vmove = Vec<D>::Zero();
-    for (int k = 0; k < K::StencilT::size; ++k) {
-      const std::size_t i = st.base + offsets.off[k];
-      grad_v.noalias() += vnew[i] * st.grad[k].transpose();
-      vmove += st.w[k] * vel[i];
-    }
-    const double volume = P.volume0[p] * P.F[p].determinant() * P.dF[p].determinant();
-    const auto r = update_point_stress<D>(materials_[P.material[p]], grad_v, dt_stress, volume,
-                                          P.stress[p], P.state[p], P.dF[p], P.Fe[p]);
+    for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>& g) {
+      grad_v.noalias() += vnew[i] * g.transpose();
+      vmove += w * vel[i];
+    });
+    const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
+                                          stress[p], state[p], F[p], Fe[p]);
     work += r.strain_energy;
     dissipation += r.dissipation;
-    mdx += P.mass[p] * dt * vmove;
-    if (!move_point<D>(grid_, walls_, P, p, Vec<D>(dt * vmove))) bad = std::min(bad, p);
+    mdx += pmass[p] * dt * vmove;
+    if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p], stress[p], F[p]))
+      bad = std::min(bad, p);
   }
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
@@ -382,22 +415,22 @@ template <int D> void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out)
 template <int D>
 template <class K>
 void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>& out) {
-  const StencilOffsets<D, K::S> offsets(grid_);
+  const NodeStrides<D> strides(grid_);
   const auto& P = particles_;
   const long n = static_cast<long>(P.size());
   node_stress_.assign(fields_.size(), Sym3::Zero());
   node_velocity_.assign(fields_.size(), Vec<D>::Zero());
   std::vector<double>& mass = fields_.mass;
   std::fill(mass.begin(), mass.end(), 0.0);
-  typename K::StencilT st;
   for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
-    if (!kernel(grid_, P.x[p], P.half0[p], P.F[p], st)) continue;
-    for (int k = 0; k < K::StencilT::size; ++k) {
-      const std::size_t i = st.base + offsets.off[k];
-      mass[i] += st.w[k] * P.mass[p];
-      node_stress_[i] += (st.w[k] * P.mass[p]) * P.stress[p];
-      node_velocity_[i] += (st.w[k] * P.mass[p]) * P.v[p];
-    }
+    typename K::Shape sh;
+    if (!kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh)) continue;
+    const double m = P.mass[p];
+    for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
+      mass[i] += w * m;
+      node_stress_[i] += (w * m) * P.stress[p];
+      node_velocity_[i] += (w * m) * P.v[p];
+    });
   }
   for (std::size_t i = 0; i < mass.size(); ++i)
     if (mass[i] > 0.0) {
@@ -407,10 +440,10 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
   out.resize(P.size());
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (long p = 0; p < n; ++p) {
-    typename K::StencilT s2;
+    typename K::Shape sh;
     Sym3 acc = Sym3::Zero();
-    if (kernel(grid_, P.x[p], P.half0[p], P.F[p], s2))
-      for (int k = 0; k < K::StencilT::size; ++k) acc += s2.w[k] * node_stress_[s2.base + offsets.off[k]];
+    if (kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh))
+      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { acc += w * node_stress_[i]; });
     out[p] = acc;
   }
 }

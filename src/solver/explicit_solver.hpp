@@ -4,12 +4,17 @@
 #include <array>
 #include <cstddef>
 #include <string>
+#include <variant>
 #include <vector>
 
 #include "core/grid.hpp"
 #include "core/particles.hpp"
 #include "material/material.hpp"
 #include "scenario/scenario.hpp"
+#include "shape/bspline.hpp"
+#include "shape/gimp.hpp"
+#include "shape/gimp_quadrature.hpp"
+#include "shape/linear.hpp"
 #include "solver/boundary.hpp"
 #include "solver/grid_fields.hpp"
 
@@ -104,6 +109,7 @@ template <int D> class ExplicitSolver {
   template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
   void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
+  template <class K> std::vector<typename K::Packed>& shapes();
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
   template <class F> decltype(auto) dispatch(F&& f);
 
@@ -115,6 +121,14 @@ template <int D> class ExplicitSolver {
   WallBox<D> walls_;
   GridFields<D> fields_;
   std::vector<ScatterBuffer<D>> buffers_;  // one per thread beyond the first
+  // Every point's weighting functions, evaluated once per step by map_mass_momentum (x_p and
+  // the F_p that sizes the GIMP domain are those of the start of the step) and read by the
+  // later phases; the vector type follows the kernel.
+  std::variant<std::monostate, std::vector<typename LinearKernel<D>::Packed>,
+               std::vector<typename GimpKernel<D>::Packed>,
+               std::vector<typename BsplineKernel<D>::Packed>,
+               std::vector<QuadratureState<D>>>
+      shapes_;
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
   std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing
   int threads_ = 1;

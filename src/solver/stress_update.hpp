@@ -49,30 +49,84 @@ template <int D> [[gnu::always_inline]] inline Sym3 push_forward(const Mat<D>& d
 struct StressUpdateResult {
   double strain_energy = 0.0;  // stored: V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p)  (eq. 4.16)
   double dissipation = 0.0;    // plastic work V (sigma^{k+1} + sigma^k)/2 : d_eps_p
+  double volume = 0.0;         // V_p^{k+1} = det(F^{k+1}) V_p^0
 };
 
 // Objective stress update through the deformation-gradient increment (Thesis eq. 4.1-4.4):
 // d_eps = dt sym(grad v) (eq. 2.20), S^{k+1} = sigma^k + C : d_eps and the plastic return
 // (eq. 4.2-4.3, 5.2-5.4, done by the material), sigma^{k+1} = dF S dF^T / det dF with
-// dF = I + dt grad v (eq. 3.5, 4.4). `dF_step` accumulates the increment of this time step;
-// `Fe` is the elastic part of F, updated by Fe <- (I + d_eps - d_eps_p) Fe (Post eq. 72-73);
-// `volume` is the current volume. The trapezoidal stress work splits exactly into the
-// stored (elastic) part and the plastic dissipation.
+// dF = I + dt grad v (eq. 3.5, 4.4), and F <- dF F (eq. 3.2). `Fe` is the elastic part of F,
+// updated by Fe <- (I + d_eps - d_eps_p) Fe (Post eq. 72-73). The trapezoidal stress work
+// splits exactly into the stored (elastic) part and the plastic dissipation.
 template <int D>
-[[gnu::always_inline]] inline StressUpdateResult update_point_stress(const Material& mat, const Mat<D>& grad_v, double dt,
-                                              double volume, Sym3& stress, PointState& state,
-                                              Mat<D>& dF_step, Mat<D>& Fe) {
-  const Mat<D> G = dt * grad_v;
-  const Sym3 deps = sym_voigt<D>(G);
-  const Sym3 old = stress;
-  const Sym3 deps_p = update_stress(mat, stress, deps, state);
-  const Mat<D> dF = Mat<D>::Identity() + G;
-  stress = push_forward<D>(dF, stress);
-  dF_step = dF * dF_step;
-  const Sym3 deps_e = deps - deps_p;
-  Fe = (Mat<D>::Identity() + sym_block<D>(deps_e)) * Fe;
-  const Sym3 mid = 0.5 * volume * (old + stress);
-  return {contract(mid, deps_e), contract(mid, deps_p)};
+[[gnu::always_inline]] inline StressUpdateResult update_point_stress(
+    const Material& mat, const Mat<D>& grad_v, double dt, double volume0, Sym3& stress,
+    PointState& state, Mat<D>& F, Mat<D>& Fe) {
+  if constexpr (D == 2) {
+    // Plane strain written out in scalars: this runs twice per point and step.
+    const double g00 = dt * grad_v(0, 0), g01 = dt * grad_v(0, 1);
+    const double g10 = dt * grad_v(1, 0), g11 = dt * grad_v(1, 1);
+    const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);  // d_eps (eq. 2.20)
+    const double o0 = stress[0], o1 = stress[1], o2 = stress[2], o3 = stress[3];
+    double p0 = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0;  // d_eps_p
+    if (mat.model == Model::LinearElastic) {  // eq. 2.5
+      const double tr = e0 + e1, lam = mat.elastic_constants.lambda * tr;
+      const double two_g = mat.elastic_constants.two_g;
+      stress[0] = o0 + lam + two_g * e0;
+      stress[1] = o1 + lam + two_g * e1;
+      stress[2] = o2 + lam;
+      stress[3] = o3 + two_g * e3;
+      state.volume_strain += tr;
+      state.yielding = 0;
+    } else {
+      Sym3 deps;
+      deps << e0, e1, 0.0, e3, 0.0, 0.0;
+      const Sym3 dp = update_stress(mat, stress, deps, state);
+      p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
+    }
+    // Push-forward sigma = dF S dF^T / det dF (eq. 4.4).
+    const double a00 = 1.0 + g00, a11 = 1.0 + g11;
+    const double J = a00 * a11 - g01 * g10, inv_J = 1.0 / J;
+    const double s0 = stress[0], s1 = stress[1], s3 = stress[3];
+    const double b00 = a00 * s0 + g01 * s3, b01 = a00 * s3 + g01 * s1;  // dF S
+    const double b10 = g10 * s0 + a11 * s3, b11 = g10 * s3 + a11 * s1;
+    stress[0] = (b00 * a00 + b01 * g01) * inv_J;
+    stress[1] = (b10 * g10 + b11 * a11) * inv_J;
+    stress[2] *= inv_J;
+    stress[3] = 0.5 * ((b00 * g10 + b01 * a11) + (b10 * a00 + b11 * g01)) * inv_J;
+    // F <- dF F (eq. 3.2) and Fe <- (I + d_eps_e) Fe (Post eq. 72-73).
+    const double f00 = F(0, 0), f01 = F(0, 1), f10 = F(1, 0), f11 = F(1, 1);
+    F(0, 0) = a00 * f00 + g01 * f10;
+    F(0, 1) = a00 * f01 + g01 * f11;
+    F(1, 0) = g10 * f00 + a11 * f10;
+    F(1, 1) = g10 * f01 + a11 * f11;
+    const double c00 = 1.0 + e0 - p0, c11 = 1.0 + e1 - p1, c01 = e3 - p3;
+    const double h00 = Fe(0, 0), h01 = Fe(0, 1), h10 = Fe(1, 0), h11 = Fe(1, 1);
+    Fe(0, 0) = c00 * h00 + c01 * h10;
+    Fe(0, 1) = c00 * h01 + c01 * h11;
+    Fe(1, 0) = c01 * h00 + c11 * h10;
+    Fe(1, 1) = c01 * h01 + c11 * h11;
+    const double volume = volume0 * (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0));
+    // Trapezoidal work (eq. 4.16) split into stored and dissipated parts.
+    const double m0 = o0 + stress[0], m1 = o1 + stress[1], m2 = o2 + stress[2], m3 = o3 + stress[3];
+    const double half_v = 0.5 * volume;
+    const double plastic = m0 * p0 + m1 * p1 + m2 * p2 + 2.0 * m3 * p3;
+    const double total = m0 * e0 + m1 * e1 + 2.0 * m3 * e3;
+    return {half_v * (total - plastic), half_v * plastic, volume};
+  } else {
+    const Mat<D> G = dt * grad_v;
+    const Sym3 deps = sym_voigt<D>(G);
+    const Sym3 old = stress;
+    const Sym3 deps_p = update_stress(mat, stress, deps, state);
+    const Mat<D> dF = Mat<D>::Identity() + G;
+    stress = push_forward<D>(dF, stress);
+    F = dF * F;
+    const Sym3 deps_e = deps - deps_p;
+    Fe = (Mat<D>::Identity() + sym_block<D>(deps_e)) * Fe;
+    const double volume = volume0 * F.determinant();
+    const Sym3 mid = 0.5 * volume * (old + stress);
+    return {contract(mid, deps_e), contract(mid, deps_p), volume};
+  }
 }
 
 }  // namespace skred
