@@ -153,7 +153,8 @@ int main(int argc, char** argv) {
                  bo.problem, r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
                  bo.problem == "column" ? "usf" : scheme);
       if (bo.problem == "column")
-        fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s\n", r.status, r.runout, bo.steps * 1e-4);
+        fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n",
+                   r.status, r.runout, bo.steps * 1e-4, r.yielding, r.particles);
       for (double u : r.updates_per_second) fmt::print("  run: {:.3f} M particle-updates/s\n", u / 1e6);
       fmt::print("median: {:.3f} M particle-updates/s ({:.3f} M per thread)\n", r.median / 1e6,
                  r.median / 1e6 / bo.threads);

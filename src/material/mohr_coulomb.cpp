@@ -167,11 +167,25 @@ MohrCoulombRegion mohr_coulomb_return(const ElasticConstants& e, const MohrCoulo
   Plane P[6];
   P[0].a = Vec3(-(1.0 - sp), 0.0, 1.0 + sp) * 0.5;
   P[0].b = Vec3(-(1.0 - sq), 0.0, 1.0 + sq) * 0.5;
+  P[0].k = k.c_cos_phi;
+  P[0].Db = stiffness_times(e, P[0].b);
+
+  if (!tension) {
+    // 1. Plane (the common case: nothing else is needed).
+    const double dl = (P[0].a.dot(st) - P[0].k) / P[0].a.dot(P[0].Db);
+    const Vec3 s_p = st - dl * P[0].Db;
+    const bool c_edge = s_p[1] > s_p[2], e_edge = s_p[0] > s_p[1];
+    if (!c_edge && !e_edge) {
+      deps_p = dl * P[0].b;
+      sigma = s_p;
+      return R::Plane;
+    }
+  }
   P[1].a = Vec3(-(1.0 - sp), 1.0 + sp, 0.0) * 0.5;
   P[1].b = Vec3(-(1.0 - sq), 1.0 + sq, 0.0) * 0.5;
   P[2].a = Vec3(0.0, -(1.0 - sp), 1.0 + sp) * 0.5;
   P[2].b = Vec3(0.0, -(1.0 - sq), 1.0 + sq) * 0.5;
-  P[0].k = P[1].k = P[2].k = k.c_cos_phi;
+  P[1].k = P[2].k = k.c_cos_phi;
   const int nplanes = tension ? 6 : 3;
   for (int i = 3; i < nplanes; ++i) {
     P[i].a = Vec3::Unit(5 - i);  // 3 -> sigma_3, 4 -> sigma_2, 5 -> sigma_1
@@ -184,15 +198,9 @@ MohrCoulombRegion mohr_coulomb_return(const ElasticConstants& e, const MohrCoulo
   }
 
   if (!tension) {
-    // 1. Plane.
     const double dl = (P[0].a.dot(st) - P[0].k) / P[0].a.dot(P[0].Db);
     const Vec3 s_p = st - dl * P[0].Db;
     const bool c_edge = s_p[1] > s_p[2], e_edge = s_p[0] > s_p[1];
-    if (!c_edge && !e_edge) {
-      deps_p = dl * P[0].b;
-      sigma = s_p;
-      return R::Plane;
-    }
     // 2. The edge(s) the plane return crossed; valid if it lands on the apex side.
     for (int pass = 0; pass < 2; ++pass) {
       const bool comp = pass == 0;
@@ -254,6 +262,62 @@ MohrCoulombRegion mohr_coulomb_return(const ElasticConstants& e, const MohrCoulo
 
 namespace detail {
 
+namespace {
+
+// Plastic bookkeeping of the state: engineering shear 2 sqrt(J2) and volume of d_eps_p.
+inline void record_plastic_strain(const Vec3& ep, PointState& state) {
+  const double j2 = ((ep[0] - ep[1]) * (ep[0] - ep[1]) + (ep[1] - ep[2]) * (ep[1] - ep[2]) +
+                     (ep[2] - ep[0]) * (ep[2] - ep[0])) / 6.0;
+  state.plastic_shear_strain += 2.0 * std::sqrt(j2);
+  state.plastic_volume_strain += ep.sum();
+  state.yielding = 1;
+}
+
+}  // namespace
+
+// Plane strain (the hot case): the plane return of step 1 inline (without the cut-off), the
+// rest through mohr_coulomb_return; the rotation back uses the in-plane angle of the trial.
+Sym3 mohr_coulomb_plastic_plane(const ElasticConstants& e, const MohrCoulombConstants& k,
+                                Sym3& stress, const Sym3& trial, const PlanePrincipal& pp,
+                                PointState& state, MohrCoulombRegion* region) {
+  // Dilation cut-off (Paper III §C.3.2): psi = 0 once e = (1 + e0) exp(eps_v) - 1 >= e_max,
+  // evaluated with the updated volume strain.
+  const double sq = state.volume_strain >= k.max_volume_strain ? 0.0 : k.sin_psi;
+  Vec3 s(pp.v[0], pp.v[1], pp.v[2]), ep;
+  R r = R::Plane;
+  bool done = false;
+  if (!k.has_tension_cutoff()) {
+    // Step 1, the plane return sigma = sigma^tr - dl D b (eq. 5.3-5.4), with a and b of plane 0.
+    const double sp = k.sin_phi;
+    const double a0 = -0.5 * (1.0 - sp), a2 = 0.5 * (1.0 + sp);
+    const double b0 = -0.5 * (1.0 - sq), b2 = 0.5 * (1.0 + sq);
+    const double lb = e.lambda * (b0 + b2);
+    const Vec3 Db(lb + e.two_g * b0, lb, lb + e.two_g * b2);
+    const double dl = (a0 * s[0] + a2 * s[2] - k.c_cos_phi) / (a0 * Db[0] + a2 * Db[2]);
+    const Vec3 s_p = s - dl * Db;
+    if (s_p[0] <= s_p[1] && s_p[1] <= s_p[2]) {
+      s = s_p;
+      ep = Vec3(dl * b0, 0.0, dl * b2);
+      done = true;
+    }
+  }
+  if (!done) r = mohr_coulomb_return(e, k, sq, s, ep);
+  if (region) *region = r;
+  if (r == R::Elastic) {  // admissible within the tolerance after all
+    stress = trial;
+    state.yielding = 0;
+    return Sym3::Zero();
+  }
+  double sv[3], ev[3];  // returned values and plastic strains per slot
+  for (int i = 0; i < 3; ++i) {
+    sv[pp.slot[i]] = s[i];
+    ev[pp.slot[i]] = ep[i];
+  }
+  stress = pp.rebuild(sv);
+  record_plastic_strain(ep, state);
+  return pp.rebuild(ev);
+}
+
 Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants& k, Sym3& stress,
                           const Sym3& trial, PointState& state, MohrCoulombRegion* region) {
   const Principal pd = principal_decomposition(trial);
@@ -269,12 +333,7 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
     return Sym3::Zero();
   }
   stress = from_principal(s, pd.vectors);
-  // Plastic strain bookkeeping: engineering shear 2 sqrt(J2) and volume of d_eps_p.
-  const double j2 = ((ep[0] - ep[1]) * (ep[0] - ep[1]) + (ep[1] - ep[2]) * (ep[1] - ep[2]) +
-                     (ep[2] - ep[0]) * (ep[2] - ep[0])) / 6.0;
-  state.plastic_shear_strain += 2.0 * std::sqrt(j2);
-  state.plastic_volume_strain += ep.sum();
-  state.yielding = 1;
+  record_plastic_strain(ep, state);
   return from_principal(ep, pd.vectors);
 }
 

@@ -91,9 +91,20 @@ MohrCoulombRegion mohr_coulomb_return(const ElasticConstants& e, const MohrCoulo
                                       double sin_psi, Vec3& sigma, Vec3& deps_p);
 
 namespace detail {
-// Plastic path of mohr_coulomb_update (out of line: the elastic path stays small).
+// Plastic paths of mohr_coulomb_update (out of line: the elastic path stays small).
 Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants& k, Sym3& stress,
                           const Sym3& trial, PointState& state, MohrCoulombRegion* region);
+Sym3 mohr_coulomb_plastic_plane(const ElasticConstants& e, const MohrCoulombConstants& k,
+                                Sym3& stress, const Sym3& trial, const PlanePrincipal& pp,
+                                PointState& state, MohrCoulombRegion* region);
+
+// The elastic check: f <= tol and sigma_3 - t <= tol, relative to the stress magnitude.
+[[gnu::always_inline]] inline bool mohr_coulomb_admissible(const MohrCoulombConstants& k,
+                                                           const Vec3& p, double tol) {
+  const double scale = k.c_cos_phi + std::max(std::abs(p[0]), std::abs(p[2]));
+  return mohr_coulomb_yield(k, p) <= tol * scale &&
+         p[2] - k.tension_cutoff <= tol * (scale + std::abs(k.tension_cutoff));
+}
 }  // namespace detail
 
 // Stress update: `stress` in = sigma^k, out = the returned stress; `deps` = total strain
@@ -110,12 +121,17 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
   // Screening: exact principal values in plane strain (tolerance kYieldRelTol); in 3D the fast
   // closed-form values, trusted only for clearly elastic trials (margin kScreenRelMargin); near
   // or beyond the surface the plastic path decides with the accurate decomposition.
-  const bool plane = is_plane(trial);
-  const Vec3 p = principal_values_screen(trial);
-  const double tol = plane ? kYieldRelTol : -kScreenRelMargin;
-  const double scale = k.c_cos_phi + std::max(std::abs(p[0]), std::abs(p[2]));
-  if (mohr_coulomb_yield(k, p) <= tol * scale &&
-      p[2] - k.tension_cutoff <= tol * (scale + std::abs(k.tension_cutoff))) {
+  if (is_plane(trial)) {
+    const PlanePrincipal pp = plane_principal(trial);
+    if (detail::mohr_coulomb_admissible(k, Vec3(pp.v[0], pp.v[1], pp.v[2]), kYieldRelTol)) {
+      stress = trial;
+      state.yielding = 0;
+      if (region) *region = MohrCoulombRegion::Elastic;
+      return Sym3::Zero();
+    }
+    return detail::mohr_coulomb_plastic_plane(e, k, stress, trial, pp, state, region);
+  }
+  if (detail::mohr_coulomb_admissible(k, principal_values_screen(trial), -kScreenRelMargin)) {
     stress = trial;
     state.yielding = 0;
     if (region) *region = MohrCoulombRegion::Elastic;

@@ -60,8 +60,42 @@ namespace detail {
 
 [[gnu::always_inline]] inline bool is_plane(const Sym3& s) { return s[4] == 0.0 && s[5] == 0.0; }
 
+// Plane strain decomposition for the return mappings: the ascending values of {in-plane minor,
+// in-plane major, sigma_zz}, the slot each came from (0, 1, 2 in that order), and the major
+// in-plane direction theta as cos 2 theta = h / r, sin 2 theta = b / r (one square root, no
+// normalised vectors: the rotation back needs only cos^2, sin^2 and cos sin of theta).
+struct PlanePrincipal {
+  double v[3];
+  int slot[3];
+  double h, b, r;  // (s_xx - s_yy)/2, s_xy, radius of Mohr's circle of the in-plane block
+
+  // Sum over the three slots of values[i] times the dyad of slot i's direction (Voigt).
+  [[gnu::always_inline]] Sym3 rebuild(const double (&by_slot)[3]) const {
+    const double c2 = r > 0.0 ? h / r : 1.0, s2 = r > 0.0 ? b / r : 0.0;
+    const double xx = 0.5 * (1.0 + c2), yy = 0.5 * (1.0 - c2), xy = 0.5 * s2;
+    const double lo = by_slot[0], hi = by_slot[1];
+    Sym3 out;
+    out << lo * yy + hi * xx, lo * xx + hi * yy, by_slot[2], (hi - lo) * xy, 0.0, 0.0;
+    return out;
+  }
+};
+
+[[gnu::always_inline]] inline PlanePrincipal plane_principal(const Sym3& s) {
+  PlanePrincipal p;
+  const double m = 0.5 * (s[0] + s[1]);
+  p.h = 0.5 * (s[0] - s[1]);
+  p.b = s[3];
+  p.r = std::sqrt(p.h * p.h + p.b * p.b);
+  p.v[0] = m - p.r;
+  p.v[1] = m + p.r;
+  p.v[2] = s[2];
+  p.slot[0] = 0; p.slot[1] = 1; p.slot[2] = 2;
+  detail::sort3(p.v, p.slot);
+  return p;
+}
+
 // Principal values only, ascending (the cheap check on the elastic path).
-inline Vec3 principal_values(const Sym3& s) {
+[[gnu::always_inline]] inline Vec3 principal_values(const Sym3& s) {
   if (is_plane(s)) {
     double lo, hi, cx, cy;
     detail::eig2(s[0], s[1], s[3], lo, hi, cx, cy);
@@ -78,7 +112,7 @@ inline Vec3 principal_values(const Sym3& s) {
 // in plane strain; in 3D Eigen's closed-form computeDirect, about 5x faster than the QR solver
 // but only accurate to ~1e-8 |s| near repeated eigenvalues (measured worst 9e-9 |s|), so callers
 // must use it with a margin and decide close cases with principal_decomposition.
-inline Vec3 principal_values_screen(const Sym3& s) {
+[[gnu::always_inline]] inline Vec3 principal_values_screen(const Sym3& s) {
   if (is_plane(s)) return principal_values(s);
   Eigen::SelfAdjointEigenSolver<Mat3> es;
   es.computeDirect(to_matrix(s), Eigen::EigenvaluesOnly);

@@ -93,6 +93,7 @@ end_time = 1.0
     res.updates_per_second.push_back(static_cast<double>(P.size()) * solver.steps() / sec);
     res.runout = runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]),
                            s.cell_size, 0.5 * s.cell_size).x_max;
+    res.yielding = solver.totals().yielding;
   }
   return res;
 }

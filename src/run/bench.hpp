@@ -32,6 +32,7 @@ struct BenchResult {
   double median = 0.0;
   double peak_rss_bytes = 0.0;
   double runout = 0.0;  // column: front advance after the timed steps [m]
+  long yielding = 0;    // column: points whose last stress update was plastic
   std::string status = "completed";
 };
 

@@ -141,10 +141,8 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
       kernel.store(shape[p], sh, F[p]);
       const double m = pmass[p];
       const Vec<D> mv = m * v[p];
-      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
-        mass[i] += w * m;
-        mom[i] += w * mv;
-      });
+      scatter(sh, strides, m, mass);
+      scatter(sh, strides, mv, mom);
     }
   }
   reduce_scatter(true, fields_.momentum);
@@ -213,10 +211,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
       double volume;
       if (dt_stress > 0.0) {
-        Mat<D> grad_v = Mat<D>::Zero();
-        for_each_node(sh, strides, [&](std::size_t i, double, const Vec<D>& g) {
-          grad_v.noalias() += vel[i] * g.transpose();
-        });
+        const Mat<D> grad_v = gather_gradient(sh, strides, vel);
         const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
                                               stress[p], state[p], F[p], Fe[p]);
         work += r.strain_energy;
@@ -226,9 +221,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
         volume = volume0[p] * F[p].determinant();
       }
       const Mat<D> sv = -volume * sym_block<D>(stress[p]);
-      for_each_node(sh, strides, [&](std::size_t i, double, const Vec<D>& g) {
-        force[i].noalias() += sv * g;
-      });
+      scatter_gradient(sh, strides, sv, force);
     }
   }
   reduce_scatter(false, fields_.force);
@@ -295,23 +288,17 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
     for (long p = 0; p < n; ++p) {
       typename K::Shape sh;
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
-      Vec<D> a = Vec<D>::Zero(), vmove = Vec<D>::Zero();
-      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
-        a += w * acc[i];
-        if (move) vmove += w * vel[i];
-      });
-      Vec<D> vp = v[p] + dt * a;
+      Vec<D> vp = v[p] + dt * gather(sh, strides, acc);
       if (alpha > 0.0) {  // PIC/FLIP blend: v_p <- (1 - alpha) v_p^FLIP + alpha sum N_ip v_i^{k+1}
-        Vec<D> pic = Vec<D>::Zero();
-        for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { pic += w * vnew[i]; });
-        vp = (1.0 - alpha) * vp + alpha * pic;
+        vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnew);
       }
       v[p] = vp;
       if (remap) {
         const Vec<D> mv = pmass[p] * vp;
-        for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { mom[i] += w * mv; });
+        scatter(sh, strides, mv, mom);
       }
       if (move) {
+        const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
         if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]))
           bad = std::min(bad, p);
@@ -359,12 +346,8 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   for (long p = 0; p < n; ++p) {
     typename K::Shape sh;
     kernel.load(shape[p], grid_, x[p], half0[p], sh);
-    Mat<D> grad_v = Mat<D>::Zero();
-    Vec<D> vmove = Vec<D>::Zero();
-    for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>& g) {
-      grad_v.noalias() += vnew[i] * g.transpose();
-      vmove += w * vel[i];
-    });
+    const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+    const Vec<D> vmove = gather(sh, strides, vel);
     const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
                                           stress[p], state[p], F[p], Fe[p]);
     work += r.strain_energy;
