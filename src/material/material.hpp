@@ -55,14 +55,13 @@ struct Material {
 
 // Updates `stress` by the strain increment `deps` (Thesis eq. 4.2-4.3: S^{k+1} = sigma^k +
 // C : d_eps, then the model's return, eq. 5.2-5.4) and returns the plastic strain increment
-// (zero when the step is elastic). `state` is updated by the model.
+// (zero when the step is elastic). `state` is updated by the plastic models; the linear
+// elastic model leaves it untouched.
 [[gnu::always_inline]] inline Sym3 update_stress(const Material& m, Sym3& stress, const Sym3& deps,
                                                  PointState& state) {
   switch (m.model) {
-    case Model::LinearElastic:
+    case Model::LinearElastic:  // no state: an elastic point never yields
       stress += elastic_increment(m.elastic_constants, deps);
-      state.volume_strain += deps[0] + deps[1] + deps[2];
-      state.yielding = 0;
       return Sym3::Zero();
     case Model::MohrCoulomb:
     case Model::Tresca:

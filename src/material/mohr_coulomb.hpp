@@ -94,9 +94,61 @@ namespace detail {
 // Plastic paths of mohr_coulomb_update (out of line: the elastic path stays small).
 Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants& k, Sym3& stress,
                           const Sym3& trial, PointState& state, MohrCoulombRegion* region);
-Sym3 mohr_coulomb_plastic_plane(const ElasticConstants& e, const MohrCoulombConstants& k,
-                                Sym3& stress, const Sym3& trial, const PlanePrincipal& pp,
-                                PointState& state, MohrCoulombRegion* region);
+// Plastic bookkeeping of the state: engineering shear 2 sqrt(J2) and volume of d_eps_p.
+[[gnu::always_inline]] inline void record_plastic_strain(const Vec3& ep, PointState& state) {
+  const double j2 = ((ep[0] - ep[1]) * (ep[0] - ep[1]) + (ep[1] - ep[2]) * (ep[1] - ep[2]) +
+                     (ep[2] - ep[0]) * (ep[2] - ep[0])) / 6.0;
+  state.plastic_shear_strain += 2.0 * std::sqrt(j2);
+  state.plastic_volume_strain += ep.sum();
+  state.yielding = 1;
+}
+
+// Plane strain (the hot case): the plane return of step 1 inline (without the cut-off), the
+// rest through mohr_coulomb_return; the rotation back uses the in-plane angle of the trial.
+[[gnu::always_inline]] inline Sym3 mohr_coulomb_plastic_plane(const ElasticConstants& e,
+                                                              const MohrCoulombConstants& k,
+                                                              Sym3& stress, const Sym3& trial,
+                                                              const PlanePrincipal& pp,
+                                                              PointState& state,
+                                                              MohrCoulombRegion* region) {
+  // Dilation cut-off (Paper III §C.3.2): psi = 0 once e = (1 + e0) exp(eps_v) - 1 >= e_max,
+  // evaluated with the updated volume strain.
+  const double sq = state.volume_strain >= k.max_volume_strain ? 0.0 : k.sin_psi;
+  Vec3 s(pp.v[0], pp.v[1], pp.v[2]), ep;
+  MohrCoulombRegion r = MohrCoulombRegion::Plane;
+  bool done = false;
+  if (!k.has_tension_cutoff()) {
+    // Step 1, the plane return sigma = sigma^tr - dl D b (eq. 5.3-5.4) with the a and b of the
+    // yield plane (see mohr_coulomb.cpp).
+    const double sp = k.sin_phi;
+    const double a0 = -0.5 * (1.0 - sp), a2 = 0.5 * (1.0 + sp);
+    const double b0 = -0.5 * (1.0 - sq), b2 = 0.5 * (1.0 + sq);
+    const double lb = e.lambda * (b0 + b2);
+    const double d0 = lb + e.two_g * b0, d2 = lb + e.two_g * b2;
+    const double dl = (a0 * s[0] + a2 * s[2] - k.c_cos_phi) / (a0 * d0 + a2 * d2);
+    const Vec3 s_p(s[0] - dl * d0, s[1] - dl * lb, s[2] - dl * d2);
+    if (s_p[0] <= s_p[1] && s_p[1] <= s_p[2]) {
+      s = s_p;
+      ep = Vec3(dl * b0, 0.0, dl * b2);
+      done = true;
+    }
+  }
+  if (!done) r = mohr_coulomb_return(e, k, sq, s, ep);
+  if (region) *region = r;
+  if (r == MohrCoulombRegion::Elastic) {  // admissible within the tolerance after all
+    stress = trial;
+    state.yielding = 0;
+    return Sym3::Zero();
+  }
+  double sv[3], ev[3];  // returned values and plastic strains per slot
+  for (int i = 0; i < 3; ++i) {
+    sv[pp.slot[i]] = s[i];
+    ev[pp.slot[i]] = ep[i];
+  }
+  stress = pp.rebuild(sv);
+  record_plastic_strain(ep, state);
+  return pp.rebuild(ev);
+}
 
 // The elastic check: f <= tol and sigma_3 - t <= tol, relative to the stress magnitude.
 [[gnu::always_inline]] inline bool mohr_coulomb_admissible(const MohrCoulombConstants& k,

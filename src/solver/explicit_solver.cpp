@@ -31,6 +31,23 @@ template <int D>
   return grid.inside(x) && std::isfinite(v.sum() + stress.sum()) && F.determinant() > 0.0;
 }
 
+// Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
+// rest of the step, and its mass and momentum mapped to the nodes. False if the point's
+// stencil does not fit in the grid.
+template <int D, class K>
+[[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
+                                             const NodeStrides<D>& strides, const Vec<D>& x,
+                                             const Vec<D>& half0, const Mat<D>& F, double m,
+                                             const Vec<D>& v, typename K::Packed& store,
+                                             double* __restrict mass, Vec<D>* __restrict mom) {
+  typename K::Shape sh;
+  if (!kernel.shape(grid, x, half0, F, sh)) return false;
+  kernel.store(store, sh, F);
+  scatter(sh, strides, m, mass);
+  scatter(sh, strides, Vec<D>(m * v), mom);
+  return true;
+}
+
 }  // namespace
 
 template <int D>
@@ -73,17 +90,22 @@ template <int D> StepStatus ExplicitSolver<D>::step() {
 }
 
 // Thesis §4.4: update-stress-first, update-stress-last, or the averaged scheme, which
-// splits the stress update into two half steps around the momentum update.
+// splits the stress update into two half steps around the momentum update. The mass and
+// momentum maps that start a step (eq. 2.53-2.54) are done by the last phase of the step
+// before, point by point as it moves the points, so a step reads the particles three times
+// (averaged, USL) or twice (USF) plus once.
 template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   const double dt = settings_.dt;
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
-  if (!map_mass_momentum(kernel)) return status_;
-  nodal_velocity(fields_.velocity);
+  if (!grid_mapped_ && !map_mass_momentum(kernel)) return status_;
+  grid_mapped_ = false;
+  nodal_velocity(fields_.velocity, /*clear=*/false);
   switch (settings_.scheme) {
     case StressScheme::USF:
       update_stress_and_map_forces(kernel, dt);
       update_grid();
+      clear_mass_momentum();
       update_particle_velocity(kernel, /*remap=*/false, /*move=*/true);
       break;
     case StressScheme::USL:
@@ -92,12 +114,13 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
       update_stress_and_map_forces(kernel, settings_.scheme == StressScheme::USL ? 0.0 : dt_stress);
       update_grid();
       update_particle_velocity(kernel, /*remap=*/true, /*move=*/false);
-      nodal_velocity(fields_.velocity_new);
+      nodal_velocity(fields_.velocity, /*clear=*/true);  // v^{k+1} from the remap
       update_stress_and_move(kernel, dt_stress);
       break;
     }
   }
   if (!status_.ok) return status_;  // the failing step is steps() + 1, starting at time()
+  grid_mapped_ = true;
   time_ += dt;
   ++steps_;
   return status_;
@@ -133,16 +156,8 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
     Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) {
-      typename K::Shape sh;
-      if (!kernel.shape(grid_, x[p], half0[p], F[p], sh)) {
+      if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
         bad = std::min(bad, p);
-        continue;
-      }
-      kernel.store(shape[p], sh, F[p]);
-      const double m = pmass[p];
-      const Vec<D> mv = m * v[p];
-      scatter(sh, strides, m, mass);
-      scatter(sh, strides, mv, mom);
     }
   }
   reduce_scatter(true, fields_.momentum);
@@ -169,15 +184,28 @@ template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<V
   }
 }
 
-// Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions.
-template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& velocity) {
+// Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions. With clear,
+// the mass and momentum are zeroed behind, ready for the map at the end of the step.
+template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& velocity, bool clear) {
   const long nn = static_cast<long>(fields_.size());
+  double* __restrict mass = fields_.mass.data();
+  Vec<D>* __restrict mom = fields_.momentum.data();
+  Vec<D>* __restrict vel = velocity.data();
 #pragma omp parallel for num_threads(threads_) schedule(static)
   for (long i = 0; i < nn; ++i) {
-    const double m = fields_.mass[i];
-    velocity[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m) : Vec<D>::Zero();
+    const double m = mass[i];
+    vel[i] = m > 0.0 ? Vec<D>(mom[i] / m) : Vec<D>::Zero();
+    if (clear) {
+      mass[i] = 0.0;
+      mom[i].setZero();
+    }
   }
   boundaries_.constrain_velocity(velocity);
+}
+
+template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
+  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);
+  std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
 }
 
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) when
@@ -249,15 +277,15 @@ template <int D> void ExplicitSolver<D>::update_grid() {
 #pragma omp parallel for num_threads(threads_) schedule(static)
     for (long i = 0; i < nn; ++i) {
       const double m = fields_.mass[i];
-      fields_.velocity_new[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.accel[i])
-                                        : Vec<D>::Zero();
+      fields_.velocity[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.accel[i])
+                                    : Vec<D>::Zero();
     }
   }
 }
 
 // Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
-// mapped back to the grid (USL and averaged schemes, step 6 of §4.4). With move (USF),
-// the point is also moved (eq. 2.55 / Post eq. 31).
+// mapped back to the grid (USL and averaged schemes, step 6 of §4.4). With move (USF), the
+// point is also moved (eq. 2.55 / Post eq. 31) and the next step's maps done (eq. 2.53-2.54).
 template <int D>
 template <class K>
 void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bool move) {
@@ -265,7 +293,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
-  const typename K::Packed* __restrict shape = shapes<K>().data();
+  typename K::Packed* __restrict shape = shapes<K>().data();
   Vec<D>* __restrict x = P.x.data();
   Vec<D>* __restrict v = P.v.data();
   const Vec<D>* __restrict half0 = P.half0.data();
@@ -275,7 +303,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   if (remap) std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
   const Vec<D>* __restrict acc = fields_.accel.data();
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
-  const Vec<D>* __restrict vnew = fields_.velocity_new.data();
+  const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
   const double alpha = settings_.pic_fraction;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
@@ -283,6 +311,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
 #pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
+    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
     Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
 #pragma omp for schedule(static)
     for (long p = 0; p < n; ++p) {
@@ -300,13 +329,15 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
       if (move) {
         const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
-        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]))
+        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]) ||
+            !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom))
           bad = std::min(bad, p);
       }
     }
   }
   if (remap) reduce_scatter(false, fields_.momentum);
   if (move) {
+    reduce_scatter(true, fields_.momentum);
     energy_.gravity_work += gravity_now_.dot(mdx);
     if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
   }
@@ -315,7 +346,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
 // Second half of USL / averaged (steps 7-8 of §4.4): strain increment from the remapped
 // velocities, stress update (with F^{k+1} = dF F, eq. 3.2), then the position update
 // x_p += dt sum N_ip (v_i + dt/2 a_i) (eq. 2.55, Post eq. 31, with the velocity_move of
-// update_grid).
+// update_grid), and the next step's maps at x^{k+1} (eq. 2.53-2.54).
 template <int D>
 template <class K>
 void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress) {
@@ -323,7 +354,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
-  const typename K::Packed* __restrict shape = shapes<K>().data();
+  typename K::Packed* __restrict shape = shapes<K>().data();
   Vec<D>* __restrict x = P.x.data();
   const Vec<D>* __restrict v = P.v.data();
   const Vec<D>* __restrict half0 = P.half0.data();
@@ -336,26 +367,34 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
-  const Vec<D>* __restrict vnew = fields_.velocity_new.data();
+  const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
   double work = 0.0, dissipation = 0.0;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
 #pragma omp declare reduction(vadd2 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel for num_threads(threads_) schedule(static) \
-    reduction(+ : work, dissipation) reduction(vadd2 : mdx) reduction(min : bad)
-  for (long p = 0; p < n; ++p) {
-    typename K::Shape sh;
-    kernel.load(shape[p], grid_, x[p], half0[p], sh);
-    const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
-    const Vec<D> vmove = gather(sh, strides, vel);
-    const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
-                                          stress[p], state[p], F[p], Fe[p]);
-    work += r.strain_energy;
-    dissipation += r.dissipation;
-    mdx += pmass[p] * dt * vmove;
-    if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p], stress[p], F[p]))
-      bad = std::min(bad, p);
+#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vadd2 : mdx) \
+    reduction(min : bad)
+  {
+    const int t = omp_get_thread_num();
+    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
+    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+#pragma omp for schedule(static)
+    for (long p = 0; p < n; ++p) {
+      typename K::Shape sh;
+      kernel.load(shape[p], grid_, x[p], half0[p], sh);
+      const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+      const Vec<D> vmove = gather(sh, strides, vel);
+      const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
+                                            stress[p], state[p], F[p], Fe[p]);
+      work += r.strain_energy;
+      dissipation += r.dissipation;
+      mdx += pmass[p] * dt * vmove;
+      if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p], stress[p], F[p]) ||
+          !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
+        bad = std::min(bad, p);
+    }
   }
+  reduce_scatter(true, fields_.momentum);
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
   energy_.gravity_work += gravity_now_.dot(mdx);
@@ -403,8 +442,8 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
   const long n = static_cast<long>(P.size());
   node_stress_.assign(fields_.size(), Sym3::Zero());
   node_velocity_.assign(fields_.size(), Vec<D>::Zero());
-  std::vector<double>& mass = fields_.mass;
-  std::fill(mass.begin(), mass.end(), 0.0);
+  node_mass_.assign(fields_.size(), 0.0);
+  std::vector<double>& mass = node_mass_;
   for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
     typename K::Shape sh;
     if (!kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh)) continue;
@@ -443,6 +482,13 @@ void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double grav
   settings_.gravity_ramp_time = gravity_ramp_time;
   ramp_start_ = time_;
   reset_reference();
+  // Plastic state that a stage held elastic did not track: the volume strain is ln det F, and
+  // no point is yielding at the start of a stage.
+  auto& P = particles_;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    P.state[p].volume_strain = std::log(P.F[p].determinant());
+    P.state[p].yielding = 0;
+  }
 }
 
 template class ExplicitSolver<2>;

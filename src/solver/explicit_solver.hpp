@@ -86,7 +86,7 @@ template <int D> class ExplicitSolver {
 
   // Nodal fields of the last smoothed_stress() call, flat-indexed like grid(), for the grid
   // output file: mass m_i, velocity sum N_ip m_p v_p / m_i and stress sigma_i (eq. 4.18).
-  const std::vector<double>& node_mass() const { return fields_.mass; }
+  const std::vector<double>& node_mass() const { return node_mass_; }
   const std::vector<Vec<D>>& node_velocity() const { return node_velocity_; }
   const std::vector<Sym3>& node_stress() const { return node_stress_; }
 
@@ -102,7 +102,8 @@ template <int D> class ExplicitSolver {
   template <class K> StepStatus step_with(const K& kernel);
   // Phases of one step, in the order of Thesis §4.4.
   template <class K> bool map_mass_momentum(const K& kernel);            // eq. 2.53-2.54
-  void nodal_velocity(std::vector<Vec<D>>& velocity);                    // eq. 2.23
+  void nodal_velocity(std::vector<Vec<D>>& velocity, bool clear);       // eq. 2.23
+  void clear_mass_momentum();
   template <class K> void update_stress_and_map_forces(const K& kernel, double dt_stress);  // eq. 2.20, 4.1-4.4, 2.51
   void update_grid();                                                    // eq. 2.49, 5.8-5.11
   template <class K> void update_particle_velocity(const K& kernel, bool remap, bool move);  // eq. 2.56
@@ -129,6 +130,10 @@ template <int D> class ExplicitSolver {
                std::vector<typename BsplineKernel<D>::Packed>,
                std::vector<QuadratureState<D>>>
       shapes_;
+  // True when the grid's mass and momentum and the stored weighting functions are those of
+  // the particles' current state: the last phase of a step maps the next step's.
+  bool grid_mapped_ = false;
+  std::vector<double> node_mass_;          // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
   std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing
   int threads_ = 1;

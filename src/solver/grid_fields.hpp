@@ -12,11 +12,13 @@ template <int D> struct GridFields {
   std::vector<double> mass;        // m_i (Thesis eq. 2.53)
   std::vector<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
   std::vector<Vec<D>> force;       // f_i^int (eq. 2.51); gravity is added in the grid update
-  std::vector<Vec<D>> velocity;    // v_i^k after velocity boundary conditions
+  // v_i^k after the velocity boundary conditions; once the grid update has used it, the
+  // same storage holds v_i^{k+1} (for the PIC blend, and remapped from the updated points in
+  // the USL and averaged schemes).
+  std::vector<Vec<D>> velocity;
   std::vector<Vec<D>> accel;       // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change
                                    // handed to the particles (FLIP increment, eq. 2.56)
   std::vector<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
-  std::vector<Vec<D>> velocity_new;  // v_i^{k+1} remapped from the updated particles
 
   void resize(std::size_t n) {
     mass.assign(n, 0.0);
@@ -25,7 +27,6 @@ template <int D> struct GridFields {
     velocity.assign(n, Vec<D>::Zero());
     accel.assign(n, Vec<D>::Zero());
     velocity_move.assign(n, Vec<D>::Zero());
-    velocity_new.assign(n, Vec<D>::Zero());
   }
   std::size_t size() const { return mass.size(); }
 };

@@ -75,9 +75,7 @@ template <int D>
       stress[0] = o0 + lam + two_g * e0;
       stress[1] = o1 + lam + two_g * e1;
       stress[2] = o2 + lam;
-      stress[3] = o3 + two_g * e3;
-      state.volume_strain += tr;
-      state.yielding = 0;
+      stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
     } else {
       Sym3 deps;
       deps << e0, e1, 0.0, e3, 0.0, 0.0;
