@@ -146,10 +146,12 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   const Vec<D>* __restrict half0 = P.half0.data();
   const Mat<D>* __restrict F = P.F.data();
   const double* __restrict pmass = P.mass.data();
-  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);
+  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);  // the first map: whole grid
   std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
   long bad = LONG_MAX;
-#pragma omp parallel num_threads(threads_) reduction(min : bad)
+  double lo[D], hi[D];
+  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
+#pragma omp parallel num_threads(threads_) reduction(min : bad, lo[:D]) reduction(max : hi[:D])
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -158,8 +160,13 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
     for (long p = 0; p < n; ++p) {
       if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
         bad = std::min(bad, p);
+      for (int d = 0; d < D; ++d) {
+        lo[d] = std::min(lo[d], x[p][d]);
+        hi[d] = std::max(hi[d], x[p][d]);
+      }
     }
   }
+  set_box(lo, hi);
   reduce_scatter(true, fields_.momentum);
   if (bad != LONG_MAX) {
     status_ = {false, bad, "material point left the grid"};
@@ -170,9 +177,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
 
 template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<Vec<D>>& target) {
   if (buffers_.empty()) return;
-  const long nn = static_cast<long>(fields_.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (long i = 0; i < nn; ++i) {
+  for_box([&](std::size_t i) {
     for (auto& b : buffers_) {
       if (mass) {
         fields_.mass[i] += b.mass[i];
@@ -181,31 +186,71 @@ template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<V
       target[i] += b.vec[i];
       b.vec[i].setZero();
     }
+  });
+}
+
+// The grid phases run over the box of nodes that the points' stencils can reach: per axis
+// from the lowest to the highest point, widened by the stencil width plus one. Outside it the
+// mass, momentum and scatter buffers are zero and nothing else is read.
+template <int D> void ExplicitSolver<D>::set_box(const double (&lo)[D], const double (&hi)[D]) {
+  for (int d = 0; d < D; ++d) {
+    if (!(lo[d] <= hi[d])) {  // no points
+      box_.lo[d] = 0;
+      box_.hi[d] = -1;
+      continue;
+    }
+    const double inv_h = 1.0 / grid_.h, reach = kMaxStencil + 1;
+    const double a = std::floor((lo[d] - grid_.origin[d]) * inv_h) + GridGeometry<D>::pad - reach;
+    const double b = std::floor((hi[d] - grid_.origin[d]) * inv_h) + GridGeometry<D>::pad + reach;
+    box_.lo[d] = static_cast<int>(std::clamp(a, 0.0, grid_.nodes(d) - 1.0));
+    box_.hi[d] = static_cast<int>(std::clamp(b, 0.0, grid_.nodes(d) - 1.0));
+  }
+}
+
+// fn(i) for every node i of the box, in parallel over its rows.
+template <int D> template <class Fn> void ExplicitSolver<D>::for_box(Fn&& fn) {
+  const NodeBox<D> b = box_;
+  const long width = b.hi[0] - b.lo[0] + 1;
+  long rows = 1;
+  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
+  if (width <= 0) return;
+  std::size_t stride[D];
+  for (int d = 0; d < D; ++d) stride[d] = grid_.stride(d);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long r = 0; r < rows; ++r) {
+    std::size_t row = static_cast<std::size_t>(b.lo[0]);
+    long rest = r;
+    for (int d = 1; d < D; ++d) {
+      const long n = b.hi[d] - b.lo[d] + 1;
+      row += static_cast<std::size_t>(b.lo[d] + rest % n) * stride[d];
+      rest /= n;
+    }
+    for (long i = 0; i < width; ++i) fn(row + static_cast<std::size_t>(i));
   }
 }
 
 // Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions. With clear,
 // the mass and momentum are zeroed behind, ready for the map at the end of the step.
 template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& velocity, bool clear) {
-  const long nn = static_cast<long>(fields_.size());
   double* __restrict mass = fields_.mass.data();
   Vec<D>* __restrict mom = fields_.momentum.data();
   Vec<D>* __restrict vel = velocity.data();
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (long i = 0; i < nn; ++i) {
+  for_box([&](std::size_t i) {
     const double m = mass[i];
     vel[i] = m > 0.0 ? Vec<D>(mom[i] / m) : Vec<D>::Zero();
     if (clear) {
       mass[i] = 0.0;
       mom[i].setZero();
     }
-  }
+  });
   boundaries_.constrain_velocity(velocity);
 }
 
 template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
-  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);
-  std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
+  for_box([&](std::size_t i) {
+    fields_.mass[i] = 0.0;
+    fields_.momentum[i].setZero();
+  });
 }
 
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) when
@@ -226,7 +271,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   Sym3* __restrict stress = P.stress.data();
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
-  std::fill(fields_.force.begin(), fields_.force.end(), Vec<D>::Zero());
+  for_box([&](std::size_t i) { fields_.force[i].setZero(); });
   const Vec<D>* __restrict vel = fields_.velocity.data();
   double work = 0.0, dissipation = 0.0;
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation)
@@ -261,25 +306,21 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
 // gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq. 31). Then the
 // boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
 template <int D> void ExplicitSolver<D>::update_grid() {
-  const long nn = static_cast<long>(fields_.size());
   const Vec<D> g = gravity_now_;
-  const double half_dt = 0.5 * settings_.dt;
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (long i = 0; i < nn; ++i) {
+  const double dt = settings_.dt, half_dt = 0.5 * dt;
+  for_box([&](std::size_t i) {
     const double m = fields_.mass[i];
     const Vec<D> a = m > 0.0 ? Vec<D>(fields_.force[i] / m + g) : Vec<D>::Zero();
     fields_.accel[i] = a;
     fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
-  }
-  boundaries_.constrain_end_of_step(fields_, g, settings_.dt);
+  });
+  boundaries_.constrain_end_of_step(fields_, g, dt);
   if (settings_.pic_fraction > 0.0) {  // v_i^{k+1} for the PIC part of the particle update
-    const double dt = settings_.dt;
-#pragma omp parallel for num_threads(threads_) schedule(static)
-    for (long i = 0; i < nn; ++i) {
+    for_box([&](std::size_t i) {
       const double m = fields_.mass[i];
       fields_.velocity[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.accel[i])
                                     : Vec<D>::Zero();
-    }
+    });
   }
 }
 
@@ -300,15 +341,18 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   const double* __restrict pmass = P.mass.data();
   const Mat<D>* __restrict F = P.F.data();
   const Sym3* __restrict stress = P.stress.data();
-  if (remap) std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
+  if (remap) for_box([&](std::size_t i) { fields_.momentum[i].setZero(); });
   const Vec<D>* __restrict acc = fields_.accel.data();
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
   const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
   const double alpha = settings_.pic_fraction;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
+  double lo[D], hi[D];  // extent of the moved points
+  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
 #pragma omp declare reduction(vadd : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad)
+#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad, lo[:D]) \
+    reduction(max : hi[:D])
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -332,11 +376,16 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
         if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]) ||
             !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom))
           bad = std::min(bad, p);
+        for (int d = 0; d < D; ++d) {
+          lo[d] = std::min(lo[d], x[p][d]);
+          hi[d] = std::max(hi[d], x[p][d]);
+        }
       }
     }
   }
   if (remap) reduce_scatter(false, fields_.momentum);
   if (move) {
+    set_box(lo, hi);  // the next step's box, which the reduction must cover now
     reduce_scatter(true, fields_.momentum);
     energy_.gravity_work += gravity_now_.dot(mdx);
     if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
@@ -371,9 +420,11 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   double work = 0.0, dissipation = 0.0;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
+  double lo[D], hi[D];  // extent of the moved points
+  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
 #pragma omp declare reduction(vadd2 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vadd2 : mdx) \
-    reduction(min : bad)
+    reduction(min : bad, lo[:D]) reduction(max : hi[:D])
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -392,8 +443,13 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p], stress[p], F[p]) ||
           !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
         bad = std::min(bad, p);
+      for (int d = 0; d < D; ++d) {
+        lo[d] = std::min(lo[d], x[p][d]);
+        hi[d] = std::max(hi[d], x[p][d]);
+      }
     }
   }
+  set_box(lo, hi);  // the next step's box, which the reduction must cover now
   reduce_scatter(true, fields_.momentum);
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;

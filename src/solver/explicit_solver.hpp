@@ -63,6 +63,14 @@ template <int D> struct WallBox {
   Vec<D> lo = Vec<D>::Constant(-INFINITY), hi = Vec<D>::Constant(INFINITY);
 };
 
+// A box of grid nodes, per axis the first and last index (empty when hi < lo).
+template <int D> struct NodeBox {
+  std::array<int, D> lo{}, hi{};
+};
+
+// Widest stencil of the kernels (B-spline and GIMP quadrature: four nodes per axis).
+inline constexpr int kMaxStencil = 4;
+
 template <int D> class ExplicitSolver {
  public:
   ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles, std::vector<Material> materials,
@@ -110,6 +118,8 @@ template <int D> class ExplicitSolver {
   template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
   void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
+  void set_box(const double (&lo)[D], const double (&hi)[D]);
+  template <class Fn> void for_box(Fn&& fn);
   template <class K> std::vector<typename K::Packed>& shapes();
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
   template <class F> decltype(auto) dispatch(F&& f);
@@ -133,6 +143,7 @@ template <int D> class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
+  NodeBox<D> box_;  // the nodes the stencils of this step can reach (see set_box)
   std::vector<double> node_mass_;          // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
   std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing
