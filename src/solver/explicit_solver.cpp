@@ -20,15 +20,20 @@ namespace {
 // End of a point's step: x^{k+1} = x^k + dx (eq. 2.55); F^{k+1} was formed by the stress
 // update (eq. 3.2). A point that would cross a fixed, roller or frictional wall is stopped at
 // the wall (the walls are impenetrable; interpolated velocities next to a wall can overshoot
-// it by a fraction of a step). False if the point left the grid through a free side or became
-// non-finite or inverted.
+// it by a fraction of a step). False if the point left the grid through a free side or its
+// velocity is not finite.
 template <int D>
 [[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls,
-                                              Vec<D>& x, const Vec<D>& dx, const Vec<D>& v,
-                                              const Sym3& stress, const Mat<D>& F) {
+                                              Vec<D>& x, const Vec<D>& dx, const Vec<D>& v) {
   x += dx;
   for (int d = 0; d < D; ++d) x[d] = std::min(std::max(x[d], walls.lo[d]), walls.hi[d]);
-  return grid.inside(x) && std::isfinite(v.sum() + stress.sum()) && F.determinant() > 0.0;
+  return grid.inside(x) && std::isfinite(v.sum());
+}
+
+// After a stress update: false if the point's volume collapsed or inverted (det F <= 0) or its
+// stress is not finite.
+[[gnu::always_inline]] inline bool sound_point(const StressUpdateResult& r, const Sym3& stress) {
+  return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
@@ -104,6 +109,7 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
   switch (settings_.scheme) {
     case StressScheme::USF:
       update_stress_and_map_forces(kernel, dt);
+      if (!status_.ok) return status_;
       update_grid();
       clear_mass_momentum();
       update_particle_velocity(kernel, /*remap=*/false, /*move=*/true);
@@ -112,6 +118,7 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
     case StressScheme::Averaged: {
       const double dt_stress = settings_.scheme == StressScheme::USL ? dt : 0.5 * dt;
       update_stress_and_map_forces(kernel, settings_.scheme == StressScheme::USL ? 0.0 : dt_stress);
+      if (!status_.ok) return status_;
       update_grid();
       update_particle_velocity(kernel, /*remap=*/true, /*move=*/false);
       nodal_velocity(fields_.velocity, /*clear=*/true);  // v^{k+1} from the remap
@@ -274,7 +281,8 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   for_box([&](std::size_t i) { fields_.force[i].setZero(); });
   const Vec<D>* __restrict vel = fields_.velocity.data();
   double work = 0.0, dissipation = 0.0;
-#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation)
+  long bad = LONG_MAX;
+#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
     Vec<D>* __restrict force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
@@ -290,6 +298,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
         work += r.strain_energy;
         dissipation += r.dissipation;
         volume = r.volume;
+        if (!sound_point(r, stress[p])) bad = std::min(bad, p);
       } else {
         volume = volume0[p] * F[p].determinant();
       }
@@ -300,6 +309,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   reduce_scatter(false, fields_.force);
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
+  if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
 }
 
 // Thesis eq. 2.49 with lumped mass: a_i = (f_i^int + m_i g) / m_i (eq. 2.52 with uniform
@@ -340,7 +350,6 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   const Vec<D>* __restrict half0 = P.half0.data();
   const double* __restrict pmass = P.mass.data();
   const Mat<D>* __restrict F = P.F.data();
-  const Sym3* __restrict stress = P.stress.data();
   if (remap) for_box([&](std::size_t i) { fields_.momentum[i].setZero(); });
   const Vec<D>* __restrict acc = fields_.accel.data();
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
@@ -373,7 +382,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
       if (move) {
         const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
-        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp, stress[p], F[p]) ||
+        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp) ||
             !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom))
           bad = std::min(bad, p);
         for (int d = 0; d < D; ++d) {
@@ -440,7 +449,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       work += r.strain_energy;
       dissipation += r.dissipation;
       mdx += pmass[p] * dt * vmove;
-      if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p], stress[p], F[p]) ||
+      if (!sound_point(r, stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
           !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
         bad = std::min(bad, p);
       for (int d = 0; d < D; ++d) {
