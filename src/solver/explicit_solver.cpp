@@ -278,6 +278,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   Sym3* __restrict stress = P.stress.data();
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
+  const bool single = materials_.size() == 1;  // then the material ids need not be read
   for_box([&](std::size_t i) { fields_.force[i].setZero(); });
   const Vec<D>* __restrict vel = fields_.velocity.data();
   double work = 0.0, dissipation = 0.0;
@@ -293,7 +294,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
       double volume;
       if (dt_stress > 0.0) {
         const Mat<D> grad_v = gather_gradient(sh, strides, vel);
-        const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
+        const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress, volume0[p],
                                               stress[p], state[p], F[p], Fe[p]);
         work += r.strain_energy;
         dissipation += r.dissipation;
@@ -424,6 +425,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   Sym3* __restrict stress = P.stress.data();
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
+  const bool single = materials_.size() == 1;  // then the material ids need not be read
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
   const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
   double work = 0.0, dissipation = 0.0;
@@ -444,7 +446,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
       const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
       const Vec<D> vmove = gather(sh, strides, vel);
-      const auto r = update_point_stress<D>(mats[material[p]], grad_v, dt_stress, volume0[p],
+      const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress, volume0[p],
                                             stress[p], state[p], F[p], Fe[p]);
       work += r.strain_energy;
       dissipation += r.dissipation;
