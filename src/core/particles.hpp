@@ -3,6 +3,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/huge_pages.hpp"
 #include "core/types.hpp"
 #include "material/state.hpp"
 
@@ -28,10 +29,12 @@ template <int D> struct Particles {
 
   std::size_t size() const { return x.size(); }
 
+  // Room for n points, on huge pages where the arrays are large (see huge_pages.hpp).
   void reserve(std::size_t n) {
-    x.reserve(n); x_ref.reserve(n); v.reserve(n); mass.reserve(n); volume0.reserve(n);
-    half0.reserve(n); F.reserve(n); stress.reserve(n); material.reserve(n); body.reserve(n);
-    state.reserve(n); Fe.reserve(n); stress_ref.reserve(n);
+    reserve_huge(x, n); reserve_huge(x_ref, n); reserve_huge(v, n); reserve_huge(mass, n);
+    reserve_huge(volume0, n); reserve_huge(half0, n); reserve_huge(F, n); reserve_huge(stress, n);
+    reserve_huge(material, n); reserve_huge(body, n); reserve_huge(state, n); reserve_huge(Fe, n);
+    reserve_huge(stress_ref, n);
   }
 
   // Appends one undeformed, stress-free material point.

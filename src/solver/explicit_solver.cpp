@@ -137,7 +137,10 @@ template <int D> template <class K> std::vector<typename K::Packed>& ExplicitSol
   using Store = std::vector<typename K::Packed>;
   if (!std::holds_alternative<Store>(shapes_)) shapes_.template emplace<Store>();
   Store& store = std::get<Store>(shapes_);
-  if (store.size() != particles_.size()) store.resize(particles_.size());  // only when n changes
+  if (store.size() != particles_.size()) {  // only when the number of points changes
+    reserve_huge(store, particles_.size());
+    store.resize(particles_.size());
+  }
   return store;
 }
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "core/huge_pages.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -21,12 +22,12 @@ template <int D> struct GridFields {
   std::vector<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
 
   void resize(std::size_t n) {
+    for (auto* f : {&momentum, &force, &velocity, &accel, &velocity_move}) {
+      reserve_huge(*f, n);
+      f->assign(n, Vec<D>::Zero());
+    }
+    reserve_huge(mass, n);
     mass.assign(n, 0.0);
-    momentum.assign(n, Vec<D>::Zero());
-    force.assign(n, Vec<D>::Zero());
-    velocity.assign(n, Vec<D>::Zero());
-    accel.assign(n, Vec<D>::Zero());
-    velocity_move.assign(n, Vec<D>::Zero());
   }
   std::size_t size() const { return mass.size(); }
 };
@@ -37,7 +38,9 @@ template <int D> struct ScatterBuffer {
   std::vector<double> mass;
   std::vector<Vec<D>> vec;  // momentum or force, depending on the pass
   void resize(std::size_t n) {
+    reserve_huge(mass, n);
     mass.assign(n, 0.0);
+    reserve_huge(vec, n);
     vec.assign(n, Vec<D>::Zero());
   }
 };
