@@ -50,7 +50,8 @@ void run_until(Column& c, double t) {
 
 // RMS of (sigma_yy - (-rho g d)) over the points below the first cell, relative to rho g H;
 // d is the depth of the point's initial position.
-double stress_error(const Column& c, const std::vector<Sym3>& s, double rho, double h) {
+template <class V>  // Sym3 (smoothed) or PointStress<2> (the points' own)
+double stress_error(const Column& c, const std::vector<V>& s, double rho, double h) {
   double se = 0;
   int n = 0;
   for (std::size_t p = 0; p < c.P.size(); ++p) {

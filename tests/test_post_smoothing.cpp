@@ -50,7 +50,7 @@ TEST(PostSmoothing, UniformStressIsReproduced) {
   const Sym3 s0 = (Sym3() << -3e4, -5e4, -2e4, 4e3, 0, 0).finished();
   for (Interpolation interp : kKernels) {
     Block b(interp);
-    std::fill(b.P.stress.begin(), b.P.stress.end(), s0);
+    std::fill(b.P.stress.begin(), b.P.stress.end(), stored_stress<2>(s0));
     std::vector<Sym3> out;
     b.solver->smoothed_stress(out);
     ASSERT_EQ(out.size(), b.P.size());
@@ -64,7 +64,7 @@ TEST(PostSmoothing, UniformStressIsReproduced) {
 TEST(PostSmoothing, LinearStressStaysLinearInTheInterior) {
   for (Interpolation interp : kKernels) {
     Block b(interp);
-    for (std::size_t p = 0; p < b.P.size(); ++p) b.P.stress[p] = linear_field(b.P.x[p]);
+    for (std::size_t p = 0; p < b.P.size(); ++p) b.P.stress[p] = stored_stress<2>(linear_field(b.P.x[p]));
     std::vector<Sym3> out;
     b.solver->smoothed_stress(out);
     // Interior: every node the point maps to sees a full, symmetric set of points, so the
@@ -92,7 +92,7 @@ TEST(PostSmoothing, LinearStressStaysLinearInTheInterior) {
 TEST(PostSmoothing, NodeFieldsHoldMassVelocityAndStress) {
   const Sym3 s0 = (Sym3() << -1e4, -2e4, -1e4, 0, 0, 0).finished();
   Block b(Interpolation::Gimp);
-  std::fill(b.P.stress.begin(), b.P.stress.end(), s0);
+  std::fill(b.P.stress.begin(), b.P.stress.end(), stored_stress<2>(s0));
   std::vector<Sym3> out;
   b.solver->smoothed_stress(out);
   const auto& m = b.solver->node_mass();

@@ -18,14 +18,14 @@ template <int D> struct Particles {
   std::vector<double> volume0; // V_p^0 (current volume V_p = det(F_p) V_p^0)
   std::vector<Vec<D>> half0;   // voxel half-lengths l_p^0 in the reference configuration
   std::vector<Mat<D>> F;       // deformation gradient F_p (Thesis eq. 3.1-3.5)
-  std::vector<Sym3> stress;    // Cauchy stress incl. the out-of-plane component (Voigt)
+  std::vector<PointStress<D>> stress;  // Cauchy stress incl. the out-of-plane component (Voigt)
   std::vector<std::int32_t> material;  // index into the scenario's material table
   std::vector<std::int32_t> body;      // index into the scenario's body table
   std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
   // Elastic part of F (F = Fe Fp, Post eq. 67-74), identity at the reference state, and the
   // stress of that reference state (sigma_initial of Post eq. 77).
   std::vector<Mat<D>> Fe;
-  std::vector<Sym3> stress_ref;
+  std::vector<PointStress<D>> stress_ref;
 
   std::size_t size() const { return x.size(); }
 
@@ -42,9 +42,9 @@ template <int D> struct Particles {
            int mat, int bod) {
     x.push_back(pos); x_ref.push_back(pos); v.push_back(vel); mass.push_back(m);
     volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
-    stress.push_back(Sym3::Zero()); material.push_back(mat); body.push_back(bod);
+    stress.push_back(PointStress<D>::Zero()); material.push_back(mat); body.push_back(bod);
     state.push_back(PointState{});
-    Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(Sym3::Zero());
+    Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(PointStress<D>::Zero());
   }
 
   // Current volume V_p = det(F_p) V_p^0.

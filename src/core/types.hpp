@@ -15,6 +15,28 @@ using Mat3 = Eigen::Matrix3d;
 // Tensor (not engineering) shear components. Tension positive, as in the seeds.
 using Sym3 = Eigen::Matrix<double, 6, 1>;
 
+// A point's stress as stored: plane strain keeps [xx, yy, zz, xy] (its out-of-plane shear
+// components are zero), 3D the full Voigt vector. The first four entries have the same order
+// and meaning in both, so s[0..3] read alike; full_stress / stored_stress convert.
+template <int D> using PointStress = Eigen::Matrix<double, D == 2 ? 4 : 6, 1>;
+
+template <int D> [[gnu::always_inline]] inline Sym3 full_stress(const PointStress<D>& s) {
+  if constexpr (D == 2) {
+    Sym3 o;
+    o << s[0], s[1], s[2], s[3], 0.0, 0.0;
+    return o;
+  } else {
+    return s;
+  }
+}
+template <int D> [[gnu::always_inline]] inline PointStress<D> stored_stress(const Sym3& s) {
+  if constexpr (D == 2) {
+    return s.template head<4>();
+  } else {
+    return s;
+  }
+}
+
 inline Mat3 to_matrix(const Sym3& s) {
   Mat3 m;
   m << s[0], s[3], s[5],  //

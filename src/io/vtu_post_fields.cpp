@@ -12,25 +12,30 @@ namespace skred::vtu {
 
 namespace {
 
-// principal_stress (3), principal_angle and, with strength, relative_yield of `stress`.
+inline const Sym3& full(const Sym3& s) { return s; }
+inline Sym3 full(const PointStress<2>& s) { return full_stress<2>(s); }
+
+// principal_stress (3), principal_angle and, with strength, relative_yield of `stress`
+// (Sym3 or the points' stored PointStress<2>).
+template <class V>
 void add_invariant_blocks(std::vector<Block>& blocks, const std::string& prefix,
-                          const std::vector<Sym3>& stress, const Particles<2>& P,
+                          const std::vector<V>& stress, const Particles<2>& P,
                           const std::vector<MaterialStrength>* strength) {
   blocks.push_back(doubles(
       prefix + "principal_stress", 3,
       [&stress](std::size_t p, unsigned char* o) {
-        const PrincipalStresses ps = principal_stresses(stress[p]);  // Post eq. 59
+        const PrincipalStresses ps = principal_stresses(Sym3(full(stress[p])));  // Post eq. 59
         return put(put(put(o, ps.s1), ps.s2), ps.s3);
       },
       {"s1", "s2", "s3"}));
   blocks.push_back(doubles(prefix + "principal_angle", 1, [&stress](std::size_t p, unsigned char* o) {
-    return put(o, principal_angle_degrees(stress[p]));  // Post eq. 60
+    return put(o, principal_angle_degrees(Sym3(full(stress[p]))));  // Post eq. 60
   }));
   if (!strength) return;
   blocks.push_back(doubles(prefix + "relative_yield", 1,
                            [&stress, &P, strength](std::size_t p, unsigned char* o) {
                              const MaterialStrength& m = (*strength)[P.material[p]];
-                             return put(o, relative_yield(stress[p], m.friction, m.cohesion));
+                             return put(o, relative_yield(Sym3(full(stress[p])), m.friction, m.cohesion));
                            }));
 }
 

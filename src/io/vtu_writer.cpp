@@ -63,13 +63,14 @@ std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extr
     return put(put(put(o, u[0]), u[1]), 0.0);
   }));
   blocks.push_back(doubles(
-      "stress", 6, [&P](std::size_t p, unsigned char* o) { return put_sym3(o, P.stress[p]); },
+      "stress", 6,
+      [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<2>(P.stress[p])); },
       voigt));
   blocks.push_back(doubles("mean_stress_p", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, mean_stress(P.stress[p]));
+    return put(o, mean_stress(full_stress<2>(P.stress[p])));
   }));
   blocks.push_back(doubles("deviatoric_stress_q", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, deviatoric_stress(P.stress[p]));
+    return put(o, deviatoric_stress(full_stress<2>(P.stress[p])));
   }));
   blocks.push_back(doubles("volume", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, P.volume(p));

@@ -47,7 +47,7 @@ void apply_initial_stress(const Scenario& s, Particles<2>& P) {
   for (std::size_t p = 0; p < n; ++p) {
     const double syy = -overburden[p];  // Thesis eq. 5.6
     const double k0 = k0_of(s.initial_stress, s.materials[static_cast<std::size_t>(P.material[p])]);
-    P.stress[p] = Sym3::Zero();
+    P.stress[p].setZero();
     P.stress[p][0] = k0 * syy;  // Thesis eq. 5.7
     P.stress[p][1] = syy;
     P.stress[p][2] = k0 * syy;

@@ -32,7 +32,8 @@ template <int D>
 
 // After a stress update: false if the point's volume collapsed or inverted (det F <= 0) or its
 // stress is not finite.
-[[gnu::always_inline]] inline bool sound_point(const StressUpdateResult& r, const Sym3& stress) {
+template <class V>
+[[gnu::always_inline]] inline bool sound_point(const StressUpdateResult& r, const V& stress) {
   return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
@@ -278,7 +279,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   const std::int32_t* __restrict material = P.material.data();
   Mat<D>* __restrict F = P.F.data();
   Mat<D>* __restrict Fe = P.Fe.data();
-  Sym3* __restrict stress = P.stress.data();
+  PointStress<D>* __restrict stress = P.stress.data();
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
   const bool single = materials_.size() == 1;  // then the material ids need not be read
@@ -425,7 +426,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   const std::int32_t* __restrict material = P.material.data();
   Mat<D>* __restrict F = P.F.data();
   Mat<D>* __restrict Fe = P.Fe.data();
-  Sym3* __restrict stress = P.stress.data();
+  PointStress<D>* __restrict stress = P.stress.data();
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
   const bool single = materials_.size() == 1;  // then the material ids need not be read
@@ -520,7 +521,7 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
     const double m = P.mass[p];
     for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
       mass[i] += w * m;
-      node_stress_[i] += (w * m) * P.stress[p];
+      node_stress_[i] += (w * m) * full_stress<D>(P.stress[p]);
       node_velocity_[i] += (w * m) * P.v[p];
     });
   }

@@ -20,14 +20,14 @@ template <int D> [[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
   return s;
 }
 
-// The D x D block of a symmetric 3D tensor in Voigt form.
-template <int D> [[gnu::always_inline]] inline Mat<D> sym_block(const Sym3& s) {
+// The D x D block of a symmetric 3D tensor in Voigt form (Sym3 or a stored PointStress).
+template <int D, class V> [[gnu::always_inline]] inline Mat<D> sym_block(const V& s) {
   if constexpr (D == 2) {
     Mat<2> m;
     m << s[0], s[3], s[3], s[1];
     return m;
   } else {
-    return to_matrix(s);
+    return to_matrix(Sym3(s));
   }
 }
 
@@ -60,7 +60,7 @@ struct StressUpdateResult {
 // splits exactly into the stored (elastic) part and the plastic dissipation.
 template <int D>
 [[gnu::always_inline]] inline StressUpdateResult update_point_stress(
-    const Material& mat, const Mat<D>& grad_v, double dt, double volume0, Sym3& stress,
+    const Material& mat, const Mat<D>& grad_v, double dt, double volume0, PointStress<D>& stress,
     PointState& state, Mat<D>& F, Mat<D>& Fe) {
   if constexpr (D == 2) {
     // Plane strain written out in scalars: this runs twice per point and step.
@@ -77,9 +77,10 @@ template <int D>
       stress[2] = o2 + lam;
       stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
     } else {
-      Sym3 deps;
+      Sym3 deps, full = full_stress<2>(stress);
       deps << e0, e1, 0.0, e3, 0.0, 0.0;
-      const Sym3 dp = update_stress(mat, stress, deps, state);
+      const Sym3 dp = update_stress(mat, full, deps, state);
+      stress = full.head<4>();
       p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
     }
     // Push-forward sigma = dF S dF^T / det dF (eq. 4.4).
