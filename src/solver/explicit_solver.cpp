@@ -37,6 +37,15 @@ template <class V>
   return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
+// Lowest and highest block base a thread scattered to (see ScatterBuffer).
+struct BaseSpan {
+  std::size_t lo = SIZE_MAX, hi = 0;
+  [[gnu::always_inline]] void add(std::size_t base) {
+    lo = std::min(lo, base);
+    hi = std::max(hi, base);
+  }
+};
+
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
 // rest of the step, and its mass and momentum mapped to the nodes. False if the point's
 // stencil does not fit in the grid.
@@ -45,10 +54,12 @@ template <int D, class K>
                                              const NodeStrides<D>& strides, const Vec<D>& x,
                                              const Vec<D>& half0, const Mat<D>& F, double m,
                                              const Vec<D>& v, typename K::Packed& store,
-                                             double* __restrict mass, Vec<D>* __restrict mom) {
+                                             double* __restrict mass, Vec<D>* __restrict mom,
+                                             BaseSpan& span) {
   typename K::Shape sh;
   if (!kernel.shape(grid, x, half0, F, sh)) return false;
   kernel.store(store, sh, F);
+  span.add(sh.base);
   scatter(sh, strides, m, mass);
   scatter(sh, strides, Vec<D>(m * v), mom);
   return true;
@@ -167,15 +178,17 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
     Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
-#pragma omp for schedule(static)
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
-      if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
+      if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom, span))
         bad = std::min(bad, p);
       for (int d = 0; d < D; ++d) {
         lo[d] = std::min(lo[d], x[p][d]);
         hi[d] = std::max(hi[d], x[p][d]);
       }
     }
+    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
   set_box(lo, hi);
   reduce_scatter(true, fields_.momentum);
@@ -187,17 +200,29 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
 }
 
 template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<Vec<D>>& target) {
-  if (buffers_.empty()) return;
-  for_box([&](std::size_t i) {
-    for (auto& b : buffers_) {
-      if (mass) {
-        fields_.mass[i] += b.mass[i];
-        b.mass[i] = 0.0;
-      }
-      target[i] += b.vec[i];
-      b.vec[i].setZero();
-    }
-  });
+  const std::size_t layer = grid_.stride(D - 1);  // nodes per index of the last axis
+  for (auto& b : buffers_) {
+    if (b.lo > b.hi) continue;
+    // The part of the box the buffer's blocks reach along the last axis.
+    const int first = static_cast<int>(b.lo / layer);
+    const int last = static_cast<int>(b.hi / layer) + kMaxStencil - 1;
+    double* __restrict m = fields_.mass.data();
+    double* __restrict bm = b.mass.data();
+    Vec<D>* __restrict f = target.data();
+    Vec<D>* __restrict bv = b.vec.data();
+    for_box(
+        [&](std::size_t i) {
+          if (mass) {
+            m[i] += bm[i];
+            bm[i] = 0.0;
+          }
+          f[i] += bv[i];
+          bv[i].setZero();
+        },
+        first, last);
+    b.lo = SIZE_MAX;
+    b.hi = 0;
+  }
 }
 
 // The grid phases run over the box of nodes that the points' stencils can reach: per axis
@@ -218,9 +243,14 @@ template <int D> void ExplicitSolver<D>::set_box(const double (&lo)[D], const do
   }
 }
 
-// fn(i) for every node i of the box, in parallel over its rows.
-template <int D> template <class Fn> void ExplicitSolver<D>::for_box(Fn&& fn) {
-  const NodeBox<D> b = box_;
+// fn(i) for every node i of the box (or of its part with last-axis index in [last_lo,
+// last_hi]), in parallel over its rows.
+template <int D>
+template <class Fn>
+void ExplicitSolver<D>::for_box(Fn&& fn, int last_lo, int last_hi) {
+  NodeBox<D> b = box_;
+  b.lo[D - 1] = std::max(b.lo[D - 1], last_lo);
+  b.hi[D - 1] = std::min(b.hi[D - 1], last_hi);
   const long width = b.hi[0] - b.lo[0] + 1;
   long rows = 1;
   for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
@@ -291,7 +321,8 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   {
     const int t = omp_get_thread_num();
     Vec<D>* __restrict force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
-#pragma omp for schedule(static)
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
       typename K::Shape sh;
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
@@ -309,7 +340,9 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
       }
       const Mat<D> sv = -volume * sym_block<D>(stress[p]);
       scatter_gradient(sh, strides, sv, force);
+      span.add(sh.base);
     }
+    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
   reduce_scatter(false, fields_.force);
   energy_.strain_energy += work;
@@ -371,7 +404,8 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
     Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
-#pragma omp for schedule(static)
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
       typename K::Shape sh;
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
@@ -383,12 +417,13 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
       if (remap) {
         const Vec<D> mv = pmass[p] * vp;
         scatter(sh, strides, mv, mom);
+        span.add(sh.base);
       }
       if (move) {
         const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
         if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-            !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom))
+            !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
           bad = std::min(bad, p);
         for (int d = 0; d < D; ++d) {
           lo[d] = std::min(lo[d], x[p][d]);
@@ -396,6 +431,7 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
         }
       }
     }
+    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
   if (remap) reduce_scatter(false, fields_.momentum);
   if (move) {
@@ -444,7 +480,8 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
     Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
-#pragma omp for schedule(static)
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
       typename K::Shape sh;
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
@@ -456,13 +493,14 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       dissipation += r.dissipation;
       mdx += pmass[p] * dt * vmove;
       if (!sound_point(r, stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-          !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom))
+          !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom, span))
         bad = std::min(bad, p);
       for (int d = 0; d < D; ++d) {
         lo[d] = std::min(lo[d], x[p][d]);
         hi[d] = std::max(hi[d], x[p][d]);
       }
     }
+    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
   set_box(lo, hi);  // the next step's box, which the reduction must cover now
   reduce_scatter(true, fields_.momentum);

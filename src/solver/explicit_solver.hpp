@@ -2,6 +2,7 @@
 // advances the particles by one time step; each phase of the step is one member function.
 #pragma once
 #include <array>
+#include <climits>
 #include <cstddef>
 #include <string>
 #include <variant>
@@ -119,7 +120,7 @@ template <int D> class ExplicitSolver {
 
   void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
   void set_box(const double (&lo)[D], const double (&hi)[D]);
-  template <class Fn> void for_box(Fn&& fn);
+  template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX);
   template <class K> std::vector<typename K::Packed>& shapes();
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
   template <class F> decltype(auto) dispatch(F&& f);

@@ -1,7 +1,9 @@
 // Nodal fields of the background grid, stored as structure-of-arrays, and the per-thread
 // scatter buffers that make particle-to-grid transfers lock-free.
 #pragma once
+#include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/huge_pages.hpp"
@@ -37,6 +39,13 @@ template <int D> struct GridFields {
 template <int D> struct ScatterBuffer {
   std::vector<double> mass;
   std::vector<Vec<D>> vec;  // momentum or force, depending on the pass
+  // Lowest and highest block base written since the last reduction: the reduction covers
+  // only this span (with particles in spatial order, a thread's own part of the grid).
+  std::size_t lo = SIZE_MAX, hi = 0;
+  void touched(std::size_t base_lo, std::size_t base_hi) {
+    lo = std::min(lo, base_lo);
+    hi = std::max(hi, base_hi);
+  }
   void resize(std::size_t n) {
     reserve_huge(mass, n);
     mass.assign(n, 0.0);
