@@ -105,12 +105,13 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
 
 // Plane strain (the hot case): the plane return of step 1 inline (without the cut-off), the
 // rest through mohr_coulomb_return; the rotation back uses the in-plane angle of the trial.
-[[gnu::always_inline]] inline Sym3 mohr_coulomb_plastic_plane(const ElasticConstants& e,
-                                                              const MohrCoulombConstants& k,
-                                                              Sym3& stress, const Sym3& trial,
-                                                              const PlanePrincipal& pp,
-                                                              PointState& state,
-                                                              MohrCoulombRegion* region) {
+// V: Sym3, or the four stored plane-strain components.
+template <class V>
+[[gnu::always_inline]] inline V mohr_coulomb_plastic_plane(const ElasticConstants& e,
+                                                           const MohrCoulombConstants& k, V& stress,
+                                                           const V& trial, const PlanePrincipal& pp,
+                                                           PointState& state,
+                                                           MohrCoulombRegion* region) {
   // Dilation cut-off (Paper III §C.3.2): psi = 0 once e = (1 + e0) exp(eps_v) - 1 >= e_max,
   // evaluated with the updated volume strain.
   const double sq = state.volume_strain >= k.max_volume_strain ? 0.0 : k.sin_psi;
@@ -138,16 +139,16 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
   if (r == MohrCoulombRegion::Elastic) {  // admissible within the tolerance after all
     stress = trial;
     state.yielding = 0;
-    return Sym3::Zero();
+    return V::Zero();
   }
   double sv[3], ev[3];  // returned values and plastic strains per slot
   for (int i = 0; i < 3; ++i) {
     sv[pp.slot[i]] = s[i];
     ev[pp.slot[i]] = ep[i];
   }
-  stress = pp.rebuild(sv);
+  stress = pp.rebuild<V>(sv);
   record_plastic_strain(ep, state);
-  return pp.rebuild(ev);
+  return pp.rebuild<V>(ev);
 }
 
 // The elastic check: f <= tol and sigma_3 - t <= tol, relative to the stress magnitude.
@@ -190,6 +191,24 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
     return Sym3::Zero();
   }
   return detail::mohr_coulomb_plastic(e, k, stress, trial, state, region);
+}
+
+// Plane strain on the stored components [xx, yy, zz, xy] (the solver's hot path): the same
+// update as above with d_eps = (e0, e1, 0, e3). Returns d_eps_p in the same four components.
+[[gnu::always_inline]] inline Eigen::Vector4d mohr_coulomb_update_plane(
+    const ElasticConstants& e, const MohrCoulombConstants& k, Eigen::Vector4d& stress, double e0,
+    double e1, double e3, PointState& state) {
+  const double tr = e0 + e1, lam = e.lambda * tr;
+  state.volume_strain += tr;
+  const Eigen::Vector4d trial(stress[0] + lam + e.two_g * e0, stress[1] + lam + e.two_g * e1,
+                              stress[2] + lam, stress[3] + e.two_g * e3);
+  const PlanePrincipal pp = plane_principal(trial);
+  if (detail::mohr_coulomb_admissible(k, Vec3(pp.v[0], pp.v[1], pp.v[2]), kYieldRelTol)) {
+    stress = trial;
+    state.yielding = 0;
+    return Eigen::Vector4d::Zero();
+  }
+  return detail::mohr_coulomb_plastic_plane(e, k, stress, trial, pp, state, nullptr);
 }
 
 // The fixed interface: same as above with the derived constants built on the fly.

@@ -69,18 +69,22 @@ struct PlanePrincipal {
   int slot[3];
   double h, b, r;  // (s_xx - s_yy)/2, s_xy, radius of Mohr's circle of the in-plane block
 
-  // Sum over the three slots of values[i] times the dyad of slot i's direction (Voigt).
-  [[gnu::always_inline]] Sym3 rebuild(const double (&by_slot)[3]) const {
+  // Sum over the three slots of values[i] times the dyad of slot i's direction, as a Voigt
+  // vector V: Sym3, or the four plane-strain components [xx, yy, zz, xy].
+  template <class V> [[gnu::always_inline]] V rebuild(const double (&by_slot)[3]) const {
     const double c2 = r > 0.0 ? h / r : 1.0, s2 = r > 0.0 ? b / r : 0.0;
     const double xx = 0.5 * (1.0 + c2), yy = 0.5 * (1.0 - c2), xy = 0.5 * s2;
     const double lo = by_slot[0], hi = by_slot[1];
-    Sym3 out;
-    out << lo * yy + hi * xx, lo * xx + hi * yy, by_slot[2], (hi - lo) * xy, 0.0, 0.0;
+    V out = V::Zero();
+    out[0] = lo * yy + hi * xx;
+    out[1] = lo * xx + hi * yy;
+    out[2] = by_slot[2];
+    out[3] = (hi - lo) * xy;
     return out;
   }
 };
 
-[[gnu::always_inline]] inline PlanePrincipal plane_principal(const Sym3& s) {
+template <class V> [[gnu::always_inline]] inline PlanePrincipal plane_principal(const V& s) {
   PlanePrincipal p;
   const double m = 0.5 * (s[0] + s[1]);
   p.h = 0.5 * (s[0] - s[1]);

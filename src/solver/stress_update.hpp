@@ -76,7 +76,11 @@ template <int D>
       stress[1] = o1 + lam + two_g * e1;
       stress[2] = o2 + lam;
       stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
-    } else {
+    } else if (mat.model == Model::MohrCoulomb || mat.model == Model::Tresca) {
+      const Eigen::Vector4d dp = mohr_coulomb_update_plane(
+          mat.elastic_constants, mat.mohr_coulomb_constants, stress, e0, e1, e3, state);
+      p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
+    } else {  // von Mises, through the general interface
       Sym3 deps, full = full_stress<2>(stress);
       deps << e0, e1, 0.0, e3, 0.0, 0.0;
       const Sym3 dp = update_stress(mat, full, deps, state);
