@@ -158,3 +158,59 @@ TEST(Shape, PointOutsideTheGridIsRejected) {
   BsplineKernel<2>::StencilT sb;
   EXPECT_FALSE(BsplineKernel<2>{}(g, Vec<2>(4.01, 0.5), Vec<2>(0.25, 0.25), Mat<2>::Identity(), sb));
 }
+
+// The kernel's branch-free three-node form equals eq. 3.14 evaluated region by region
+// (gimp_1d) for every offset and particle size, including the region boundaries.
+TEST(Shape, GimpThreeNodeFormMatchesEquation314) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double L = 0.3;
+  double worst_w = 0.0, worst_g = 0.0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const double lam = trial < 10 ? 0.5 : 1e-3 + 0.499 * u(rng);
+    double e = -0.5 + u(rng);
+    if (trial % 7 == 0) e = (trial % 14 == 0) ? lam : -lam;  // on a region boundary
+    if (trial % 11 == 0) e = (trial % 22 == 0) ? 0.5 - 1e-15 : -0.5;
+    double w[3], g[3];
+    gimp_3nodes(e, lam, w, g);
+    for (int a = 0; a < 3; ++a) {
+      double wr, gr;
+      gimp_1d((e - (a - 1)) * L, L, lam * L, wr, gr);  // node n - 1 + a at distance x_p - x_i
+      worst_w = std::max(worst_w, std::abs(w[a] - wr));
+      worst_g = std::max(worst_g, std::abs(g[a] / L - gr) * L);
+    }
+  }
+  EXPECT_LT(worst_w, 1e-14);
+  EXPECT_LT(worst_g, 1e-13);
+}
+
+// Packed storage recovers the omitted weight from partition of unity: the unpacked weights
+// equal the kernel's own to round-off, for every separable kernel.
+template <class K> void check_packing(const K& kernel, bool bspline) {
+  const GridGeometry<2> g = make_grid<2>(bspline);
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  double worst = 0.0;
+  for (int trial = 0; trial < 2000; ++trial) {
+    const Vec<2> x(g.origin[0] + 0.1 + u(rng) * (g.h * g.cells[0] - 0.2),
+                   g.origin[1] + 0.1 + u(rng) * (g.h * g.cells[1] - 0.2));
+    typename K::Shape sh, back;
+    ASSERT_TRUE(kernel.shape(g, x, Vec<2>::Constant(g.h / 4), shear<2>(), sh));
+    typename K::Packed packed;
+    kernel.store(packed, sh, shear<2>());
+    kernel.load(packed, g, x, Vec<2>::Constant(g.h / 4), back);
+    ASSERT_EQ(back.base, sh.base);
+    for (int d = 0; d < 2; ++d)
+      for (int a = 0; a < K::S; ++a) {
+        worst = std::max(worst, std::abs(back.w[d][a] - sh.w[d][a]));
+        worst = std::max(worst, std::abs(back.g[d][a] - sh.g[d][a]) * g.h);
+      }
+  }
+  EXPECT_LT(worst, 1e-14) << K::name;
+}
+
+TEST(Shape, PackedWeightsRoundTrip) {
+  check_packing(LinearKernel<2>{}, false);
+  check_packing(GimpKernel<2>{}, false);
+  check_packing(BsplineKernel<2>{}, true);
+}
