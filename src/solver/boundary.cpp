@@ -68,13 +68,13 @@ template <int D> void Boundaries<D>::constrain_velocity(std::vector<Vec<D>>& vel
 }
 
 template <int D>
-void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, const Vec<D>& gravity, double dt) const {
+void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
   for (const BoundaryNode& b : nodes_) {
     const std::size_t i = b.node;
     const double m = grid.mass[i];
     if (m <= 0.0) continue;
     const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    Vec<D> vnew = v_free + dt / m * (grid.force[i] + m * gravity);  // trial v^{k+1}
+    Vec<D> vnew = v_free + dt * grid.accel[i];  // trial v^{k+1}
     for (int w = 0; w < b.count; ++w) {
       const Wall& wall = b.walls[w];
       vnew = wall_velocity<D>(wall, vnew);

@@ -36,10 +36,10 @@ template <int D> class Boundaries {
   void constrain_velocity(std::vector<Vec<D>>& velocity) const;
 
   // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
-  // velocity, v* = (m v)/m the unconstrained one and f the total force, sets v^{k+1}, then
-  // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
-  // velocity_move = (v^k + v^{k+1}) / 2.
-  void constrain_end_of_step(GridFields<D>& grid, const Vec<D>& gravity, double dt) const;
+  // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
+  // v^{k+1}, then accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the
+  // wall) and velocity_move = (v^k + v^{k+1}) / 2.
+  void constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }
 

@@ -313,14 +313,15 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   PointState* __restrict state = P.state.data();
   const Material* mats = materials_.data();
   const bool single = materials_.size() == 1;  // then the material ids need not be read
-  for_box([&](std::size_t i) { fields_.force[i].setZero(); });
+  Vec<D>* const forces = fields_.accel.data();  // f_i^int, until the grid update
+  for_box([&](std::size_t i) { forces[i].setZero(); });
   const Vec<D>* __restrict vel = fields_.velocity.data();
   double work = 0.0, dissipation = 0.0;
   long bad = LONG_MAX;
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
-    Vec<D>* __restrict force = t == 0 ? fields_.force.data() : buffers_[t - 1].vec.data();
+    Vec<D>* __restrict force = t == 0 ? forces : buffers_[t - 1].vec.data();
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
@@ -344,7 +345,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
     }
     if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
-  reduce_scatter(false, fields_.force);
+  reduce_scatter(false, fields_.accel);
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
   if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
@@ -358,11 +359,11 @@ template <int D> void ExplicitSolver<D>::update_grid() {
   const double dt = settings_.dt, half_dt = 0.5 * dt;
   for_box([&](std::size_t i) {
     const double m = fields_.mass[i];
-    const Vec<D> a = m > 0.0 ? Vec<D>(fields_.force[i] / m + g) : Vec<D>::Zero();
+    const Vec<D> a = m > 0.0 ? Vec<D>(fields_.accel[i] / m + g) : Vec<D>::Zero();  // f_i -> a_i
     fields_.accel[i] = a;
     fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
   });
-  boundaries_.constrain_end_of_step(fields_, g, dt);
+  boundaries_.constrain_end_of_step(fields_, dt);
   if (settings_.pic_fraction > 0.0) {  // v_i^{k+1} for the PIC part of the particle update
     for_box([&](std::size_t i) {
       const double m = fields_.mass[i];

@@ -14,17 +14,19 @@ namespace skred {
 template <int D> struct GridFields {
   std::vector<double> mass;        // m_i (Thesis eq. 2.53)
   std::vector<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
-  std::vector<Vec<D>> force;       // f_i^int (eq. 2.51); gravity is added in the grid update
   // v_i^k after the velocity boundary conditions; once the grid update has used it, the
   // same storage holds v_i^{k+1} (for the PIC blend, and remapped from the updated points in
   // the USL and averaged schemes).
   std::vector<Vec<D>> velocity;
-  std::vector<Vec<D>> accel;       // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change
-                                   // handed to the particles (FLIP increment, eq. 2.56)
+  // First the internal force f_i^int (eq. 2.51); the grid update turns it in place into the
+  // acceleration (f_i + m_i g) / m_i and, after the boundary conditions,
+  // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change handed to the particles (FLIP
+  // increment, eq. 2.56).
+  std::vector<Vec<D>> accel;
   std::vector<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
 
   void resize(std::size_t n) {
-    for (auto* f : {&momentum, &force, &velocity, &accel, &velocity_move}) {
+    for (auto* f : {&momentum, &velocity, &accel, &velocity_move}) {
       reserve_huge(*f, n);
       f->assign(n, Vec<D>::Zero());
     }
