@@ -56,8 +56,8 @@ TEST_F(IoTest, VtuRoundTripsThroughVtkReader) {
       {"stress", {6, "vtkDoubleArray"}},          {"mean_stress_p", {1, "vtkDoubleArray"}},
       {"deviatoric_stress_q", {1, "vtkDoubleArray"}}, {"volume", {1, "vtkDoubleArray"}},
       {"det_F", {1, "vtkDoubleArray"}},           {"plastic_shear_strain", {1, "vtkDoubleArray"}},
-      {"yielding", {1, "vtkUnsignedCharArray"}},  {"material_id", {1, "vtkIntArray"}},
-      {"body_id", {1, "vtkIntArray"}},            {"smoothed_stress", {6, "vtkDoubleArray"}},
+      {"yielding", {1, "vtkUnsignedCharArray"}},  {"material_id", {1, "vtkShortArray"}},
+      {"body_id", {1, "vtkShortArray"}},            {"smoothed_stress", {6, "vtkDoubleArray"}},
       {"smoothed_p", {1, "vtkDoubleArray"}},      {"smoothed_q", {1, "vtkDoubleArray"}},
       // post-processing fields (test_post_files.cpp checks their values)
       {"speed", {1, "vtkDoubleArray"}},           {"F", {9, "vtkDoubleArray"}},

@@ -1,6 +1,8 @@
 // Material points stored as structure-of-arrays (one std::vector per field).
 #pragma once
+#include <cassert>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/huge_pages.hpp"
@@ -8,6 +10,10 @@
 #include "material/state.hpp"
 
 namespace skred {
+
+// Material and body ids are stored in 16 bits: a scenario has fewer of each (the scenario
+// builder checks).
+inline constexpr int kMaxIds = 32767;
 
 template <int D> struct Particles {
   // Thesis §2.2: position, velocity, mass and initial volume of each material point.
@@ -19,8 +25,8 @@ template <int D> struct Particles {
   std::vector<Vec<D>> half0;   // voxel half-lengths l_p^0 in the reference configuration
   std::vector<Mat<D>> F;       // deformation gradient F_p (Thesis eq. 3.1-3.5)
   std::vector<PointStress<D>> stress;  // Cauchy stress incl. the out-of-plane component (Voigt)
-  std::vector<std::int32_t> material;  // index into the scenario's material table
-  std::vector<std::int32_t> body;      // index into the scenario's body table
+  std::vector<std::int16_t> material;  // index into the scenario's material table
+  std::vector<std::int16_t> body;      // index into the scenario's body table (see kMaxBodies)
   std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
   // Elastic part of F (F = Fe Fp, Post eq. 67-74), identity at the reference state, and the
   // stress of that reference state (sigma_initial of Post eq. 77).
@@ -40,9 +46,11 @@ template <int D> struct Particles {
   // Appends one undeformed, stress-free material point.
   void add(const Vec<D>& pos, const Vec<D>& vel, double m, double vol, const Vec<D>& half,
            int mat, int bod) {
+    assert(mat >= 0 && mat < kMaxIds && bod >= 0 && bod < kMaxIds);
     x.push_back(pos); x_ref.push_back(pos); v.push_back(vel); mass.push_back(m);
     volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
-    stress.push_back(PointStress<D>::Zero()); material.push_back(mat); body.push_back(bod);
+    stress.push_back(PointStress<D>::Zero()); material.push_back(static_cast<std::int16_t>(mat));
+    body.push_back(static_cast<std::int16_t>(bod));
     state.push_back(PointState{});
     Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(PointStress<D>::Zero());
   }

@@ -85,8 +85,8 @@ std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extr
                     [&P](std::size_t b, std::size_t e, unsigned char* out) {
                       for (std::size_t p = b; p < e; ++p) *out++ = P.state[p].yielding;
                     }});
-  blocks.push_back(integers("material_id", "Int32", P.material));
-  blocks.push_back(integers("body_id", "Int32", P.body));
+  blocks.push_back(integers("material_id", "Int16", P.material));
+  blocks.push_back(integers("body_id", "Int16", P.body));
 
   if (extra.smoothed_stress) {
     const std::vector<Sym3>& s = *extra.smoothed_stress;

@@ -170,6 +170,10 @@ bool has_points(const Scenario& s, const Body& b) {
 }
 
 Particles<2> build_particles(const Scenario& s) {
+  if (s.bodies.size() > static_cast<std::size_t>(kMaxIds) ||
+      s.materials.size() > static_cast<std::size_t>(kMaxIds))
+    throw ScenarioError(fmt::format("{}: at most {} bodies and {} materials are supported",
+                                    s.source, kMaxIds, kMaxIds));
   std::vector<std::size_t> counts;
   std::size_t total = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {

@@ -306,7 +306,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   const Vec<D>* __restrict x = P.x.data();
   const Vec<D>* __restrict half0 = P.half0.data();
   const double* __restrict volume0 = P.volume0.data();
-  const std::int32_t* __restrict material = P.material.data();
+  const std::int16_t* __restrict material = P.material.data();
   Mat<D>* __restrict F = P.F.data();
   Mat<D>* __restrict Fe = P.Fe.data();
   PointStress<D>* __restrict stress = P.stress.data();
@@ -460,7 +460,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   const Vec<D>* __restrict half0 = P.half0.data();
   const double* __restrict pmass = P.mass.data();
   const double* __restrict volume0 = P.volume0.data();
-  const std::int32_t* __restrict material = P.material.data();
+  const std::int16_t* __restrict material = P.material.data();
   Mat<D>* __restrict F = P.F.data();
   Mat<D>* __restrict Fe = P.Fe.data();
   PointStress<D>* __restrict stress = P.stress.data();
