@@ -7,6 +7,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdlib>
+#include <new>
+#include <utility>
 #include <vector>
 
 namespace skred {
@@ -27,5 +30,28 @@ template <class T, class A> void reserve_huge(std::vector<T, A>& v, std::size_t 
   v.reserve(n);
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
 }
+
+// Allocator for the grid arrays: memory comes zeroed from calloc (for large arrays fresh
+// pages from the kernel) and resize() does not write it, so pages of nodes no point ever
+// reaches are never touched and cost no resident memory.
+template <class T> struct ZeroPageAllocator {
+  using value_type = T;
+  ZeroPageAllocator() = default;
+  template <class U> ZeroPageAllocator(const ZeroPageAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) {
+    void* p = std::calloc(n, sizeof(T));
+    if (!p) throw std::bad_alloc();
+    return static_cast<T*>(p);
+  }
+  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+  template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }  // zero page
+  template <class U, class... A> void construct(U* p, A&&... a) {
+    ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
+  }
+  template <class U> bool operator==(const ZeroPageAllocator<U>&) const noexcept { return true; }
+};
+
+// A grid array: zero-initialised without touching its pages (see ZeroPageAllocator).
+template <class T> using GridArray = std::vector<T, ZeroPageAllocator<T>>;
 
 }  // namespace skred

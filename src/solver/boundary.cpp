@@ -50,7 +50,7 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
   }
 }
 
-template <int D> void Boundaries<D>::constrain_velocity(std::vector<Vec<D>>& velocity) const {
+template <int D> void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
   for (const BoundaryNode& b : nodes_) {
     Vec<D>& v = velocity[b.node];
     for (int w = 0; w < b.count; ++w) {

@@ -33,7 +33,7 @@ template <int D> class Boundaries {
 
   // Velocity conditions: fixed -> v = 0, roller -> v_n = 0, friction -> no motion into
   // the wall (separation allowed).
-  void constrain_velocity(std::vector<Vec<D>>& velocity) const;
+  void constrain_velocity(GridArray<Vec<D>>& velocity) const;
 
   // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets

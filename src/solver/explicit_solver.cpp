@@ -85,6 +85,10 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   }
   const std::size_t n = grid_.node_count();
   fields_.resize(n);
+  for (int d = 0; d < D; ++d) {  // the fields start zero: no box yet
+    box_.lo[d] = 0;
+    box_.hi[d] = -1;
+  }
   buffers_.resize(static_cast<std::size_t>(threads_ - 1));
   for (auto& b : buffers_) b.resize(n);
 }
@@ -168,8 +172,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   const Vec<D>* __restrict half0 = P.half0.data();
   const Mat<D>* __restrict F = P.F.data();
   const double* __restrict pmass = P.mass.data();
-  std::fill(fields_.mass.begin(), fields_.mass.end(), 0.0);  // the first map: whole grid
-  std::fill(fields_.momentum.begin(), fields_.momentum.end(), Vec<D>::Zero());
+  clear_mass_momentum();  // outside the box they are zero already
   long bad = LONG_MAX;
   double lo[D], hi[D];
   for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
@@ -199,7 +202,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   return true;
 }
 
-template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, std::vector<Vec<D>>& target) {
+template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, GridArray<Vec<D>>& target) {
   const std::size_t layer = grid_.stride(D - 1);  // nodes per index of the last axis
   for (auto& b : buffers_) {
     if (b.lo > b.hi) continue;
@@ -272,7 +275,7 @@ void ExplicitSolver<D>::for_box(Fn&& fn, int last_lo, int last_hi) {
 
 // Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions. With clear,
 // the mass and momentum are zeroed behind, ready for the map at the end of the step.
-template <int D> void ExplicitSolver<D>::nodal_velocity(std::vector<Vec<D>>& velocity, bool clear) {
+template <int D> void ExplicitSolver<D>::nodal_velocity(GridArray<Vec<D>>& velocity, bool clear) {
   double* __restrict mass = fields_.mass.data();
   Vec<D>* __restrict mom = fields_.momentum.data();
   Vec<D>* __restrict vel = velocity.data();

@@ -111,14 +111,14 @@ template <int D> class ExplicitSolver {
   template <class K> StepStatus step_with(const K& kernel);
   // Phases of one step, in the order of Thesis §4.4.
   template <class K> bool map_mass_momentum(const K& kernel);            // eq. 2.53-2.54
-  void nodal_velocity(std::vector<Vec<D>>& velocity, bool clear);       // eq. 2.23
+  void nodal_velocity(GridArray<Vec<D>>& velocity, bool clear);       // eq. 2.23
   void clear_mass_momentum();
   template <class K> void update_stress_and_map_forces(const K& kernel, double dt_stress);  // eq. 2.20, 4.1-4.4, 2.51
   void update_grid();                                                    // eq. 2.49, 5.8-5.11
   template <class K> void update_particle_velocity(const K& kernel, bool remap, bool move);  // eq. 2.56
   template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
-  void reduce_scatter(bool mass, std::vector<Vec<D>>& target);
+  void reduce_scatter(bool mass, GridArray<Vec<D>>& target);
   void set_box(const double (&lo)[D], const double (&hi)[D]);
   template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX);
   template <class K> std::vector<typename K::Packed>& shapes();
@@ -144,7 +144,7 @@ template <int D> class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
-  NodeBox<D> box_;  // the nodes the stencils of this step can reach (see set_box)
+  NodeBox<D> box_;  // the nodes the stencils of this step can reach (see set_box); empty at first
   std::vector<double> node_mass_;          // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
   std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing

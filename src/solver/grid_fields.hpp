@@ -12,26 +12,23 @@
 namespace skred {
 
 template <int D> struct GridFields {
-  std::vector<double> mass;        // m_i (Thesis eq. 2.53)
-  std::vector<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
+  GridArray<double> mass;        // m_i (Thesis eq. 2.53)
+  GridArray<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
   // v_i^k after the velocity boundary conditions; once the grid update has used it, the
   // same storage holds v_i^{k+1} (for the PIC blend, and remapped from the updated points in
   // the USL and averaged schemes).
-  std::vector<Vec<D>> velocity;
+  GridArray<Vec<D>> velocity;
   // First the internal force f_i^int (eq. 2.51); the grid update turns it in place into the
   // acceleration (f_i + m_i g) / m_i and, after the boundary conditions,
   // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change handed to the particles (FLIP
   // increment, eq. 2.56).
-  std::vector<Vec<D>> accel;
-  std::vector<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
+  GridArray<Vec<D>> accel;
+  GridArray<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
 
+  // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
   void resize(std::size_t n) {
-    for (auto* f : {&momentum, &velocity, &accel, &velocity_move}) {
-      reserve_huge(*f, n);
-      f->assign(n, Vec<D>::Zero());
-    }
-    reserve_huge(mass, n);
-    mass.assign(n, 0.0);
+    for (auto* f : {&momentum, &velocity, &accel, &velocity_move}) f->resize(n);
+    mass.resize(n);
   }
   std::size_t size() const { return mass.size(); }
 };
@@ -39,8 +36,8 @@ template <int D> struct GridFields {
 // What one thread scatters into. Thread 0 writes straight into the grid; threads 1..T-1
 // write into their own buffers, which the reduction adds to the grid and clears again.
 template <int D> struct ScatterBuffer {
-  std::vector<double> mass;
-  std::vector<Vec<D>> vec;  // momentum or force, depending on the pass
+  GridArray<double> mass;
+  GridArray<Vec<D>> vec;  // momentum or force, depending on the pass
   // Lowest and highest block base written since the last reduction: the reduction covers
   // only this span (with particles in spatial order, a thread's own part of the grid).
   std::size_t lo = SIZE_MAX, hi = 0;
@@ -48,11 +45,9 @@ template <int D> struct ScatterBuffer {
     lo = std::min(lo, base_lo);
     hi = std::max(hi, base_hi);
   }
-  void resize(std::size_t n) {
-    reserve_huge(mass, n);
-    mass.assign(n, 0.0);
-    reserve_huge(vec, n);
-    vec.assign(n, Vec<D>::Zero());
+  void resize(std::size_t n) {  // n zero nodes; call once, on an empty buffer
+    mass.resize(n);
+    vec.resize(n);
   }
 };
 
