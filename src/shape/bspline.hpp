@@ -60,11 +60,10 @@ inline int bspline_1d(double xi, int n, double* w, double* g) {
   return k;
 }
 
-template <int D> struct BsplineKernel {
+// Stored without the second weight (at least 1/6 away from the walls, exact at them).
+template <int D> struct BsplineKernel : SeparableKernel<BsplineKernel<D>, D, 4, 1> {
   static constexpr int S = 4;
-  using StencilT = Stencil<D, S>;
-  using Shape = Separable<D, S>;
-  using Packed = PackedSeparable<D, S, 1>;
+  using typename SeparableKernel<BsplineKernel<D>, D, 4, 1>::Shape;
   static constexpr const char* name = "bspline";
 
   [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
@@ -78,19 +77,6 @@ template <int D> struct BsplineKernel {
       for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
     }
     return block_base<D, S>(g, start, sh.base);
-  }
-  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
-  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
-                                   const Vec<D>& /*half0*/, Shape& sh) const {
-    p.unpack(sh);
-  }
-
-  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
-                  StencilT& st) const {
-    Shape sh;
-    if (!shape(g, x, half0, F, sh)) return false;
-    expand(sh, st);
-    return true;
   }
 };
 

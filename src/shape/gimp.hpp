@@ -36,11 +36,10 @@ namespace skred {
   g[1] = linear ? (e > 0.0 ? -1.0 : 1.0) : -e * inv;
 }
 
-template <int D> struct GimpKernel {
+// Stored without the middle weight, which is at least 1/2.
+template <int D> struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   static constexpr int S = 3;
-  using StencilT = Stencil<D, S>;
-  using Shape = Separable<D, S>;
-  using Packed = PackedSeparable<D, S, 1>;  // the middle weight is at least 1/2
+  using typename SeparableKernel<GimpKernel<D>, D, 3, 1>::Shape;
   static constexpr const char* name = "gimp";
 
   [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
@@ -59,19 +58,6 @@ template <int D> struct GimpKernel {
       for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
     }
     return block_base<D, S>(g, start, sh.base);
-  }
-  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
-  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
-                                   const Vec<D>& /*half0*/, Shape& sh) const {
-    p.unpack(sh);
-  }
-
-  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
-                  StencilT& st) const {
-    Shape sh;
-    if (!shape(g, x, half0, F, sh)) return false;
-    expand(sh, st);
-    return true;
   }
 };
 

@@ -17,11 +17,10 @@ namespace skred {
   return c + GridGeometry<1>::pad;
 }
 
-template <int D> struct LinearKernel {
+// Stored without w[0] = 1 - f, as linear_1d computes it.
+template <int D> struct LinearKernel : SeparableKernel<LinearKernel<D>, D, 2, 0> {
   static constexpr int S = 2;
-  using StencilT = Stencil<D, S>;
-  using Shape = Separable<D, S>;
-  using Packed = PackedSeparable<D, S, 0>;  // w[0] = 1 - f, as linear_1d computes it
+  using typename SeparableKernel<LinearKernel<D>, D, 2, 0>::Shape;
   static constexpr const char* name = "linear";
 
   [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
@@ -31,19 +30,6 @@ template <int D> struct LinearKernel {
     for (int d = 0; d < D; ++d)
       start[d] = linear_1d((x[d] - g.origin[d]) * inv_h, g.cells[d], inv_h, sh.w[d], sh.g[d]);
     return block_base<D, S>(g, start, sh.base);
-  }
-  void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) const { p.pack(sh); }
-  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
-                                   const Vec<D>& /*half0*/, Shape& sh) const {
-    p.unpack(sh);
-  }
-
-  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
-                  StencilT& st) const {
-    Shape sh;
-    if (!shape(g, x, half0, F, sh)) return false;
-    expand(sh, st);
-    return true;
   }
 };
 

@@ -52,6 +52,22 @@ template <int D, int S, int Skip> struct PackedSeparable {
   }
 };
 
+// What the separable kernels share, given their shape() (CRTP): the stored form with the
+// entry Skip omitted, and the full stencil for tests and post-processing.
+template <class Kernel, int D, int S, int Skip> struct SeparableKernel {
+  using StencilT = Stencil<D, S>;
+  using Shape = Separable<D, S>;
+  using Packed = PackedSeparable<D, S, Skip>;
+
+  static void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) { p.pack(sh); }
+  [[gnu::always_inline]] static void load(const Packed& p, const GridGeometry<D>& /*g*/,
+                                          const Vec<D>& /*x*/, const Vec<D>& /*half0*/, Shape& sh) {
+    p.unpack(sh);
+  }
+  bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                  StencilT& st) const;
+};
+
 // Flat-index strides of the grid axes, for walking a block of nodes.
 template <int D> struct NodeStrides {
   std::size_t s[D];
@@ -216,6 +232,16 @@ template <int D, int S>
 template <int D, int S> inline void expand(const Separable<D, S>& sh, Stencil<D, S>& st) {
   st.base = sh.base;
   tensor_product<D, S>(sh.w, sh.g, st);
+}
+
+template <class Kernel, int D, int S, int Skip>
+bool SeparableKernel<Kernel, D, S, Skip>::operator()(const GridGeometry<D>& g, const Vec<D>& x,
+                                                     const Vec<D>& half0, const Mat<D>& F,
+                                                     StencilT& st) const {
+  Shape sh;
+  if (!static_cast<const Kernel&>(*this).shape(g, x, half0, F, sh)) return false;
+  expand(sh, st);
+  return true;
 }
 
 }  // namespace skred
