@@ -333,8 +333,8 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
       double volume;
       if (dt_stress > 0.0) {
         const Mat<D> grad_v = gather_gradient(sh, strides, vel);
-        const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress, volume0[p],
-                                              stress[p], state[p], F[p], Fe[p]);
+        const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress,
+                                              volume0[p], stress[p], state[p], F[p], Fe[p]);
         work += r.strain_energy;
         dissipation += r.dissipation;
         volume = r.volume;
@@ -491,8 +491,8 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
       const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
       const Vec<D> vmove = gather(sh, strides, vel);
-      const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress, volume0[p],
-                                            stress[p], state[p], F[p], Fe[p]);
+      const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress,
+                                            volume0[p], stress[p], state[p], F[p], Fe[p]);
       work += r.strain_energy;
       dissipation += r.dissipation;
       mdx += pmass[p] * dt * vmove;
