@@ -119,6 +119,7 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
   const double dt = settings_.dt;
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
+  if (mapped_points_ != particles_.size()) grid_mapped_ = false;
   if (!grid_mapped_ && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
   nodal_velocity(fields_.velocity, /*clear=*/false);
@@ -144,6 +145,7 @@ template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(cons
   }
   if (!status_.ok) return status_;  // the failing step is steps() + 1, starting at time()
   grid_mapped_ = true;
+  mapped_points_ = particles_.size();
   time_ += dt;
   ++steps_;
   return status_;

@@ -77,7 +77,12 @@ template <int D> class ExplicitSolver {
   ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles, std::vector<Material> materials,
                  SolverSettings<D> settings, int threads);
 
+  // Advances by one time step. The last phase of a step already maps the particles' mass
+  // and momentum for the next one; code that changes the particles between steps (their
+  // positions, velocities, masses or F, or their number) calls particles_changed() first. A
+  // change in the number of points is also detected by itself.
   StepStatus step();
+  void particles_changed() { grid_mapped_ = false; }
 
   double time() const { return time_; }
   long steps() const { return steps_; }
@@ -144,6 +149,7 @@ template <int D> class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
+  std::size_t mapped_points_ = 0;  // the number of points the map was made for
   NodeBox<D> box_;  // the nodes the stencils of this step can reach (see set_box); empty at first
   std::vector<double> node_mass_;          // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
