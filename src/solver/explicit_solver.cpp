@@ -1,7 +1,8 @@
-// The explicit MPM/GIMP time step. step() reads like the algorithm lists of Thesis §4.4;
-// each phase is one member function with one tight, OpenMP-parallel loop. Particle-to-grid
-// transfers are lock-free: thread 0 scatters into the grid, every other thread into its own
-// buffer, and a parallel reduction over the nodes adds the buffers up.
+// The explicit MPM/GIMP time step and its particle phases. step() reads like the algorithm
+// lists of Thesis §4.4; each phase is one member function with one tight, OpenMP-parallel
+// loop. Particle-to-grid transfers are lock-free: thread 0 scatters into the grid, every other
+// thread into its own buffer, which grid_phases.cpp adds up. Grid phases: grid_phases.cpp;
+// totals, smoothing and stage starts: solver_results.cpp.
 #include "solver/explicit_solver.hpp"
 
 #include <omp.h>
@@ -91,19 +92,6 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   }
   buffers_.resize(static_cast<std::size_t>(threads_ - 1));
   for (auto& b : buffers_) b.resize(n);
-}
-
-template <int D> template <class F> decltype(auto) ExplicitSolver<D>::dispatch(F&& f) {
-  switch (settings_.interpolation) {
-    case Interpolation::Linear: return f(LinearKernel<D>{});
-    case Interpolation::Gimp: return f(GimpKernel<D>{});
-    case Interpolation::Bspline: return f(BsplineKernel<D>{});
-    case Interpolation::GimpQuadrature:
-      if (settings_.quadrature_points == 1) return f(GimpQuadratureKernel<D, 1>{});
-      if (settings_.quadrature_points == 3) return f(GimpQuadratureKernel<D, 3>{});
-      return f(GimpQuadratureKernel<D, 2>{});
-  }
-  return f(GimpKernel<D>{});
 }
 
 template <int D> StepStatus ExplicitSolver<D>::step() {
@@ -204,101 +192,6 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   return true;
 }
 
-template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, GridArray<Vec<D>>& target) {
-  const std::size_t layer = grid_.stride(D - 1);  // nodes per index of the last axis
-  for (auto& b : buffers_) {
-    if (b.lo > b.hi) continue;
-    // The part of the box the buffer's blocks reach along the last axis.
-    const int first = static_cast<int>(b.lo / layer);
-    const int last = static_cast<int>(b.hi / layer) + kMaxStencil - 1;
-    double* __restrict m = fields_.mass.data();
-    double* __restrict bm = b.mass.data();
-    Vec<D>* __restrict f = target.data();
-    Vec<D>* __restrict bv = b.vec.data();
-    for_box(
-        [&](std::size_t i) {
-          if (mass) {
-            m[i] += bm[i];
-            bm[i] = 0.0;
-          }
-          f[i] += bv[i];
-          bv[i].setZero();
-        },
-        first, last);
-    b.lo = SIZE_MAX;
-    b.hi = 0;
-  }
-}
-
-// The grid phases run over the box of nodes that the points' stencils can reach: per axis
-// from the lowest to the highest point, widened by the stencil width plus one. Outside it the
-// mass, momentum and scatter buffers are zero and nothing else is read.
-template <int D> void ExplicitSolver<D>::set_box(const double (&lo)[D], const double (&hi)[D]) {
-  for (int d = 0; d < D; ++d) {
-    if (!(lo[d] <= hi[d])) {  // no points
-      box_.lo[d] = 0;
-      box_.hi[d] = -1;
-      continue;
-    }
-    const double inv_h = 1.0 / grid_.h, reach = kMaxStencil + 1;
-    const double a = std::floor((lo[d] - grid_.origin[d]) * inv_h) + GridGeometry<D>::pad - reach;
-    const double b = std::floor((hi[d] - grid_.origin[d]) * inv_h) + GridGeometry<D>::pad + reach;
-    box_.lo[d] = static_cast<int>(std::clamp(a, 0.0, grid_.nodes(d) - 1.0));
-    box_.hi[d] = static_cast<int>(std::clamp(b, 0.0, grid_.nodes(d) - 1.0));
-  }
-}
-
-// fn(i) for every node i of the box (or of its part with last-axis index in [last_lo,
-// last_hi]), in parallel over its rows.
-template <int D>
-template <class Fn>
-void ExplicitSolver<D>::for_box(Fn&& fn, int last_lo, int last_hi) {
-  NodeBox<D> b = box_;
-  b.lo[D - 1] = std::max(b.lo[D - 1], last_lo);
-  b.hi[D - 1] = std::min(b.hi[D - 1], last_hi);
-  const long width = b.hi[0] - b.lo[0] + 1;
-  long rows = 1;
-  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
-  if (width <= 0) return;
-  std::size_t stride[D];
-  for (int d = 0; d < D; ++d) stride[d] = grid_.stride(d);
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (long r = 0; r < rows; ++r) {
-    std::size_t row = static_cast<std::size_t>(b.lo[0]);
-    long rest = r;
-    for (int d = 1; d < D; ++d) {
-      const long n = b.hi[d] - b.lo[d] + 1;
-      row += static_cast<std::size_t>(b.lo[d] + rest % n) * stride[d];
-      rest /= n;
-    }
-    for (long i = 0; i < width; ++i) fn(row + static_cast<std::size_t>(i));
-  }
-}
-
-// Thesis eq. 2.23: v_i = (m_i v_i) / m_i, then the velocity boundary conditions. With clear,
-// the mass and momentum are zeroed behind, ready for the map at the end of the step.
-template <int D> void ExplicitSolver<D>::nodal_velocity(GridArray<Vec<D>>& velocity, bool clear) {
-  double* __restrict mass = fields_.mass.data();
-  Vec<D>* __restrict mom = fields_.momentum.data();
-  Vec<D>* __restrict vel = velocity.data();
-  for_box([&](std::size_t i) {
-    const double m = mass[i];
-    vel[i] = m > 0.0 ? Vec<D>(mom[i] / m) : Vec<D>::Zero();
-    if (clear) {
-      mass[i] = 0.0;
-      mom[i].setZero();
-    }
-  });
-  boundaries_.constrain_velocity(velocity);
-}
-
-template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
-  for_box([&](std::size_t i) {
-    fields_.mass[i] = 0.0;
-    fields_.momentum[i].setZero();
-  });
-}
-
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) when
 // dt_stress > 0, then the internal forces f_i = -sum sigma_p V_p grad N_ip (eq. 2.51).
 template <int D>
@@ -354,28 +247,6 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;
   if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
-}
-
-// Thesis eq. 2.49 with lumped mass: a_i = (f_i^int + m_i g) / m_i (eq. 2.52 with uniform
-// gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq. 31). Then the
-// boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
-template <int D> void ExplicitSolver<D>::update_grid() {
-  const Vec<D> g = gravity_now_;
-  const double dt = settings_.dt, half_dt = 0.5 * dt;
-  for_box([&](std::size_t i) {
-    const double m = fields_.mass[i];
-    const Vec<D> a = m > 0.0 ? Vec<D>(fields_.accel[i] / m + g) : Vec<D>::Zero();  // f_i -> a_i
-    fields_.accel[i] = a;
-    fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
-  });
-  boundaries_.constrain_end_of_step(fields_, dt);
-  if (settings_.pic_fraction > 0.0) {  // v_i^{k+1} for the PIC part of the particle update
-    for_box([&](std::size_t i) {
-      const double m = fields_.mass[i];
-      fields_.velocity[i] = m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.accel[i])
-                                    : Vec<D>::Zero();
-    });
-  }
 }
 
 // Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
@@ -514,96 +385,6 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   energy_.plastic_dissipation += dissipation;
   energy_.gravity_work += gravity_now_.dot(mdx);
   if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
-}
-
-template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
-  const auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
-  long yielding = 0;
-  Vec<D> mom = Vec<D>::Zero();
-#pragma omp declare reduction(vadd3 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass, yielding) \
-    reduction(max : vmax) reduction(vadd3 : mom)
-  for (long p = 0; p < n; ++p) {
-    const double m = P.mass[p], s = P.v[p].norm();
-    mass += m;
-    ke += 0.5 * m * s * s;           // eq. 4.15
-    speed_mass += m * s;             // eq. 5.12
-    vmax = std::max(vmax, s);
-    mom += m * P.v[p];
-    yielding += P.state[p].yielding;
-  }
-  ParticleTotals<D> t;
-  t.mass = mass;
-  t.kinetic_energy = ke;
-  t.momentum = mom;
-  t.mean_speed = mass > 0.0 ? speed_mass / mass : 0.0;
-  t.max_speed = vmax;
-  t.yielding = yielding;
-  return t;
-}
-
-template <int D> void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out) {
-  dispatch([&](const auto& kernel) { smoothed_stress_with(kernel, out); });
-}
-
-// Thesis eq. 4.18: sigma_i = sum sigma_p N_ip m_p / m_i; eq. 4.19: sigma_p = sum sigma_i N_ip.
-template <int D>
-template <class K>
-void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>& out) {
-  const NodeStrides<D> strides(grid_);
-  const auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  node_stress_.assign(fields_.size(), Sym3::Zero());
-  node_velocity_.assign(fields_.size(), Vec<D>::Zero());
-  node_mass_.assign(fields_.size(), 0.0);
-  std::vector<double>& mass = node_mass_;
-  for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
-    typename K::Shape sh;
-    if (!kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh)) continue;
-    const double m = P.mass[p];
-    for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
-      mass[i] += w * m;
-      node_stress_[i] += (w * m) * full_stress<D>(P.stress[p]);
-      node_velocity_[i] += (w * m) * P.v[p];
-    });
-  }
-  for (std::size_t i = 0; i < mass.size(); ++i)
-    if (mass[i] > 0.0) {
-      node_stress_[i] /= mass[i];
-      node_velocity_[i] /= mass[i];
-    }
-  out.resize(P.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (long p = 0; p < n; ++p) {
-    typename K::Shape sh;
-    Sym3 acc = Sym3::Zero();
-    if (kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh))
-      for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { acc += w * node_stress_[i]; });
-    out[p] = acc;
-  }
-}
-
-template <int D> void ExplicitSolver<D>::reset_reference() {
-  particles_.x_ref = particles_.x;
-  energy_ = EnergyTotals{};
-}
-
-template <int D>
-void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double gravity_ramp_time) {
-  materials_ = std::move(materials);
-  for (Material& m : materials_) m.prepare();
-  settings_.gravity_ramp_time = gravity_ramp_time;
-  ramp_start_ = time_;
-  reset_reference();
-  // Plastic state that a stage held elastic did not track: the volume strain is ln det F, and
-  // no point is yielding at the start of a stage.
-  auto& P = particles_;
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    P.state[p].volume_strain = std::log(P.F[p].determinant());
-    P.state[p].yielding = 0;
-  }
 }
 
 template class ExplicitSolver<2>;

@@ -1,6 +1,7 @@
 // The explicit dynamic MPM/GIMP solver (Thesis §2.2.1 and §4.4). One call to step()
 // advances the particles by one time step; each phase of the step is one member function.
 #pragma once
+#include <algorithm>
 #include <array>
 #include <climits>
 #include <cstddef>
@@ -162,5 +163,46 @@ template <int D> class ExplicitSolver {
   EnergyTotals energy_;
   StepStatus status_;
 };
+
+// The kernel of the scenario, as a type: f(kernel).
+template <int D> template <class F> decltype(auto) ExplicitSolver<D>::dispatch(F&& f) {
+  switch (settings_.interpolation) {
+    case Interpolation::Linear: return f(LinearKernel<D>{});
+    case Interpolation::Gimp: return f(GimpKernel<D>{});
+    case Interpolation::Bspline: return f(BsplineKernel<D>{});
+    case Interpolation::GimpQuadrature:
+      if (settings_.quadrature_points == 1) return f(GimpQuadratureKernel<D, 1>{});
+      if (settings_.quadrature_points == 3) return f(GimpQuadratureKernel<D, 3>{});
+      return f(GimpQuadratureKernel<D, 2>{});
+  }
+  return f(GimpKernel<D>{});
+}
+
+// fn(i) for every node i of the box (or of its part with last-axis index in [last_lo,
+// last_hi]), in parallel over its rows.
+template <int D>
+template <class Fn>
+void ExplicitSolver<D>::for_box(Fn&& fn, int last_lo, int last_hi) {
+  NodeBox<D> b = box_;
+  b.lo[D - 1] = std::max(b.lo[D - 1], last_lo);
+  b.hi[D - 1] = std::min(b.hi[D - 1], last_hi);
+  const long width = b.hi[0] - b.lo[0] + 1;
+  long rows = 1;
+  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
+  if (width <= 0) return;
+  std::size_t stride[D];
+  for (int d = 0; d < D; ++d) stride[d] = grid_.stride(d);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (long r = 0; r < rows; ++r) {
+    std::size_t row = static_cast<std::size_t>(b.lo[0]);
+    long rest = r;
+    for (int d = 1; d < D; ++d) {
+      const long n = b.hi[d] - b.lo[d] + 1;
+      row += static_cast<std::size_t>(b.lo[d] + rest % n) * stride[d];
+      rest /= n;
+    }
+    for (long i = 0; i < width; ++i) fn(row + static_cast<std::size_t>(i));
+  }
+}
 
 }  // namespace skred
