@@ -38,6 +38,29 @@ template <class V>
   return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
+// The per-point arrays the stress update reads and writes (Thesis eq. 4.1-4.4, Post 72-73),
+// for the two phases that update stresses.
+template <int D> struct StressArrays {
+  const double* __restrict volume0;
+  const std::int16_t* __restrict material;
+  Mat<D>* __restrict F;
+  Mat<D>* __restrict Fe;
+  PointStress<D>* __restrict stress;
+  PointState* __restrict state;
+  const Material* mats;
+  bool single;  // one material: the ids need not be read
+
+  StressArrays(Particles<D>& P, const std::vector<Material>& materials)
+      : volume0(P.volume0.data()), material(P.material.data()), F(P.F.data()), Fe(P.Fe.data()),
+        stress(P.stress.data()), state(P.state.data()), mats(materials.data()),
+        single(materials.size() == 1) {}
+
+  [[gnu::always_inline]] StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
+    return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p],
+                                  state[p], F[p], Fe[p]);
+  }
+};
+
 // Lowest and highest block base a thread scattered to (see ScatterBuffer).
 struct BaseSpan {
   std::size_t lo = SIZE_MAX, hi = 0;
@@ -203,14 +226,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
   const typename K::Packed* __restrict shape = shapes<K>().data();
   const Vec<D>* __restrict x = P.x.data();
   const Vec<D>* __restrict half0 = P.half0.data();
-  const double* __restrict volume0 = P.volume0.data();
-  const std::int16_t* __restrict material = P.material.data();
-  Mat<D>* __restrict F = P.F.data();
-  Mat<D>* __restrict Fe = P.Fe.data();
-  PointStress<D>* __restrict stress = P.stress.data();
-  PointState* __restrict state = P.state.data();
-  const Material* mats = materials_.data();
-  const bool single = materials_.size() == 1;  // then the material ids need not be read
+  const StressArrays<D> S(P, materials_);
   Vec<D>* const forces = fields_.accel.data();  // f_i^int, until the grid update
   for_box([&](std::size_t i) { forces[i].setZero(); });
   const Vec<D>* __restrict vel = fields_.velocity.data();
@@ -228,16 +244,15 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
       double volume;
       if (dt_stress > 0.0) {
         const Mat<D> grad_v = gather_gradient(sh, strides, vel);
-        const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress,
-                                              volume0[p], stress[p], state[p], F[p], Fe[p]);
+        const auto r = S.update(p, grad_v, dt_stress);
         work += r.strain_energy;
         dissipation += r.dissipation;
         volume = r.volume;
-        if (!sound_point(r, stress[p])) bad = std::min(bad, p);
+        if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
       } else {
-        volume = volume0[p] * F[p].determinant();
+        volume = S.volume0[p] * S.F[p].determinant();
       }
-      const Mat<D> sv = -volume * sym_block<D>(stress[p]);
+      const Mat<D> sv = -volume * sym_block<D>(S.stress[p]);
       scatter_gradient(sh, strides, sv, force);
       span.add(sh.base);
     }
@@ -335,14 +350,7 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   const Vec<D>* __restrict v = P.v.data();
   const Vec<D>* __restrict half0 = P.half0.data();
   const double* __restrict pmass = P.mass.data();
-  const double* __restrict volume0 = P.volume0.data();
-  const std::int16_t* __restrict material = P.material.data();
-  Mat<D>* __restrict F = P.F.data();
-  Mat<D>* __restrict Fe = P.Fe.data();
-  PointStress<D>* __restrict stress = P.stress.data();
-  PointState* __restrict state = P.state.data();
-  const Material* mats = materials_.data();
-  const bool single = materials_.size() == 1;  // then the material ids need not be read
+  const StressArrays<D> S(P, materials_);
   const Vec<D>* __restrict vel = fields_.velocity_move.data();
   const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
   double work = 0.0, dissipation = 0.0;
@@ -364,13 +372,12 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       kernel.load(shape[p], grid_, x[p], half0[p], sh);
       const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
       const Vec<D> vmove = gather(sh, strides, vel);
-      const auto r = update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt_stress,
-                                            volume0[p], stress[p], state[p], F[p], Fe[p]);
+      const auto r = S.update(p, grad_v, dt_stress);
       work += r.strain_energy;
       dissipation += r.dissipation;
       mdx += pmass[p] * dt * vmove;
-      if (!sound_point(r, stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-          !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom, span))
+      if (!sound_point(r, S.stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
+          !map_point(kernel, grid_, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
         bad = std::min(bad, p);
       for (int d = 0; d < D; ++d) {
         lo[d] = std::min(lo[d], x[p][d]);
