@@ -69,6 +69,8 @@ TEST(InitialStress, K0FromOverburdenMatchesRhoGDepth) {
         column_text(std::string("end_time = 0.1\n[initial_stress]\nk0 = ") + rule + "\n", 1e6, 0.3),
         "k0.toml");
     Particles<2> P = build_particles(s);
+    EXPECT_TRUE(P.stress_ref.empty());  // no reference stress stored until one is set
+    EXPECT_EQ(P.reference_stress(0), PointStress<2>::Zero());
     apply_initial_stress(s, P);
     const double k0 = std::string(rule) == "0.7" ? 0.7 : 0.3 / 0.7;  // Thesis eq. 5.7
     for (std::size_t p = 0; p < P.size(); ++p) {
@@ -78,7 +80,12 @@ TEST(InitialStress, K0FromOverburdenMatchesRhoGDepth) {
       EXPECT_NEAR(P.stress[p][0], k0 * syy, 1e-9 * std::abs(syy));
       EXPECT_NEAR(P.stress[p][2], k0 * syy, 1e-9 * std::abs(syy));
       EXPECT_EQ(P.stress[p][3], 0.0);
+      EXPECT_EQ(P.reference_stress(p), P.stress[p]);  // Fe's reference state (Post eq. 77)
     }
+    // A point added later (e.g. by splitting) starts from a zero reference stress.
+    P.add(Vec<2>(0.01, 0.01), Vec<2>::Zero(), 1.0, 1e-4, Vec<2>(0.005, 0.005), 0, 0);
+    ASSERT_EQ(P.stress_ref.size(), P.size());
+    EXPECT_EQ(P.reference_stress(P.size() - 1), PointStress<2>::Zero());
   }
 }
 

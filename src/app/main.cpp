@@ -1,5 +1,6 @@
 // skred command line: run a scenario, check a scenario, measure throughput, or draw results.
 #include <fmt/core.h>
+#include <malloc.h>
 #include <omp.h>
 
 #include <CLI/CLI.hpp>
@@ -95,6 +96,10 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::str
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Large arrays always come from the kernel and go back to it when freed. Left to itself,
+  // glibc raises its mmap threshold after the first large free and serves later arrays from
+  // the heap, which keeps freed memory resident (the bench's repeats then peak higher).
+  mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   CLI::App app{"skred: material point method for large-deformation geomechanics"};
   app.require_subcommand(1);
 

@@ -29,7 +29,8 @@ template <int D> struct Particles {
   std::vector<std::int16_t> body;      // index into the scenario's body table (see kMaxBodies)
   std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
   // Elastic part of F (F = Fe Fp, Post eq. 67-74), identity at the reference state, and the
-  // stress of that reference state (sigma_initial of Post eq. 77).
+  // stress of that reference state (sigma_initial of Post eq. 77). The reference stress is
+  // stored only once an initial stress is set (see set_reference_stress); empty, it is zero.
   std::vector<Mat<D>> Fe;
   std::vector<PointStress<D>> stress_ref;
 
@@ -40,7 +41,7 @@ template <int D> struct Particles {
     reserve_huge(x, n); reserve_huge(x_ref, n); reserve_huge(v, n); reserve_huge(mass, n);
     reserve_huge(volume0, n); reserve_huge(half0, n); reserve_huge(F, n); reserve_huge(stress, n);
     reserve_huge(material, n); reserve_huge(body, n); reserve_huge(state, n); reserve_huge(Fe, n);
-    reserve_huge(stress_ref, n);
+    if (!stress_ref.empty()) reserve_huge(stress_ref, n);
   }
 
   // Appends one undeformed, stress-free material point.
@@ -52,8 +53,16 @@ template <int D> struct Particles {
     stress.push_back(PointStress<D>::Zero()); material.push_back(static_cast<std::int16_t>(mat));
     body.push_back(static_cast<std::int16_t>(bod));
     state.push_back(PointState{});
-    Fe.push_back(Mat<D>::Identity()); stress_ref.push_back(PointStress<D>::Zero());
+    Fe.push_back(Mat<D>::Identity());
+    if (!stress_ref.empty()) stress_ref.push_back(PointStress<D>::Zero());
   }
+
+  // The stress of Fe's reference state (Post eq. 77): zero unless an initial stress was set.
+  PointStress<D> reference_stress(std::size_t p) const {
+    return stress_ref.empty() ? PointStress<D>::Zero() : stress_ref[p];
+  }
+  // Makes the current stresses the reference state of Fe (after an initial stress is set).
+  void set_reference_stress() { stress_ref = stress; }
 
   // Current volume V_p = det(F_p) V_p^0.
   double volume(std::size_t p) const { return F[p].determinant() * volume0[p]; }

@@ -140,8 +140,8 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
     for (std::size_t p = 0; p < particles.size(); ++p) {
       elastic_F[p] = embed3<2>(particles.Fe[p], 1.0);
       const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
-      stress_from_Fe[p] = stress_from_elastic_F(full_stress<2>(particles.stress_ref[p]), elastic_F[p],
-                                                mat.elastic_constants);
+      stress_from_Fe[p] = stress_from_elastic_F(full_stress<2>(particles.reference_stress(p)),
+                                                elastic_F[p], mat.elastic_constants);
     }
     extra.elastic_F = &elastic_F;
     extra.stress_from_elastic_F = &stress_from_Fe;

@@ -51,8 +51,8 @@ void apply_initial_stress(const Scenario& s, Particles<2>& P) {
     P.stress[p][0] = k0 * syy;  // Thesis eq. 5.7
     P.stress[p][1] = syy;
     P.stress[p][2] = k0 * syy;
-    P.stress_ref[p] = P.stress[p];  // reference state of Fe (Post eq. 77)
   }
+  P.set_reference_stress();  // reference state of Fe (Post eq. 77)
 }
 
 std::vector<Material> stage_materials(const Scenario& s, const Stage& stage) {

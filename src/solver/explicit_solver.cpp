@@ -61,6 +61,20 @@ template <int D> struct StressArrays {
   }
 };
 
+// The extent of the points, per axis the lowest and highest coordinate (for the box of
+// nodes the next step can reach, see set_box). Kept in registers in the hot loops.
+template <int D> struct Extent {
+  Vec<D> lo = Vec<D>::Constant(INFINITY), hi = Vec<D>::Constant(-INFINITY);
+  [[gnu::always_inline]] void add(const Vec<D>& x) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  void merge(const Extent& o) {
+    lo = lo.cwiseMin(o.lo);
+    hi = hi.cwiseMax(o.hi);
+  }
+};
+
 // Lowest and highest block base a thread scattered to (see ScatterBuffer).
 struct BaseSpan {
   std::size_t lo = SIZE_MAX, hi = 0;
@@ -187,9 +201,9 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   const double* __restrict pmass = P.mass.data();
   clear_mass_momentum();  // outside the box they are zero already
   long bad = LONG_MAX;
-  double lo[D], hi[D];
-  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
-#pragma omp parallel num_threads(threads_) reduction(min : bad, lo[:D]) reduction(max : hi[:D])
+  Extent<D> extent;
+#pragma omp declare reduction(merge : Extent<D> : omp_out.merge(omp_in))
+#pragma omp parallel num_threads(threads_) reduction(min : bad) reduction(merge : extent)
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -199,14 +213,11 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
     for (long p = 0; p < n; ++p) {
       if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom, span))
         bad = std::min(bad, p);
-      for (int d = 0; d < D; ++d) {
-        lo[d] = std::min(lo[d], x[p][d]);
-        hi[d] = std::max(hi[d], x[p][d]);
-      }
+      extent.add(x[p]);
     }
     if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
-  set_box(lo, hi);
+  set_box(extent.lo, extent.hi);
   reduce_scatter(true, fields_.momentum);
   if (bad != LONG_MAX) {
     status_ = {false, bad, "material point left the grid"};
@@ -287,11 +298,11 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   const double alpha = settings_.pic_fraction;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
-  double lo[D], hi[D];  // extent of the moved points
-  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
+  Extent<D> extent;  // of the moved points
+#pragma omp declare reduction(merge2 : Extent<D> : omp_out.merge(omp_in))
 #pragma omp declare reduction(vadd : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad, lo[:D]) \
-    reduction(max : hi[:D])
+#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad) \
+    reduction(merge2 : extent)
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -317,17 +328,14 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
         if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp) ||
             !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
           bad = std::min(bad, p);
-        for (int d = 0; d < D; ++d) {
-          lo[d] = std::min(lo[d], x[p][d]);
-          hi[d] = std::max(hi[d], x[p][d]);
-        }
+        extent.add(x[p]);
       }
     }
     if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
   if (remap) reduce_scatter(false, fields_.momentum);
   if (move) {
-    set_box(lo, hi);  // the next step's box, which the reduction must cover now
+    set_box(extent.lo, extent.hi);  // the next step's box, which the reduction must cover now
     reduce_scatter(true, fields_.momentum);
     energy_.gravity_work += gravity_now_.dot(mdx);
     if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
@@ -356,11 +364,11 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   double work = 0.0, dissipation = 0.0;
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
-  double lo[D], hi[D];  // extent of the moved points
-  for (int d = 0; d < D; ++d) { lo[d] = INFINITY; hi[d] = -INFINITY; }
+  Extent<D> extent;  // of the moved points
+#pragma omp declare reduction(merge3 : Extent<D> : omp_out.merge(omp_in))
 #pragma omp declare reduction(vadd2 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vadd2 : mdx) \
-    reduction(min : bad, lo[:D]) reduction(max : hi[:D])
+    reduction(min : bad) reduction(merge3 : extent)
   {
     const int t = omp_get_thread_num();
     double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
@@ -379,14 +387,11 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
       if (!sound_point(r, S.stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
           !map_point(kernel, grid_, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
         bad = std::min(bad, p);
-      for (int d = 0; d < D; ++d) {
-        lo[d] = std::min(lo[d], x[p][d]);
-        hi[d] = std::max(hi[d], x[p][d]);
-      }
+      extent.add(x[p]);
     }
     if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
   }
-  set_box(lo, hi);  // the next step's box, which the reduction must cover now
+  set_box(extent.lo, extent.hi);  // the next step's box, which the reduction must cover now
   reduce_scatter(true, fields_.momentum);
   energy_.strain_energy += work;
   energy_.plastic_dissipation += dissipation;

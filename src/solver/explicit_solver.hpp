@@ -125,7 +125,7 @@ template <int D> class ExplicitSolver {
   template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
   void reduce_scatter(bool mass, GridArray<Vec<D>>& target);
-  void set_box(const double (&lo)[D], const double (&hi)[D]);
+  void set_box(const Vec<D>& lo, const Vec<D>& hi);
   template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX);
   template <class K> std::vector<typename K::Packed>& shapes();
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);

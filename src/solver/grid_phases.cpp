@@ -38,7 +38,7 @@ template <int D> void ExplicitSolver<D>::reduce_scatter(bool mass, GridArray<Vec
 // The grid phases run over the box of nodes that the points' stencils can reach: per axis
 // from the lowest to the highest point, widened by the stencil width plus one. Outside it the
 // mass, momentum and scatter buffers are zero and nothing else is read.
-template <int D> void ExplicitSolver<D>::set_box(const double (&lo)[D], const double (&hi)[D]) {
+template <int D> void ExplicitSolver<D>::set_box(const Vec<D>& lo, const Vec<D>& hi) {
   for (int d = 0; d < D; ++d) {
     if (!(lo[d] <= hi[d])) {  // no points
       box_.lo[d] = 0;
@@ -101,7 +101,7 @@ template <int D> void ExplicitSolver<D>::update_grid() {
 
 #define SKRED_GRID_PHASES(D)                                                                  \
   template void ExplicitSolver<D>::reduce_scatter(bool, GridArray<Vec<D>>&);                  \
-  template void ExplicitSolver<D>::set_box(const double (&)[D], const double (&)[D]);        \
+  template void ExplicitSolver<D>::set_box(const Vec<D>&, const Vec<D>&);\
   template void ExplicitSolver<D>::nodal_velocity(GridArray<Vec<D>>&, bool);                  \
   template void ExplicitSolver<D>::clear_mass_momentum();                                     \
   template void ExplicitSolver<D>::update_grid();

@@ -52,6 +52,48 @@ struct StressUpdateResult {
   double volume = 0.0;         // V_p^{k+1} = det(F^{k+1}) V_p^0
 };
 
+// The end of a plane-strain update, after the material's return (eq. 4.4, 3.2, Post eq.
+// 72-73, 4.16): dt grad v = [g00 g01; g10 g11], sigma^k = (o0, o1, o2, o3), d_eps_p =
+// (p0, p1, p2, p3); `stress` holds the unrotated update S^{k+1}. Inlined once per material
+// branch; Plastic = false (d_eps_p = 0) drops the plastic terms.
+template <bool Plastic>
+[[gnu::always_inline]] inline StressUpdateResult finish_plane_update(
+    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3,
+    double p0, double p1, double p2, double p3, double volume0, PointStress<2>& stress, Mat<2>& F,
+    Mat<2>& Fe) {
+  const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);
+  // Push-forward sigma = dF S dF^T / det dF (eq. 4.4).
+  const double a00 = 1.0 + g00, a11 = 1.0 + g11;
+  const double J = a00 * a11 - g01 * g10, inv_J = 1.0 / J;
+  const double s0 = stress[0], s1 = stress[1], s3 = stress[3];
+  const double b00 = a00 * s0 + g01 * s3, b01 = a00 * s3 + g01 * s1;  // dF S
+  const double b10 = g10 * s0 + a11 * s3, b11 = g10 * s3 + a11 * s1;
+  stress[0] = (b00 * a00 + b01 * g01) * inv_J;
+  stress[1] = (b10 * g10 + b11 * a11) * inv_J;
+  stress[2] *= inv_J;
+  stress[3] = 0.5 * ((b00 * g10 + b01 * a11) + (b10 * a00 + b11 * g01)) * inv_J;
+  // F <- dF F (eq. 3.2) and Fe <- (I + d_eps_e) Fe (Post eq. 72-73).
+  const double f00 = F(0, 0), f01 = F(0, 1), f10 = F(1, 0), f11 = F(1, 1);
+  F(0, 0) = a00 * f00 + g01 * f10;
+  F(0, 1) = a00 * f01 + g01 * f11;
+  F(1, 0) = g10 * f00 + a11 * f10;
+  F(1, 1) = g10 * f01 + a11 * f11;
+  const double c00 = 1.0 + e0 - p0, c11 = 1.0 + e1 - p1, c01 = e3 - p3;
+  const double h00 = Fe(0, 0), h01 = Fe(0, 1), h10 = Fe(1, 0), h11 = Fe(1, 1);
+  Fe(0, 0) = c00 * h00 + c01 * h10;
+  Fe(0, 1) = c00 * h01 + c01 * h11;
+  Fe(1, 0) = c01 * h00 + c11 * h10;
+  Fe(1, 1) = c01 * h01 + c11 * h11;
+  const double volume = volume0 * (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0));
+  // Trapezoidal work (eq. 4.16) split into stored and dissipated parts.
+  const double m0 = o0 + stress[0], m1 = o1 + stress[1], m2 = o2 + stress[2], m3 = o3 + stress[3];
+  const double half_v = 0.5 * volume;
+  const double total = m0 * e0 + m1 * e1 + 2.0 * m3 * e3;
+  if constexpr (!Plastic) return {half_v * total, 0.0, volume};
+  const double plastic = m0 * p0 + m1 * p1 + m2 * p2 + 2.0 * m3 * p3;
+  return {half_v * (total - plastic), half_v * plastic, volume};
+}
+
 // Objective stress update through the deformation-gradient increment (Thesis eq. 4.1-4.4):
 // d_eps = dt sym(grad v) (eq. 2.20), S^{k+1} = sigma^k + C : d_eps and the plastic return
 // (eq. 4.2-4.3, 5.2-5.4, done by the material), sigma^{k+1} = dF S dF^T / det dF with
@@ -76,6 +118,7 @@ template <int D>
       stress[1] = o1 + lam + two_g * e1;
       stress[2] = o2 + lam;
       stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
+      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0, volume0, stress, F, Fe);
     } else if (mat.model == Model::MohrCoulomb || mat.model == Model::Tresca) {
       const Eigen::Vector4d dp = mohr_coulomb_update_plane(
           mat.elastic_constants, mat.mohr_coulomb_constants, stress, e0, e1, e3, state);
@@ -87,35 +130,7 @@ template <int D>
       stress = full.head<4>();
       p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
     }
-    // Push-forward sigma = dF S dF^T / det dF (eq. 4.4).
-    const double a00 = 1.0 + g00, a11 = 1.0 + g11;
-    const double J = a00 * a11 - g01 * g10, inv_J = 1.0 / J;
-    const double s0 = stress[0], s1 = stress[1], s3 = stress[3];
-    const double b00 = a00 * s0 + g01 * s3, b01 = a00 * s3 + g01 * s1;  // dF S
-    const double b10 = g10 * s0 + a11 * s3, b11 = g10 * s3 + a11 * s1;
-    stress[0] = (b00 * a00 + b01 * g01) * inv_J;
-    stress[1] = (b10 * g10 + b11 * a11) * inv_J;
-    stress[2] *= inv_J;
-    stress[3] = 0.5 * ((b00 * g10 + b01 * a11) + (b10 * a00 + b11 * g01)) * inv_J;
-    // F <- dF F (eq. 3.2) and Fe <- (I + d_eps_e) Fe (Post eq. 72-73).
-    const double f00 = F(0, 0), f01 = F(0, 1), f10 = F(1, 0), f11 = F(1, 1);
-    F(0, 0) = a00 * f00 + g01 * f10;
-    F(0, 1) = a00 * f01 + g01 * f11;
-    F(1, 0) = g10 * f00 + a11 * f10;
-    F(1, 1) = g10 * f01 + a11 * f11;
-    const double c00 = 1.0 + e0 - p0, c11 = 1.0 + e1 - p1, c01 = e3 - p3;
-    const double h00 = Fe(0, 0), h01 = Fe(0, 1), h10 = Fe(1, 0), h11 = Fe(1, 1);
-    Fe(0, 0) = c00 * h00 + c01 * h10;
-    Fe(0, 1) = c00 * h01 + c01 * h11;
-    Fe(1, 0) = c01 * h00 + c11 * h10;
-    Fe(1, 1) = c01 * h01 + c11 * h11;
-    const double volume = volume0 * (F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0));
-    // Trapezoidal work (eq. 4.16) split into stored and dissipated parts.
-    const double m0 = o0 + stress[0], m1 = o1 + stress[1], m2 = o2 + stress[2], m3 = o3 + stress[3];
-    const double half_v = 0.5 * volume;
-    const double plastic = m0 * p0 + m1 * p1 + m2 * p2 + 2.0 * m3 * p3;
-    const double total = m0 * e0 + m1 * e1 + 2.0 * m3 * e3;
-    return {half_v * (total - plastic), half_v * plastic, volume};
+    return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0, stress, F, Fe);
   } else {
     const Mat<D> G = dt * grad_v;
     const Sym3 deps = sym_voigt<D>(G);
