@@ -74,6 +74,7 @@ template <int D> struct Extent {
     hi = hi.cwiseMax(o.hi);
   }
 };
+#pragma omp declare reduction(merge : Extent<2>, Extent<3> : omp_out.merge(omp_in))
 
 // Lowest and highest block base a thread scattered to (see ScatterBuffer).
 struct BaseSpan {
@@ -202,12 +203,11 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
   clear_mass_momentum();  // outside the box they are zero already
   long bad = LONG_MAX;
   Extent<D> extent;
-#pragma omp declare reduction(merge : Extent<D> : omp_out.merge(omp_in))
 #pragma omp parallel num_threads(threads_) reduction(min : bad) reduction(merge : extent)
   {
     const int t = omp_get_thread_num();
-    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
-    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+    double* __restrict mass = mass_target(t);
+    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
@@ -246,7 +246,7 @@ void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_
 #pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(min : bad)
   {
     const int t = omp_get_thread_num();
-    Vec<D>* __restrict force = t == 0 ? forces : buffers_[t - 1].vec.data();
+    Vec<D>* __restrict force = vec_target(t, fields_.accel);
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
@@ -299,14 +299,12 @@ void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bo
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
   Extent<D> extent;  // of the moved points
-#pragma omp declare reduction(merge2 : Extent<D> : omp_out.merge(omp_in))
-#pragma omp declare reduction(vadd : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel num_threads(threads_) reduction(vadd : mdx) reduction(min : bad) \
-    reduction(merge2 : extent)
+#pragma omp parallel num_threads(threads_) reduction(vsum : mdx) reduction(min : bad) \
+    reduction(merge : extent)
   {
     const int t = omp_get_thread_num();
-    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
-    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+    double* __restrict mass = mass_target(t);
+    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {
@@ -365,14 +363,12 @@ void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress
   Vec<D> mdx = Vec<D>::Zero();
   long bad = LONG_MAX;
   Extent<D> extent;  // of the moved points
-#pragma omp declare reduction(merge3 : Extent<D> : omp_out.merge(omp_in))
-#pragma omp declare reduction(vadd2 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
-#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vadd2 : mdx) \
-    reduction(min : bad) reduction(merge3 : extent)
+#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vsum : mdx) \
+    reduction(min : bad) reduction(merge : extent)
   {
     const int t = omp_get_thread_num();
-    double* __restrict mass = t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data();
-    Vec<D>* __restrict mom = t == 0 ? fields_.momentum.data() : buffers_[t - 1].vec.data();
+    double* __restrict mass = mass_target(t);
+    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long p = 0; p < n; ++p) {

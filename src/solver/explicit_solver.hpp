@@ -70,6 +70,9 @@ template <int D> struct NodeBox {
   std::array<int, D> lo{}, hi{};
 };
 
+// Sum of vectors across OpenMP threads: reduction(vsum : v).
+#pragma omp declare reduction(vsum : Vec<2> : omp_out += omp_in) initializer(omp_priv = Vec<2>::Zero())
+#pragma omp declare reduction(vsum : Vec<3> : omp_out += omp_in) initializer(omp_priv = Vec<3>::Zero())
 // Widest stencil of the kernels (B-spline and GIMP quadrature: four nodes per axis).
 inline constexpr int kMaxStencil = 4;
 
@@ -124,6 +127,11 @@ template <int D> class ExplicitSolver {
   template <class K> void update_particle_velocity(const K& kernel, bool remap, bool move);  // eq. 2.56
   template <class K> void update_stress_and_move(const K& kernel, double dt_stress);  // eq. 2.55, 3.2
 
+  // Where thread t scatters: the grid itself for thread 0, its own buffer for the others.
+  double* mass_target(int t) { return t == 0 ? fields_.mass.data() : buffers_[t - 1].mass.data(); }
+  Vec<D>* vec_target(int t, GridArray<Vec<D>>& grid) {
+    return t == 0 ? grid.data() : buffers_[t - 1].vec.data();
+  }
   void reduce_scatter(bool mass, GridArray<Vec<D>>& target);
   void set_box(const Vec<D>& lo, const Vec<D>& hi);
   template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX);

@@ -14,9 +14,8 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
   long yielding = 0;
   Vec<D> mom = Vec<D>::Zero();
-#pragma omp declare reduction(vadd3 : Vec<D> : omp_out += omp_in) initializer(omp_priv = Vec<D>::Zero())
 #pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass, yielding) \
-    reduction(max : vmax) reduction(vadd3 : mom)
+    reduction(max : vmax) reduction(vsum : mom)
   for (long p = 0; p < n; ++p) {
     const double m = P.mass[p], s = P.v[p].norm();
     mass += m;

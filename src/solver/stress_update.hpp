@@ -118,7 +118,8 @@ template <int D>
       stress[1] = o1 + lam + two_g * e1;
       stress[2] = o2 + lam;
       stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
-      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0, volume0, stress, F, Fe);
+      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0,
+                                        volume0, stress, F, Fe);
     } else if (mat.model == Model::MohrCoulomb || mat.model == Model::Tresca) {
       const Eigen::Vector4d dp = mohr_coulomb_update_plane(
           mat.elastic_constants, mat.mohr_coulomb_constants, stress, e0, e1, e3, state);
@@ -130,7 +131,8 @@ template <int D>
       stress = full.head<4>();
       p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
     }
-    return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0, stress, F, Fe);
+    return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0,
+                                     stress, F, Fe);
   } else {
     const Mat<D> G = dt * grad_v;
     const Sym3 deps = sym_voigt<D>(G);
