@@ -65,6 +65,32 @@ template <int D> inline Mat3 embed3(const Mat<D>& a, double fill) {
   return m;
 }
 
+// Symmetric part of a D x D tensor embedded in 3D Voigt form (plane strain: zero
+// out-of-plane components).
+template <int D> [[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
+  Sym3 s = Sym3::Zero();
+  s[0] = a(0, 0);
+  s[1] = a(1, 1);
+  s[3] = 0.5 * (a(0, 1) + a(1, 0));
+  if constexpr (D == 3) {
+    s[2] = a(2, 2);
+    s[4] = 0.5 * (a(1, 2) + a(2, 1));
+    s[5] = 0.5 * (a(0, 2) + a(2, 0));
+  }
+  return s;
+}
+
+// The D x D block of a symmetric 3D tensor in Voigt form (Sym3 or a stored PointStress).
+template <int D, class V> [[gnu::always_inline]] inline Mat<D> sym_block(const V& s) {
+  if constexpr (D == 2) {
+    Mat<2> m;
+    m << s[0], s[3], s[3], s[1];
+    return m;
+  } else {
+    return to_matrix(Sym3(s));
+  }
+}
+
 // Mean stress p = tr(sigma)/3 (tension positive) and von Mises deviatoric stress
 // q = sqrt(3 J2). Post eq. 61-62.
 inline double mean_stress(const Sym3& s) { return (s[0] + s[1] + s[2]) / 3.0; }

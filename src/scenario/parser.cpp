@@ -16,25 +16,6 @@
 
 namespace skred {
 
-const char* to_string(Interpolation i) {
-  switch (i) {
-    case Interpolation::Linear: return "linear";
-    case Interpolation::Gimp: return "gimp";
-    case Interpolation::GimpQuadrature: return "gimp-quadrature";
-    case Interpolation::Bspline: return "bspline";
-  }
-  return "?";
-}
-
-const char* to_string(StressScheme s) {
-  switch (s) {
-    case StressScheme::USF: return "usf";
-    case StressScheme::USL: return "usl";
-    case StressScheme::Averaged: return "averaged";
-  }
-  return "?";
-}
-
 const char* to_string(Model m) {
   switch (m) {
     case Model::LinearElastic: return "linear-elastic";

@@ -11,17 +11,11 @@
 
 #include "core/types.hpp"
 #include "material/material.hpp"
+#include "shape/interpolation.hpp"
+#include "solver/boundary_side.hpp"
+#include "solver/scheme.hpp"
 
 namespace skred {
-
-enum class Interpolation { Linear, Gimp, GimpQuadrature, Bspline };
-enum class StressScheme { USF, USL, Averaged };  // Thesis §4.4
-enum class BoundaryKind { Free, Fixed, Roller, Friction };
-
-struct BoundarySide {
-  BoundaryKind kind = BoundaryKind::Free;
-  double friction = 0.0;  // Coulomb coefficient mu (Thesis eq. 5.8), Friction only
-};
 
 struct Rectangle { Vec<2> min, max; };
 struct Polygon { std::vector<Vec<2>> vertices; };
@@ -134,8 +128,6 @@ Scenario parse_scenario(const std::string& text, const std::string& source,
 // The text of a scenario file. Throws ScenarioError if it cannot be read.
 std::string read_scenario_text(const std::string& path);
 
-const char* to_string(Interpolation);
-const char* to_string(StressScheme);
 const char* to_string(BoundaryKind);
 const char* to_string(Model);
 

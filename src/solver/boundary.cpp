@@ -74,12 +74,12 @@ void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const 
     const double m = grid.mass[i];
     if (m <= 0.0) continue;
     const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    Vec<D> vnew = v_free + dt * grid.accel[i];  // trial v^{k+1}
+    Vec<D> vnew = v_free + dt * grid.acceleration[i];  // trial v^{k+1}
     for (int w = 0; w < b.count; ++w) {
       const Wall& wall = b.walls[w];
       vnew = wall_velocity<D>(wall, vnew);
     }
-    grid.accel[i] = (vnew - v_free) / dt;
+    grid.acceleration[i] = (vnew - v_free) / dt;
     grid.velocity_move[i] = 0.5 * (grid.velocity[i] + vnew);
   }
 }

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
-#include "scenario/scenario.hpp"
+#include "solver/boundary_side.hpp"
 #include "solver/grid_fields.hpp"
 
 namespace skred {

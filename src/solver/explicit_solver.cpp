@@ -1,8 +1,9 @@
-// The explicit MPM/GIMP time step and its particle phases. step() reads like the algorithm
-// lists of Thesis §4.4; each phase is one member function with one tight, OpenMP-parallel
-// loop. Particle-to-grid transfers are lock-free: thread 0 scatters into the grid, every other
-// thread into its own buffer, which grid_phases.cpp adds up. Grid phases: grid_phases.cpp;
-// totals, smoothing and stage starts: solver_results.cpp.
+// The explicit MPM/GIMP time step and its particle phases. The scheme types (scheme.hpp)
+// call the phases in the order of Thesis §4.4; each phase is one member function with one
+// tight, OpenMP-parallel loop. Phases that would read the points twice in a row are fused
+// point by point (the stress update with the force map, the position update with the next
+// step's map); their transfers are the transfer layer's (src/transfer), lock-free. Grid
+// phases: grid_phases.cpp; totals, smoothing and stage starts: solver_results.cpp.
 #include "solver/explicit_solver.hpp"
 
 #include <omp.h>
@@ -13,6 +14,7 @@
 
 #include "solver/gravity.hpp"
 #include "solver/stress_update.hpp"
+#include "transfer/transfers.hpp"
 
 namespace skred {
 
@@ -61,47 +63,16 @@ template <int D> struct StressArrays {
   }
 };
 
-// The extent of the points, per axis the lowest and highest coordinate (for the box of
-// nodes the next step can reach, see set_box). Kept in registers in the hot loops.
-template <int D> struct Extent {
-  Vec<D> lo = Vec<D>::Constant(INFINITY), hi = Vec<D>::Constant(-INFINITY);
-  [[gnu::always_inline]] void add(const Vec<D>& x) {
-    lo = lo.cwiseMin(x);
-    hi = hi.cwiseMax(x);
-  }
-  void merge(const Extent& o) {
-    lo = lo.cwiseMin(o.lo);
-    hi = hi.cwiseMax(o.hi);
-  }
-};
-#pragma omp declare reduction(merge : Extent<2>, Extent<3> : omp_out.merge(omp_in))
-
-// Lowest and highest block base a thread scattered to (see ScatterBuffer).
-struct BaseSpan {
-  std::size_t lo = SIZE_MAX, hi = 0;
-  [[gnu::always_inline]] void add(std::size_t base) {
-    lo = std::min(lo, base);
-    hi = std::max(hi, base);
-  }
-};
-
-// Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
-// rest of the step, and its mass and momentum mapped to the nodes. False if the point's
-// stencil does not fit in the grid.
-template <int D, class K>
-[[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
-                                             const NodeStrides<D>& strides, const Vec<D>& x,
-                                             const Vec<D>& half0, const Mat<D>& F, double m,
-                                             const Vec<D>& v, typename K::Packed& store,
-                                             double* __restrict mass, Vec<D>* __restrict mom,
-                                             BaseSpan& span) {
-  typename K::Shape sh;
-  if (!kernel.shape(grid, x, half0, F, sh)) return false;
-  kernel.store(store, sh, F);
-  span.add(sh.base);
-  scatter(sh, strides, m, mass);
-  scatter(sh, strides, Vec<D>(m * v), mom);
-  return true;
+// Thesis eq. 2.56: v_p + dt sum N_ip a_i, blended with a PIC share alpha of
+// sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC.
+template <class Shape, int D>
+[[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
+                                                       const Vec<D>& v, double dt,
+                                                       const Vec<D>* __restrict acc,
+                                                       const Vec<D>* __restrict vnext, double alpha) {
+  Vec<D> vp = v + dt * gather(sh, strides, acc);
+  if (alpha > 0.0) vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnext);
+  return vp;
 }
 
 }  // namespace
@@ -110,289 +81,305 @@ template <int D>
 ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
                                   std::vector<Material> materials, SolverSettings<D> settings,
                                   int threads)
-    : grid_(grid), particles_(particles), materials_(std::move(materials)), settings_(settings),
-      threads_(std::max(1, threads)) {
+    : transfer_((grid.bspline_dofs = settings.interpolation == Interpolation::Bspline, grid),
+                threads),
+      particles_(particles), materials_(std::move(materials)), settings_(settings) {
   for (Material& m : materials_) m.prepare();
-  grid_.bspline_dofs = settings_.interpolation == Interpolation::Bspline;
-  boundaries_ = Boundaries<D>(grid_, settings_.boundaries);
+  const GridGeometry<D>& g = transfer_.grid();
+  boundaries_ = Boundaries<D>(g, settings_.boundaries);
   for (int d = 0; d < D; ++d) {
-    const double lo = grid_.origin[d], hi = grid_.origin[d] + grid_.h * grid_.cells[d];
+    const double lo = g.origin[d], hi = g.origin[d] + g.h * g.cells[d];
     const bool closed_lo = settings_.boundaries[2 * d].kind != BoundaryKind::Free;
     const bool closed_hi = settings_.boundaries[2 * d + 1].kind != BoundaryKind::Free;
     walls_.lo[d] = closed_lo ? lo : -INFINITY;
     walls_.hi[d] = closed_hi ? hi : INFINITY;
   }
-  const std::size_t n = grid_.node_count();
-  fields_.resize(n);
-  for (int d = 0; d < D; ++d) {  // the fields start zero: no box yet
-    box_.lo[d] = 0;
-    box_.hi[d] = -1;
-  }
-  buffers_.resize(static_cast<std::size_t>(threads_ - 1));
-  for (auto& b : buffers_) b.resize(n);
+  fields_.resize(g.node_count(), settings_.pic_fraction > 0.0,
+                 settings_.scheme != StressScheme::USF);
 }
 
 template <int D> StepStatus ExplicitSolver<D>::step() {
-  return dispatch([this](const auto& kernel) { return step_with(kernel); });
+  return dispatch([this](const auto& kernel) {
+    return with_scheme(settings_.scheme, [&](auto scheme) {
+      return step_with<std::decay_t<decltype(kernel)>, decltype(scheme)>(kernel);
+    });
+  });
 }
 
-// Thesis §4.4: update-stress-first, update-stress-last, or the averaged scheme, which
-// splits the stress update into two half steps around the momentum update. The mass and
-// momentum maps that start a step (eq. 2.53-2.54) are done by the last phase of the step
-// before, point by point as it moves the points, so a step reads the particles three times
-// (averaged, USL) or twice (USF) plus once.
-template <int D> template <class K> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
-  const double dt = settings_.dt;
+template <int D> StepStatus ExplicitSolver<D>::map_grid() {
+  status_ = StepStatus{};
+  dispatch([this](const auto& kernel) {
+    if (map_mass_momentum(kernel) && settings_.body_fields) map_body_fields(kernel);
+  });
+  grid_mapped_ = status_.ok;
+  mapped_points_ = particles_.size();
+  return status_;
+}
+
+// One step: the grid's mass and momentum of the step (mapped by the last step unless the
+// points changed since), then the scheme's phases (Thesis §4.4), which end by mapping the
+// next step's.
+template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
   if (!grid_mapped_ && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
-  nodal_velocity(fields_.velocity, /*clear=*/false);
-  switch (settings_.scheme) {
-    case StressScheme::USF:
-      update_stress_and_map_forces(kernel, dt);
-      if (!status_.ok) return status_;
-      update_grid();
-      clear_mass_momentum();
-      update_particle_velocity(kernel, /*remap=*/false, /*move=*/true);
-      break;
-    case StressScheme::USL:
-    case StressScheme::Averaged: {
-      const double dt_stress = settings_.scheme == StressScheme::USL ? dt : 0.5 * dt;
-      update_stress_and_map_forces(kernel, settings_.scheme == StressScheme::USL ? 0.0 : dt_stress);
-      if (!status_.ok) return status_;
-      update_grid();
-      update_particle_velocity(kernel, /*remap=*/true, /*move=*/false);
-      nodal_velocity(fields_.velocity, /*clear=*/true);  // v^{k+1} from the remap
-      update_stress_and_move(kernel, dt_stress);
-      break;
-    }
-  }
-  if (!status_.ok) return status_;  // the failing step is steps() + 1, starting at time()
+  if (settings_.body_fields) map_body_fields(kernel);
+  if (!Scheme::advance(*this, kernel)) return status_;  // the failing step is steps() + 1
   grid_mapped_ = true;
   mapped_points_ = particles_.size();
-  time_ += dt;
+  time_ += settings_.dt;
   ++steps_;
   return status_;
 }
 
-template <int D> template <class K> std::vector<typename K::Packed>& ExplicitSolver<D>::shapes() {
-  using Store = std::vector<typename K::Packed>;
-  if (!std::holds_alternative<Store>(shapes_)) shapes_.template emplace<Store>();
-  Store& store = std::get<Store>(shapes_);
-  if (store.size() != particles_.size()) {  // only when the number of points changes
-    reserve_huge(store, particles_.size());
-    store.resize(particles_.size());
-  }
-  return store;
-}
-
-// Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, m_i v_i = sum m_p v_p N_ip. The weighting
-// functions evaluated here are kept for the rest of the step.
+// Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, p_i = sum m_p v_p N_ip. The weighting functions
+// evaluated here are kept for the rest of the step.
 template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
-  const NodeStrides<D> strides(grid_);
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  typename K::Packed* __restrict shape = shapes<K>().data();
-  const Vec<D>* __restrict x = P.x.data();
-  const Vec<D>* __restrict v = P.v.data();
-  const Vec<D>* __restrict half0 = P.half0.data();
-  const Mat<D>* __restrict F = P.F.data();
-  const double* __restrict pmass = P.mass.data();
-  clear_mass_momentum();  // outside the box they are zero already
-  long bad = LONG_MAX;
-  Extent<D> extent;
-#pragma omp parallel num_threads(threads_) reduction(min : bad) reduction(merge : extent)
-  {
-    const int t = omp_get_thread_num();
-    double* __restrict mass = mass_target(t);
-    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
-    BaseSpan span;
-#pragma omp for schedule(static) nowait
-    for (long p = 0; p < n; ++p) {
-      if (!map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], v[p], shape[p], mass, mom, span))
-        bad = std::min(bad, p);
-      extent.add(x[p]);
-    }
-    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
-  }
-  set_box(extent.lo, extent.hi);
-  reduce_scatter(true, fields_.momentum);
-  if (bad != LONG_MAX) {
-    status_ = {false, bad, "material point left the grid"};
-    return false;
-  }
-  return true;
+  return timer_.time(Phase::MapMassMomentum, [&] {
+    clear_mass_momentum();  // outside the box they are zero already
+    const long bad = p2g_mass_momentum(transfer_, kernel, particles_, fields_.mass.data(),
+                                       fields_.momentum.data());
+    if (bad >= 0) status_ = {false, bad, "material point left the grid"};
+    return bad < 0;
+  });
 }
 
-// Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) when
-// dt_stress > 0, then the internal forces f_i = -sum sigma_p V_p grad N_ip (eq. 2.51).
+// Each body's m_i^b and p_i^b beside the centre-of-mass fields (Paper III §C.2.7), from the
+// weighting functions of the step.
+template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(const K& kernel) {
+  timer_.time(Phase::BodyFields, [&] {
+    const auto& P = particles_;
+    int count = 0;
+    for (std::size_t p = 0; p < P.size(); ++p) count = std::max(count, P.body[p] + 1);
+    if (bodies_.size() < static_cast<std::size_t>(count)) {
+      bodies_.resize(static_cast<std::size_t>(count));
+      for (auto& b : bodies_)
+        if (b.mass.empty()) {
+          b.mass.resize(fields_.size());
+          b.momentum.resize(fields_.size());
+        }
+    }
+    for (std::size_t b = 0; b < bodies_.size(); ++b) {
+      BodyFields<D>& f = bodies_[b];
+      for_box(grid(), body_box_, threads(), [&](std::size_t i) {
+        f.mass[i] = 0.0;
+        f.momentum[i].setZero();
+      });
+      p2g_body_mass_momentum(transfer_, kernel, P, static_cast<int>(b), f.mass.data(),
+                             f.momentum.data());
+    }
+    body_box_ = transfer_.box();
+  });
+}
+
+// Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) from v_i^k,
+// then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51).
 template <int D>
 template <class K>
-void ExplicitSolver<D>::update_stress_and_map_forces(const K& kernel, double dt_stress) {
-  const NodeStrides<D> strides(grid_);
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  const typename K::Packed* __restrict shape = shapes<K>().data();
-  const Vec<D>* __restrict x = P.x.data();
-  const Vec<D>* __restrict half0 = P.half0.data();
-  const StressArrays<D> S(P, materials_);
-  Vec<D>* const forces = fields_.accel.data();  // f_i^int, until the grid update
-  for_box([&](std::size_t i) { forces[i].setZero(); });
-  const Vec<D>* __restrict vel = fields_.velocity.data();
-  double work = 0.0, dissipation = 0.0;
-  long bad = LONG_MAX;
-#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(min : bad)
-  {
-    const int t = omp_get_thread_num();
-    Vec<D>* __restrict force = vec_target(t, fields_.accel);
-    BaseSpan span;
+bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
+  return timer_.time(Phase::StressUpdateForce, [&] {
+    const GridGeometry<D>& g = grid();
+    const NodeStrides<D> strides = transfer_.strides();
+    auto& P = particles_;
+    const long n = static_cast<long>(P.size());
+    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+    const StressArrays<D> S(P, materials_);
+    Vec<D>* const forces = fields_.internal_force.data();
+    transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
+    const Vec<D>* __restrict vel = fields_.velocity.data();
+    ScatterBuffers<D>& buffers = transfer_.scatter();
+    double work = 0.0, dissipation = 0.0;
+    long bad = LONG_MAX;
+#pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(min : bad)
+    {
+      const int t = omp_get_thread_num();
+      Vec<D>* __restrict force = buffers.vec_target(t, forces);
+      BaseSpan span;
 #pragma omp for schedule(static) nowait
-    for (long p = 0; p < n; ++p) {
-      typename K::Shape sh;
-      kernel.load(shape[p], grid_, x[p], half0[p], sh);
-      double volume;
-      if (dt_stress > 0.0) {
+      for (long p = 0; p < n; ++p) {
+        typename K::Shape sh;
+        kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
         const Mat<D> grad_v = gather_gradient(sh, strides, vel);
         const auto r = S.update(p, grad_v, dt_stress);
         work += r.strain_energy;
         dissipation += r.dissipation;
-        volume = r.volume;
         if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
-      } else {
-        volume = S.volume0[p] * S.F[p].determinant();
-      }
-      const Mat<D> sv = -volume * sym_block<D>(S.stress[p]);
-      scatter_gradient(sh, strides, sv, force);
-      span.add(sh.base);
-    }
-    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
-  }
-  reduce_scatter(false, fields_.accel);
-  energy_.strain_energy += work;
-  energy_.plastic_dissipation += dissipation;
-  if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
-}
-
-// Thesis eq. 2.56: v_p += dt sum N_ip a_i. With remap, the updated particle momenta are
-// mapped back to the grid (USL and averaged schemes, step 6 of §4.4). With move (USF), the
-// point is also moved (eq. 2.55 / Post eq. 31) and the next step's maps done (eq. 2.53-2.54).
-template <int D>
-template <class K>
-void ExplicitSolver<D>::update_particle_velocity(const K& kernel, bool remap, bool move) {
-  const NodeStrides<D> strides(grid_);
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  const double dt = settings_.dt;
-  typename K::Packed* __restrict shape = shapes<K>().data();
-  Vec<D>* __restrict x = P.x.data();
-  Vec<D>* __restrict v = P.v.data();
-  const Vec<D>* __restrict half0 = P.half0.data();
-  const double* __restrict pmass = P.mass.data();
-  const Mat<D>* __restrict F = P.F.data();
-  if (remap) for_box([&](std::size_t i) { fields_.momentum[i].setZero(); });
-  const Vec<D>* __restrict acc = fields_.accel.data();
-  const Vec<D>* __restrict vel = fields_.velocity_move.data();
-  const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
-  const double alpha = settings_.pic_fraction;
-  Vec<D> mdx = Vec<D>::Zero();
-  long bad = LONG_MAX;
-  Extent<D> extent;  // of the moved points
-#pragma omp parallel num_threads(threads_) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent)
-  {
-    const int t = omp_get_thread_num();
-    double* __restrict mass = mass_target(t);
-    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
-    BaseSpan span;
-#pragma omp for schedule(static) nowait
-    for (long p = 0; p < n; ++p) {
-      typename K::Shape sh;
-      kernel.load(shape[p], grid_, x[p], half0[p], sh);
-      Vec<D> vp = v[p] + dt * gather(sh, strides, acc);
-      if (alpha > 0.0) {  // PIC/FLIP blend: v_p <- (1 - alpha) v_p^FLIP + alpha sum N_ip v_i^{k+1}
-        vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnew);
-      }
-      v[p] = vp;
-      if (remap) {
-        const Vec<D> mv = pmass[p] * vp;
-        scatter(sh, strides, mv, mom);
+        const Mat<D> sv = -r.volume * sym_block<D>(S.stress[p]);
+        scatter_gradient(sh, strides, sv, force);
         span.add(sh.base);
       }
-      if (move) {
-        const Vec<D> vmove = gather(sh, strides, vel);
-        mdx += pmass[p] * dt * vmove;
-        if (!move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-            !map_point(kernel, grid_, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
-          bad = std::min(bad, p);
-        extent.add(x[p]);
-      }
+      buffers.touched(t, span);
     }
-    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
-  }
-  if (remap) reduce_scatter(false, fields_.momentum);
-  if (move) {
-    set_box(extent.lo, extent.hi);  // the next step's box, which the reduction must cover now
-    reduce_scatter(true, fields_.momentum);
-    energy_.gravity_work += gravity_now_.dot(mdx);
-    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
-  }
+    transfer_.reduce(nullptr, forces);
+    energy_.strain_energy += work;
+    energy_.plastic_dissipation += dissipation;
+    if (bad != LONG_MAX)
+      status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
+    return bad == LONG_MAX;
+  });
+}
+
+// f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51) from the stresses as they are (USL).
+template <int D> template <class K> void ExplicitSolver<D>::internal_force(const K& kernel) {
+  timer_.time(Phase::InternalForce, [&] {
+    Vec<D>* const forces = fields_.internal_force.data();
+    transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
+    p2g_internal_force(transfer_, kernel, particles_, forces);
+  });
+}
+
+// Thesis eq. 2.56: v_p^{k+1} = v_p + dt sum N_ip a_i (with a PIC share, if set), and the
+// updated particle momenta mapped back to the grid, p~_i = sum N_ip m_p v_p^{k+1} (the double
+// mapping of USL and the averaged scheme, step 6 of §4.4).
+template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
+  timer_.time(Phase::VelocityRemap, [&] {
+    const GridGeometry<D>& g = grid();
+    const NodeStrides<D> strides = transfer_.strides();
+    auto& P = particles_;
+    const long n = static_cast<long>(P.size());
+    const double dt = settings_.dt;
+    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+    Vec<D>* __restrict v = P.v.data();
+    const double* __restrict pmass = P.mass.data();
+    const Vec<D>* __restrict acc = fields_.acceleration.data();
+    const Vec<D>* __restrict vnext = fields_.velocity_next.data();
+    Vec<D>* const remap = fields_.momentum_remap.data();  // zero: see remap_velocity
+    const double alpha = settings_.pic_fraction;
+    ScatterBuffers<D>& buffers = transfer_.scatter();
+#pragma omp parallel num_threads(threads())
+    {
+      const int t = omp_get_thread_num();
+      Vec<D>* __restrict mom = buffers.vec_target(t, remap);
+      BaseSpan span;
+#pragma omp for schedule(static) nowait
+      for (long p = 0; p < n; ++p) {
+        typename K::Shape sh;
+        kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+        v[p] = vp;
+        scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
+        span.add(sh.base);
+      }
+      buffers.touched(t, span);
+    }
+    transfer_.reduce(nullptr, remap);
+  });
 }
 
 // Second half of USL / averaged (steps 7-8 of §4.4): strain increment from the remapped
-// velocities, stress update (with F^{k+1} = dF F, eq. 3.2), then the position update
-// x_p += dt sum N_ip (v_i + dt/2 a_i) (eq. 2.55, Post eq. 31, with the velocity_move of
-// update_grid), and the next step's maps at x^{k+1} (eq. 2.53-2.54).
+// velocities v~_i, stress update (with F^{k+1} = dF F, eq. 3.2), then the position update
+// x_p += dt sum N_ip (v_i^k + v_i^{k+1}) / 2 (eq. 2.55, Post eq. 31), and the next step's
+// maps at x^{k+1} (eq. 2.53-2.54).
 template <int D>
 template <class K>
-void ExplicitSolver<D>::update_stress_and_move(const K& kernel, double dt_stress) {
-  const NodeStrides<D> strides(grid_);
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  const double dt = settings_.dt;
-  typename K::Packed* __restrict shape = shapes<K>().data();
-  Vec<D>* __restrict x = P.x.data();
-  const Vec<D>* __restrict v = P.v.data();
-  const Vec<D>* __restrict half0 = P.half0.data();
-  const double* __restrict pmass = P.mass.data();
-  const StressArrays<D> S(P, materials_);
-  const Vec<D>* __restrict vel = fields_.velocity_move.data();
-  const Vec<D>* __restrict vnew = fields_.velocity.data();  // v^{k+1}
-  double work = 0.0, dissipation = 0.0;
-  Vec<D> mdx = Vec<D>::Zero();
-  long bad = LONG_MAX;
-  Extent<D> extent;  // of the moved points
-#pragma omp parallel num_threads(threads_) reduction(+ : work, dissipation) reduction(vsum : mdx) \
+bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_stress) {
+  return timer_.time(Phase::StressUpdateMoveMap, [&] {
+    const GridGeometry<D>& g = grid();
+    const NodeStrides<D> strides = transfer_.strides();
+    auto& P = particles_;
+    const long n = static_cast<long>(P.size());
+    const double dt = settings_.dt;
+    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+    Vec<D>* __restrict x = P.x.data();
+    const Vec<D>* __restrict v = P.v.data();
+    const Vec<D>* __restrict half0 = P.half0.data();
+    const double* __restrict pmass = P.mass.data();
+    const StressArrays<D> S(P, materials_);
+    const Vec<D>* __restrict vel = fields_.velocity_move.data();
+    const Vec<D>* __restrict vnew = fields_.velocity_remap.data();  // v~_i
+    ScatterBuffers<D>& buffers = transfer_.scatter();
+    double work = 0.0, dissipation = 0.0;
+    Vec<D> mdx = Vec<D>::Zero();
+    long bad = LONG_MAX;
+    Extent<D> extent;  // of the moved points
+#pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(vsum : mdx) \
     reduction(min : bad) reduction(merge : extent)
-  {
-    const int t = omp_get_thread_num();
-    double* __restrict mass = mass_target(t);
-    Vec<D>* __restrict mom = vec_target(t, fields_.momentum);
-    BaseSpan span;
+    {
+      const int t = omp_get_thread_num();
+      double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
+      Vec<D>* __restrict mom = buffers.vec_target(t, fields_.momentum.data());
+      BaseSpan span;
 #pragma omp for schedule(static) nowait
-    for (long p = 0; p < n; ++p) {
-      typename K::Shape sh;
-      kernel.load(shape[p], grid_, x[p], half0[p], sh);
-      const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
-      const Vec<D> vmove = gather(sh, strides, vel);
-      const auto r = S.update(p, grad_v, dt_stress);
-      work += r.strain_energy;
-      dissipation += r.dissipation;
-      mdx += pmass[p] * dt * vmove;
-      if (!sound_point(r, S.stress[p]) || !move_point<D>(grid_, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-          !map_point(kernel, grid_, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
-        bad = std::min(bad, p);
-      extent.add(x[p]);
+      for (long p = 0; p < n; ++p) {
+        typename K::Shape sh;
+        kernel.load(shape[p], g, x[p], half0[p], sh);
+        const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+        const Vec<D> vmove = gather(sh, strides, vel);
+        const auto r = S.update(p, grad_v, dt_stress);
+        work += r.strain_energy;
+        dissipation += r.dissipation;
+        mdx += pmass[p] * dt * vmove;
+        if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
+            !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
+          bad = std::min(bad, p);
+        extent.add(x[p]);
+      }
+      buffers.touched(t, span);
     }
-    if (t > 0) buffers_[t - 1].touched(span.lo, span.hi);
-  }
-  set_box(extent.lo, extent.hi);  // the next step's box, which the reduction must cover now
-  reduce_scatter(true, fields_.momentum);
-  energy_.strain_energy += work;
-  energy_.plastic_dissipation += dissipation;
-  energy_.gravity_work += gravity_now_.dot(mdx);
-  if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
+    transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
+    transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
+    energy_.strain_energy += work;
+    energy_.plastic_dissipation += dissipation;
+    energy_.gravity_work += gravity_now_.dot(mdx);
+    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
+    return bad == LONG_MAX;
+  });
+}
+
+// USF's last phase: v_p^{k+1} (eq. 2.56), x_p^{k+1} (eq. 2.55, Post eq. 31) and the next
+// step's maps at x^{k+1} (eq. 2.53-2.54).
+template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
+  return timer_.time(Phase::VelocityMoveMap, [&] {
+    clear_mass_momentum();  // m_i and p_i of this step are used up: the next step's map
+    const GridGeometry<D>& g = grid();
+    const NodeStrides<D> strides = transfer_.strides();
+    auto& P = particles_;
+    const long n = static_cast<long>(P.size());
+    const double dt = settings_.dt;
+    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+    Vec<D>* __restrict x = P.x.data();
+    Vec<D>* __restrict v = P.v.data();
+    const Vec<D>* __restrict half0 = P.half0.data();
+    const double* __restrict pmass = P.mass.data();
+    const Mat<D>* __restrict F = P.F.data();
+    const Vec<D>* __restrict acc = fields_.acceleration.data();
+    const Vec<D>* __restrict vel = fields_.velocity_move.data();
+    const Vec<D>* __restrict vnext = fields_.velocity_next.data();
+    const double alpha = settings_.pic_fraction;
+    ScatterBuffers<D>& buffers = transfer_.scatter();
+    Vec<D> mdx = Vec<D>::Zero();
+    long bad = LONG_MAX;
+    Extent<D> extent;  // of the moved points
+#pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
+    reduction(merge : extent)
+    {
+      const int t = omp_get_thread_num();
+      double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
+      Vec<D>* __restrict mom = buffers.vec_target(t, fields_.momentum.data());
+      BaseSpan span;
+#pragma omp for schedule(static) nowait
+      for (long p = 0; p < n; ++p) {
+        typename K::Shape sh;
+        kernel.load(shape[p], g, x[p], half0[p], sh);
+        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+        v[p] = vp;
+        const Vec<D> vmove = gather(sh, strides, vel);
+        mdx += pmass[p] * dt * vmove;
+        if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
+            !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
+          bad = std::min(bad, p);
+        extent.add(x[p]);
+      }
+      buffers.touched(t, span);
+    }
+    transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
+    transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
+    energy_.gravity_work += gravity_now_.dot(mdx);
+    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
+    return bad == LONG_MAX;
+  });
 }
 
 template class ExplicitSolver<2>;

@@ -1,9 +1,7 @@
-// Nodal fields of the background grid, stored as structure-of-arrays, and the per-thread
-// scatter buffers that make particle-to-grid transfers lock-free.
+// Nodal fields of the background grid, stored as structure-of-arrays. Each array holds one
+// quantity for the whole step, named as in the seeds (subscript i: node).
 #pragma once
-#include <algorithm>
 #include <cstddef>
-#include <cstdint>
 #include <vector>
 
 #include "core/huge_pages.hpp"
@@ -12,43 +10,43 @@
 namespace skred {
 
 template <int D> struct GridFields {
-  GridArray<double> mass;        // m_i (Thesis eq. 2.53)
-  GridArray<Vec<D>> momentum;    // m_i v_i (eq. 2.54), reused for the remap of USL/averaged
-  // v_i^k after the velocity boundary conditions; once the grid update has used it, the
-  // same storage holds v_i^{k+1} (for the PIC blend, and remapped from the updated points in
-  // the USL and averaged schemes).
-  GridArray<Vec<D>> velocity;
-  // First the internal force f_i^int (eq. 2.51); the grid update turns it in place into the
-  // acceleration (f_i + m_i g) / m_i and, after the boundary conditions,
-  // (v_i^{k+1} - m_i v_i / m_i) / dt: the velocity change handed to the particles (FLIP
-  // increment, eq. 2.56).
-  GridArray<Vec<D>> accel;
-  GridArray<Vec<D>> velocity_move; // (v_i^k + v_i^{k+1}) / 2: moves the particles (eq. 2.55)
+  GridArray<double> mass;            // m_i = sum N_ip m_p (Thesis eq. 2.53)
+  GridArray<Vec<D>> momentum;        // p_i = sum N_ip m_p v_p (eq. 2.54)
+  GridArray<Vec<D>> velocity;        // v_i^k = p_i / m_i under the velocity conditions (eq. 2.23)
+  GridArray<Vec<D>> internal_force;  // f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51)
+  // a_i = (f_i^int + f_i^ext) / m_i (eq. 2.49, 2.52), with f_i^ext = m_i g formed in the grid
+  // update; after the boundary conditions (v_i^{k+1} - p_i / m_i) / dt, the velocity change
+  // handed to the particles (eq. 2.56), so that they obey the walls too.
+  GridArray<Vec<D>> acceleration;
+  GridArray<Vec<D>> velocity_move;   // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
+  // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update
+  // (allocated only when the scheme uses it).
+  GridArray<Vec<D>> velocity_next;
+  // The double mapping of USL and the averaged scheme (Thesis §4.4 step 6): the updated
+  // particle momenta mapped back, p~_i = sum N_ip m_p v_p^{k+1}, and v~_i = p~_i / m_i, which
+  // the second stress update reads (allocated only for those schemes).
+  GridArray<Vec<D>> momentum_remap;
+  GridArray<Vec<D>> velocity_remap;
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
-  void resize(std::size_t n) {
-    for (auto* f : {&momentum, &velocity, &accel, &velocity_move}) f->resize(n);
+  void resize(std::size_t n, bool pic, bool remap) {
+    for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move})
+      f->resize(n);
     mass.resize(n);
+    if (pic) velocity_next.resize(n);
+    if (remap) {
+      momentum_remap.resize(n);
+      velocity_remap.resize(n);
+    }
   }
   std::size_t size() const { return mass.size(); }
 };
 
-// What one thread scatters into. Thread 0 writes straight into the grid; threads 1..T-1
-// write into their own buffers, which the reduction adds to the grid and clears again.
-template <int D> struct ScatterBuffer {
-  GridArray<double> mass;
-  GridArray<Vec<D>> vec;  // momentum or force, depending on the pass
-  // Lowest and highest block base written since the last reduction: the reduction covers
-  // only this span (with particles in spatial order, a thread's own part of the grid).
-  std::size_t lo = SIZE_MAX, hi = 0;
-  void touched(std::size_t base_lo, std::size_t base_hi) {
-    lo = std::min(lo, base_lo);
-    hi = std::max(hi, base_hi);
-  }
-  void resize(std::size_t n) {  // n zero nodes; call once, on an empty buffer
-    mass.resize(n);
-    vec.resize(n);
-  }
+// The mass and momentum of one body (continuum) on the grid, beside the centre-of-mass
+// fields above: what multi-continuum contact (Paper III §C.2.7) works on.
+template <int D> struct BodyFields {
+  GridArray<double> mass;      // m_i^b
+  GridArray<Vec<D>> momentum;  // p_i^b
 };
 
 }  // namespace skred

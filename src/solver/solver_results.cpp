@@ -14,7 +14,7 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
   long yielding = 0;
   Vec<D> mom = Vec<D>::Zero();
-#pragma omp parallel for num_threads(threads_) reduction(+ : mass, ke, speed_mass, yielding) \
+#pragma omp parallel for num_threads(threads()) reduction(+ : mass, ke, speed_mass, yielding) \
     reduction(max : vmax) reduction(vsum : mom)
   for (long p = 0; p < n; ++p) {
     const double m = P.mass[p], s = P.v[p].norm();
@@ -43,7 +43,7 @@ template <int D> void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out)
 template <int D>
 template <class K>
 void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>& out) {
-  const NodeStrides<D> strides(grid_);
+  const NodeStrides<D> strides(grid());
   const auto& P = particles_;
   const long n = static_cast<long>(P.size());
   node_stress_.assign(fields_.size(), Sym3::Zero());
@@ -52,7 +52,7 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
   std::vector<double>& mass = node_mass_;
   for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
     typename K::Shape sh;
-    if (!kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh)) continue;
+    if (!kernel.shape(grid(), P.x[p], P.half0[p], P.F[p], sh)) continue;
     const double m = P.mass[p];
     for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
       mass[i] += w * m;
@@ -66,11 +66,11 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
       node_velocity_[i] /= mass[i];
     }
   out.resize(P.size());
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(threads()) schedule(static)
   for (long p = 0; p < n; ++p) {
     typename K::Shape sh;
     Sym3 acc = Sym3::Zero();
-    if (kernel.shape(grid_, P.x[p], P.half0[p], P.F[p], sh))
+    if (kernel.shape(grid(), P.x[p], P.half0[p], P.F[p], sh))
       for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) { acc += w * node_stress_[i]; });
     out[p] = acc;
   }

@@ -1,0 +1,154 @@
+// Particle-to-grid (p2g) and grid-to-particle (g2p) maps over (particle arrays, stored
+// weights, grid arrays), parallel and lock-free. The explicit phases fuse some of them point
+// by point (map_point below); the whole-array forms serve everything else (the start of a
+// run, per-body fields for contact, an implicit solver's double mapping).
+#pragma once
+#include <omp.h>
+
+#include <climits>
+#include <cstdint>
+
+#include "core/particles.hpp"
+#include "transfer/transfer.hpp"
+
+namespace skred {
+
+// Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
+// rest of the step, and its mass and momentum mapped to the nodes. False if the point's
+// stencil does not fit in the grid.
+template <int D, class K>
+[[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
+                                             const NodeStrides<D>& strides, const Vec<D>& x,
+                                             const Vec<D>& half0, const Mat<D>& F, double m,
+                                             const Vec<D>& v, typename K::Packed& store,
+                                             double* __restrict mass, Vec<D>* __restrict mom,
+                                             BaseSpan& span) {
+  typename K::Shape sh;
+  if (!kernel.shape(grid, x, half0, F, sh)) return false;
+  kernel.store(store, sh, F);
+  span.add(sh.base);
+  scatter(sh, strides, m, mass);
+  scatter(sh, strides, Vec<D>(m * v), mom);
+  return true;
+}
+
+// m_i = sum_p N_ip m_p and p_i = sum_p N_ip m_p v_p (eq. 2.53-2.54) into zeroed arrays m, p,
+// evaluating and storing every point's weighting functions and setting the box from the
+// points' extent. Returns the first point whose stencil leaves the grid, or -1.
+template <int D, class K>
+long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, double* m,
+                       Vec<D>* p) {
+  const long n = static_cast<long>(P.size());
+  const GridGeometry<D>& grid = T.grid();
+  const NodeStrides<D> strides = T.strides();
+  typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
+  const Vec<D>* __restrict x = P.x.data();
+  const Vec<D>* __restrict v = P.v.data();
+  const Vec<D>* __restrict half0 = P.half0.data();
+  const Mat<D>* __restrict F = P.F.data();
+  const double* __restrict pmass = P.mass.data();
+  long bad = LONG_MAX;
+  Extent<D> extent;
+  ScatterBuffers<D>& S = T.scatter();
+#pragma omp parallel num_threads(T.threads()) reduction(min : bad) reduction(merge : extent)
+  {
+    const int t = omp_get_thread_num();
+    double* __restrict mass = S.mass_target(t, m);
+    Vec<D>* __restrict mom = S.vec_target(t, p);
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
+    for (long q = 0; q < n; ++q) {
+      if (!map_point(kernel, grid, strides, x[q], half0[q], F[q], pmass[q], v[q], shape[q], mass,
+                     mom, span))
+        bad = std::min(bad, q);
+      extent.add(x[q]);
+    }
+    S.touched(t, span);
+  }
+  T.set_box(extent);
+  T.reduce(m, p);
+  return bad == LONG_MAX ? -1 : bad;
+}
+
+// The same maps restricted to the points of one body (continuum, Paper III §C.2.7), from the
+// weights stored by the last p2g_mass_momentum: m_i^b and p_i^b into zeroed arrays.
+template <int D, class K>
+void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, int body,
+                            double* m, Vec<D>* p) {
+  const long n = static_cast<long>(P.size());
+  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
+  ScatterBuffers<D>& S = T.scatter();
+#pragma omp parallel num_threads(T.threads())
+  {
+    const int t = omp_get_thread_num();
+    double* __restrict mass = S.mass_target(t, m);
+    Vec<D>* __restrict mom = S.vec_target(t, p);
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
+    for (long q = 0; q < n; ++q) {
+      if (P.body[q] != body) continue;
+      typename K::Shape sh;
+      kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+      span.add(sh.base);
+      scatter(sh, T.strides(), P.mass[q], mass);
+      scatter(sh, T.strides(), Vec<D>(P.mass[q] * P.v[q]), mom);
+    }
+    S.touched(t, span);
+  }
+  T.reduce(m, p);
+}
+
+// f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses, into
+// a zeroed array f.
+template <int D, class K>
+void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f) {
+  const long n = static_cast<long>(P.size());
+  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
+  ScatterBuffers<D>& S = T.scatter();
+#pragma omp parallel num_threads(T.threads())
+  {
+    const int t = omp_get_thread_num();
+    Vec<D>* __restrict force = S.vec_target(t, f);
+    BaseSpan span;
+#pragma omp for schedule(static) nowait
+    for (long q = 0; q < n; ++q) {
+      typename K::Shape sh;
+      kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+      const Mat<D> sv = -P.volume(static_cast<std::size_t>(q)) * sym_block<D>(P.stress[q]);
+      scatter_gradient(sh, T.strides(), sv, force);
+      span.add(sh.base);
+    }
+    S.touched(t, span);
+  }
+  T.reduce(nullptr, f);
+}
+
+// out_p = sum_i N_ip v_i (eq. 2.56 with a nodal field v).
+template <int D, class K>
+void g2p_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v,
+                  Vec<D>* out) {
+  const long n = static_cast<long>(P.size());
+  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
+#pragma omp parallel for num_threads(T.threads()) schedule(static)
+  for (long q = 0; q < n; ++q) {
+    typename K::Shape sh;
+    kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+    out[q] = gather(sh, T.strides(), v);
+  }
+}
+
+// out_p = sum_i v_i (x) grad N_ip: the velocity gradient of eq. 2.20.
+template <int D, class K>
+void g2p_velocity_gradient(Transfer<D>& T, const K& kernel, const Particles<D>& P,
+                           const Vec<D>* v, Mat<D>* out) {
+  const long n = static_cast<long>(P.size());
+  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
+#pragma omp parallel for num_threads(T.threads()) schedule(static)
+  for (long q = 0; q < n; ++q) {
+    typename K::Shape sh;
+    kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+    out[q] = gather_gradient(sh, T.strides(), v);
+  }
+}
+
+}  // namespace skred
