@@ -165,6 +165,11 @@ int main(int argc, char** argv) {
                  r.median / 1e6 / bo.threads);
       fmt::print("peak memory: {:.1f} MB, {:.0f} bytes per particle\n", r.peak_rss_bytes / 1e6,
                  r.peak_rss_bytes / r.particles);
+      double total = 0.0;
+      for (const auto& [name, s] : r.phase_seconds) total += s;
+      fmt::print("time per phase (all repeats):\n");
+      for (const auto& [name, s] : r.phase_seconds)
+        fmt::print("  {:<24} {:8.3f} s  {:5.1f} %\n", name, s, 100.0 * s / total);
     }
   } catch (const skred::ScenarioError& e) {
     fmt::print(stderr, "skred: {}\n", e.what());

@@ -96,6 +96,13 @@ std::string stages_json(const std::vector<StageMeasures>& stages) {
   return stages.empty() ? out : out + "\n  ";
 }
 
+std::string phases_json(const std::vector<std::pair<std::string, double>>& phases) {
+  std::string out;
+  for (const auto& [name, seconds] : phases)
+    out += fmt::format("{}\n    {}: {}", out.empty() ? "" : ",", json_string(name), json_number(seconds));
+  return phases.empty() ? out : out + "\n  ";
+}
+
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
@@ -115,12 +122,14 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"interpolation\": {},\n"
       "  \"scheme\": {},\n"
       "  \"time_step\": {},\n"
+      "  \"phase_seconds\": {{{}}},\n"
       "  \"stages\": [{}]\n"
       "}}\n",
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
       json_number(s.end_time), s.particles, s.cells, json_number(s.wall_seconds),
       json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
-      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), stages_json(s.stages));
+      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), phases_json(s.phase_seconds),
+      stages_json(s.stages));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace skred {
@@ -46,10 +47,13 @@ struct Summary {
   std::string scheme;
   double time_step;
   std::vector<StageMeasures> stages = {};
+  // Wall seconds spent in each phase of the time step over the run, in step order.
+  std::vector<std::pair<std::string, double>> phase_seconds = {};
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an
-// array of objects keyed like StageMeasures, stop_time null when unset) atomically.
+// array of objects keyed like StageMeasures, stop_time null when unset; "phase_seconds" an
+// object of phase name to seconds) atomically.
 // Strings are escaped (quotes, backslashes, control characters; invalid UTF-8 bytes become
 // U+FFFD); real numbers are written as the shortest decimal that reads back to the same
 // double, and as null when not finite. Throws std::runtime_error on I/O failure.

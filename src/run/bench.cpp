@@ -37,6 +37,19 @@ std::vector<double> sorted(std::vector<double> v) {
   return v;
 }
 
+// Adds the phase times of the timed steps (the timer's `after` less `before`) to res.
+void add_phases(BenchResult& res, const PhaseTimer& before, const PhaseTimer& after) {
+  for (std::size_t k = 0; k < PhaseTimer::kCount; ++k) {
+    const Phase p = static_cast<Phase>(k);
+    const double s = after.seconds(p) - before.seconds(p);
+    if (s <= 0.0) continue;
+    auto it = std::find_if(res.phase_seconds.begin(), res.phase_seconds.end(),
+                           [&](const auto& e) { return e.first == phase_name(p); });
+    if (it == res.phase_seconds.end()) res.phase_seconds.emplace_back(phase_name(p), s);
+    else it->second += s;
+  }
+}
+
 // The Mohr-Coulomb column collapse, built through the scenario parser like a user's file.
 BenchResult run_column(const BenchOptions& opt) {
   const double h = 0.05 / opt.refine;
@@ -81,6 +94,7 @@ end_time = 1.0
     const GridGeometry<2> grid = scenario_grid(s);
     ExplicitSolver<2> solver(grid, P, stage_materials(s, s.stages[0]), solver_settings(s), opt.threads);
     const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
+    const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)
       if (!solver.step().ok) {
@@ -94,6 +108,7 @@ end_time = 1.0
     res.runout = runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]),
                            s.cell_size, 0.5 * s.cell_size).x_max;
     res.yielding = solver.totals().yielding;
+    add_phases(res, before_phases, solver.phase_times());
   }
   return res;
 }
@@ -138,12 +153,14 @@ BenchResult run_bench(const BenchOptions& opt) {
                      BoundarySide{BoundaryKind::Fixed, 0}, BoundarySide{BoundaryKind::Free, 0}};
     ExplicitSolver<2> solver(grid, P, {soil}, st, opt.threads);
     solver.step();  // warm-up (first touch of the grid and buffers)
+    const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int s = 0; s < opt.steps; ++s) solver.step();
     const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     res.particles = static_cast<long>(P.size());
     res.nodes = static_cast<long>(grid.node_count());
     res.updates_per_second.push_back(static_cast<double>(P.size()) * opt.steps / sec);
+    add_phases(res, before_phases, solver.phase_times());
   }
   res.median = sorted(res.updates_per_second)[res.updates_per_second.size() / 2];
   res.peak_rss_bytes = peak_rss_bytes();

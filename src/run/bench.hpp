@@ -7,6 +7,7 @@
 //    nu = 0.3, rho = 1800, K0 = nu/(1 - nu), roller sides, fixed base, USF, dt = 0.1 ms.
 #pragma once
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "scenario/scenario.hpp"
@@ -34,6 +35,8 @@ struct BenchResult {
   double runout = 0.0;  // column: front advance after the timed steps [m]
   long yielding = 0;    // column: points whose last stress update was plastic
   std::string status = "completed";
+  // Seconds per phase of the time step over the timed steps of all repeats (in step order).
+  std::vector<std::pair<std::string, double>> phase_seconds;
 };
 
 BenchResult run_bench(const BenchOptions& opt);

@@ -261,6 +261,7 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   sum.scheme = to_string(s.scheme);
   sum.time_step = dt;
   sum.stages = measures;
+  sum.phase_seconds = solver.phase_times().report();
   write_summary_json(outdir / "summary.json", sum);
   res.stages = std::move(measures);
   return res;

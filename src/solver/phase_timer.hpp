@@ -5,6 +5,9 @@
 
 #include <array>
 #include <cstddef>
+#include <string>
+#include <utility>
+#include <vector>
 
 namespace skred {
 
@@ -46,6 +49,13 @@ class PhaseTimer {
   }
   double seconds(Phase p) const { return seconds_[static_cast<std::size_t>(p)]; }
   void reset() { seconds_.fill(0.0); }
+  // (name, seconds) of every phase that ran, in step order.
+  std::vector<std::pair<std::string, double>> report() const {
+    std::vector<std::pair<std::string, double>> r;
+    for (std::size_t k = 0; k < kCount; ++k)
+      if (seconds_[k] > 0.0) r.emplace_back(phase_name(static_cast<Phase>(k)), seconds_[k]);
+    return r;
+  }
 
  private:
   std::array<double, kCount> seconds_{};
