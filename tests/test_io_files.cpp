@@ -176,6 +176,7 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
   Summary s{"error", "bad \"value\" in C:\\path\nline two\ttab \x01 caf\xc3\xa9 \xff end",
             1234, 0.5, 2.0, 4000, 1600, std::numeric_limits<double>::quiet_NaN(),
             std::numeric_limits<double>::infinity(), 8, "slope \"A\".toml", "gimp", "usl", 1e-5};
+  s.phase_seconds = {{"stress_update_force", 0.25}, {"grid_update", 1.5}};
   const fs::path file = dir / "summary.json";
   write_summary_json(file, s);
   const auto [status, out] = run_python("read_json.py", {file.string()});
@@ -200,6 +201,7 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"interpolation", "\"gimp\""},
       {"scheme", "\"usl\""},
       {"time_step", "1e-05"},
+      {"phase_seconds", R"({"stress_update_force": 0.25, "grid_update": 1.5})"},
       {"stages", "[]"}};
   EXPECT_EQ(got, expected);
   EXPECT_EQ(json_string("\x7f"), "\"\x7f\"");
