@@ -133,7 +133,16 @@ template <int D, int S, class T>
       out += sh.w[1][b] * row;
     }
   } else {
-    for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { out += w * f[i]; });
+    for (int c = 0; c < S; ++c) {
+      T plane = T::Zero();
+      for (int b = 0; b < S; ++b) {
+        const T* r = f + sh.base + b * st.s[1] + c * st.s[2];
+        T row = sh.w[0][0] * r[0];
+        for (int a = 1; a < S; ++a) row += sh.w[0][a] * r[a];
+        plane += sh.w[1][b] * row;
+      }
+      out += sh.w[2][c] * plane;
+    }
   }
   return out;
 }
@@ -155,9 +164,23 @@ template <int D, int S>
       out.col(1) += sh.g[1][b] * rw;
     }
   } else {
-    for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) {
-      out.noalias() += v[i] * g.transpose();
-    });
+    for (int c = 0; c < S; ++c) {
+      Vec<3> pg = Vec<3>::Zero(), pw = Vec<3>::Zero(), pz = Vec<3>::Zero();
+      for (int b = 0; b < S; ++b) {
+        const Vec<3>* r = v + sh.base + b * st.s[1] + c * st.s[2];
+        Vec<3> rg = sh.g[0][0] * r[0], rw = sh.w[0][0] * r[0];
+        for (int a = 1; a < S; ++a) {
+          rg += sh.g[0][a] * r[a];
+          rw += sh.w[0][a] * r[a];
+        }
+        pg += sh.w[1][b] * rg;
+        pw += sh.g[1][b] * rw;
+        pz += sh.w[1][b] * rw;
+      }
+      out.col(0) += sh.w[2][c] * pg;
+      out.col(1) += sh.w[2][c] * pw;
+      out.col(2) += sh.g[2][c] * pz;
+    }
   }
   return out;
 }
@@ -173,7 +196,12 @@ template <int D, int S, class T>
       for (int a = 0; a < S; ++a) r[a] += sh.w[0][a] * xb;
     }
   } else {
-    for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        T* r = f + sh.base + b * st.s[1] + c * st.s[2];
+        const T xb = (sh.w[1][b] * sh.w[2][c]) * x;
+        for (int a = 0; a < S; ++a) r[a] += sh.w[0][a] * xb;
+      }
   }
 }
 template <int D, int S>
@@ -193,7 +221,13 @@ template <int D, int S>
       for (int a = 0; a < S; ++a) r[a] += sh.g[0][a] * c0 + sh.w[0][a] * c1;
     }
   } else {
-    for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) { f[i].noalias() += A * g; });
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        Vec<3>* r = f + sh.base + b * st.s[1] + c * st.s[2];
+        const Vec<3> c0 = (sh.w[1][b] * sh.w[2][c]) * A.col(0);
+        const Vec<3> c1 = (sh.g[1][b] * sh.w[2][c]) * A.col(1) + (sh.w[1][b] * sh.g[2][c]) * A.col(2);
+        for (int a = 0; a < S; ++a) r[a] += sh.g[0][a] * c0 + sh.w[0][a] * c1;
+      }
   }
 }
 
