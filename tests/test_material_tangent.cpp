@@ -155,7 +155,8 @@ std::map<MohrCoulombRegion, std::pair<int, double>> sweep_mc(const Material& m, 
   int skipped = 0;
   for (int i = 0; i < n; ++i) {
     const bool plane = i % 2 == 0;
-    const Step s = step_to(m, Vec3(u(rng), u(rng), u(rng)), random_rotation(rng, plane), rng, plane);
+    const Vec3 trial(u(rng), u(rng), u(rng));
+    const Step s = step_to(m, trial, random_rotation(rng, plane), rng, plane);
     const FdCheck c = fd_check(m, law_of(m, s.s0, PointState{}), s.deps);
     if (!c.same_region) {
       ++skipped;
@@ -195,8 +196,9 @@ TEST(MaterialTangent, ElasticInsideTheYieldSurfaceGivesC) {
   // Trials well inside the surface: the plastic laws are elastic and return exactly C.
   const Sym3 s0 = (Sym3() << -60, -80, -70, 5, 2, -3).finished() * kPa;
   const Sym3 deps = (Sym3() << 1e-4, -1e-4, 0, 5e-5, 0, 0).finished();
-  for (const Material& m : {mohr_coulomb(30 * deg, 10 * kPa, 10 * deg),
-                            mohr_coulomb(0.0, 50 * kPa, 0.0), von_mises(50 * kPa, 10 * kPa, -1e5)}) {
+  for (const Material& m :
+       {mohr_coulomb(30 * deg, 10 * kPa, 10 * deg), mohr_coulomb(0.0, 50 * kPa, 0.0),
+        von_mises(50 * kPa, 10 * kPa, -1e5)}) {
     const FdCheck c = fd_check(m, law_of(m, s0, PointState{}), deps);
     EXPECT_EQ(c.region, 0);  // MohrCoulombRegion::Elastic, VonMisesBranch::Elastic
     EXPECT_TRUE(c.same_region);
@@ -210,7 +212,7 @@ TEST(MaterialTangent, MohrCoulombEveryRegionMatchesFiniteDifferences) {
   // Without the cut-off: plane, both edges and the apex (c cot phi = 17.3 kPa).
   std::printf("Mohr-Coulomb phi 30, psi 10, c 10 kPa:\n");
   const Material m = mohr_coulomb(30 * deg, 10 * kPa, 10 * deg);
-  const auto a = sweep_mc(m, -200, 40, 2000, 1);
+  const auto a = sweep_mc(m, -200, 60, 2000, 1);
   for (R r : {R::Elastic, R::Plane, R::CompressionEdge, R::ExtensionEdge, R::Apex})
     EXPECT_GE(a.count(r) ? a.at(r).first : 0, 5) << region_name(r);
   // With a tension cut-off t = 5 kPa below the apex: the Rankine plane, edge and apex, the
@@ -241,6 +243,9 @@ TEST(MaterialTangent, MohrCoulombHandPickedRegionsAreAssertedAndPlastic) {
       {&m, {-150, -147, 0}, R::ExtensionEdge}, {&m, {30, 35, 40}, R::Apex},
       {&mt, {-10, -5, 8}, R::Tension},        {&mt, {-10, 7, 8}, R::TensionEdge},
       {&mt, {10, 12, 14}, R::TensionApex},
+      // Equal trial principal stresses (the spin factors' limit): on the edge and apex lines.
+      {&m, {-150, -150, 0}, R::ExtensionEdge}, {&m, {-150, 0, 0}, R::CompressionEdge},
+      {&m, {30, 30, 30}, R::Apex},
   };
   std::mt19937 rng(7);
   for (const Case& k : cases)

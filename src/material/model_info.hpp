@@ -10,7 +10,10 @@
 namespace skred {
 
 // One declared parameter. `min`/`max` bound the allowed values; *_open says whether the bound
-// itself is excluded. `required` parameters have no default (default_value is NaN then).
+// itself is excluded. `required` parameters have no default (default_value is NaN then; an
+// optional one without a default is absent unless given). `example` is a typical valid value
+// (for documentation and tests). Bounds that depend on another parameter (dilation <= friction,
+// residual <= peak cohesion, e_max > e0) are stated in the doc string, the fixed part in min/max.
 struct ParamSpec {
   const char* key;
   const char* unit;
@@ -18,6 +21,7 @@ struct ParamSpec {
   double min, max;
   bool min_open, max_open;
   bool required;
+  double example;
   const char* doc;
 };
 

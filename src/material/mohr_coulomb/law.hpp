@@ -12,7 +12,8 @@
 // plane/edge (two planes), and J = 0 at the apex and every vertex (the returned point is
 // fixed). Rotated back with the spin of the principal directions, in the trial's principal
 // frame
-//   d sigma_ii = sum_j J_ij d sigma^tr_jj,  d sigma_ij = (s_i - s_j)/(lambda_i - lambda_j) d sigma^tr_ij,
+//   d sigma_ii = sum_j J_ij d sigma^tr_jj,
+//   d sigma_ij = (s_i - s_j)/(lambda_i - lambda_j) d sigma^tr_ij  (i != j),
 // (the limit (J_ii - J_ij - J_ji + J_jj)/2 for lambda_i = lambda_j), and d sigma^tr = C d_eps.
 //
 // Dilation cut-off (Paper III §C.3.2): psi switches to 0 when the updated volume strain reaches
