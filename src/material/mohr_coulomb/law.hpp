@@ -25,8 +25,7 @@
 
 namespace skred {
 
-// J = d s / d lambda of the principal return in `region` (see above); 0 for Elastic is not
-// meaningful, the identity is returned there.
+// J = d s / d lambda of the principal return in `region` (see above); the identity for Elastic.
 Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulombConstants& k,
                                     double sin_psi, MohrCoulombRegion region);
 
