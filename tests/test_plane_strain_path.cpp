@@ -7,13 +7,15 @@
 // random state variables, random velocity gradient x dt. Compared: stress (and zero
 // out-of-plane shear in 3D), every state field, F, Fe (the in-plane block; the 3D Fe also
 // tracks 1 - d_eps_p_zz out of plane, which plane strain does not store), strain energy,
-// dissipation and volume.
+// dissipation and volume. And the const law (material/law.hpp) gives what the in-place update
+// gives.
 #include <gtest/gtest.h>
 
 #include <cstdio>
 #include <numbers>
 #include <random>
 
+#include "material/law.hpp"
 #include "solver/stress_update.hpp"
 
 using namespace skred;
@@ -141,6 +143,39 @@ TEST(PlaneStrainPath, HandUnrolledEqualsGeneral3DUpdateOnRandomStates) {
                 worst_work);
     if (n.m.plastic()) {
       EXPECT_GE(plastic, count / 5) << n.name << ": too few plastic steps";
+    }
+  }
+}
+
+// The const law (material/law.hpp) runs the in-place update the solver uses on copies: the same
+// stress, state and plastic strain, bit for bit, on random 3D and plane states within and
+// beyond yield, for every model.
+TEST(PlaneStrainPath, ConstLawEqualsTheInPlaceUpdate) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const Named& n : models()) {
+    for (int i = 0; i < 500; ++i) {
+      const bool plane = i % 2 == 0;
+      Sym3 s0, deps;
+      for (int k = 0; k < 6; ++k) {
+        const bool out = plane && k >= 4;
+        s0[k] = out ? 0.0 : (k < 3 ? 100 * kPa * u(rng) - 50 * kPa : 30 * kPa * u(rng));
+        deps[k] = out ? 0.0 : 5e-3 * u(rng);
+      }
+      PointState st;
+      st.plastic_shear_strain = 0.02 * (1 + u(rng));
+      st.volume_strain = 0.0124 + 0.01 * u(rng);
+      const LawResult r = evaluate(n.m, s0, deps, st, i % 4 < 2);
+      Sym3 s = s0;
+      PointState st1 = st;
+      const Sym3 dp = update_stress(n.m, s, deps, st1);
+      EXPECT_EQ(r.stress, s) << n.name << " sample " << i;
+      EXPECT_EQ(r.plastic_strain, dp) << n.name << " sample " << i;
+      EXPECT_EQ(r.state.plastic_shear_strain, st1.plastic_shear_strain);
+      EXPECT_EQ(r.state.plastic_volume_strain, st1.plastic_volume_strain);
+      EXPECT_EQ(r.state.volume_strain, st1.volume_strain);
+      EXPECT_EQ(r.state.yielding, st1.yielding);
+      EXPECT_EQ(r.has_tangent, i % 4 < 2);
     }
   }
 }

@@ -9,7 +9,9 @@
 // So d_sigma = tangent * d_deps for Sym3 increments, and the elastic tangent has 2G (not G) on
 // the shear diagonal. For engineering shear strains (gamma = 2 eps, the B-matrix convention of
 // Acosta eq. 5 and 11) use tangent * diag(1, 1, 1, 1/2, 1/2, 1/2); the finite-difference tests
-// (tests/test_material_tangent.cpp) perturb deps[j] in exactly the convention above.
+// (tests/test_material_tangent.cpp) perturb deps[j] in exactly the convention above. In plane
+// strain the in-plane tangent is the block of rows and columns {0, 1, 3} (xx, yy, xy); row 2
+// gives d sigma_zz, and columns 2, 4, 5 (out-of-plane strains) are not used.
 //
 // The tangent is the consistent (algorithmic) one: the exact derivative of the discrete update
 // sigma^{k+1}(sigma^k, d_eps, state) by d_eps, as Newton's method in the implicit MPM needs it
