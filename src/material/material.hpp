@@ -1,16 +1,26 @@
 // A material: density, elastic constants and a constitutive model. The stress update is a
 // pure function of (stress, strain increment, state) -> (stress, state), with no particle,
-// grid or parser in its signature. Plastic models (Mohr-Coulomb, Tresca, von Mises) add a
-// Model value, a parameter block and a branch in update_stress, and nothing else.
+// grid or parser in its signature. This is the umbrella header other folders include.
+//
+// One folder per model (material/elastic/, material/mohr_coulomb/ (also Tresca),
+// material/von_mises/), each holding the model's parameters (params.hpp), its update (the
+// in-place return mapping the solver inlines), its const law with the consistent tangent
+// (law.hpp), and its name, description, declared parameter table and strength for the relative
+// yield function (info.hpp). Adding a model adds a folder, a Model value and a branch in
+// update_stress, evaluate (material/law.hpp) and Material::strength.
 #pragma once
 #include <string>
 
 #include "core/types.hpp"
-#include "material/elastic.hpp"
-#include "material/mohr_coulomb.hpp"
-#include "material/plastic_params.hpp"
+#include "material/elastic/elastic.hpp"
+#include "material/elastic/info.hpp"
+#include "material/mohr_coulomb/info.hpp"
+#include "material/mohr_coulomb/mohr_coulomb.hpp"
+#include "material/mohr_coulomb/params.hpp"
 #include "material/state.hpp"
-#include "material/von_mises.hpp"
+#include "material/von_mises/info.hpp"
+#include "material/von_mises/params.hpp"
+#include "material/von_mises/von_mises.hpp"
 
 namespace skred {
 
@@ -37,19 +47,29 @@ struct Material {
   double wave_speed() const { return std::sqrt(elastic.constrained_modulus() / density); }
 
   bool plastic() const { return model != Model::LinearElastic; }
+  // The model's strength for the relative yield function (Post eq. 66), from its folder.
+  MaterialStrength strength() const {
+    switch (model) {
+      case Model::LinearElastic: return linear_elastic_strength();
+      case Model::MohrCoulomb: return mohr_coulomb_strength(mohr_coulomb);
+      case Model::Tresca: return tresca_strength(mohr_coulomb);
+      case Model::VonMises: return von_mises_strength(von_mises);
+    }
+    return {};
+  }
   // Friction angle [rad] and cohesion [Pa] of the Mohr-Coulomb envelope that describes the
   // strength (Tresca and von Mises: phi = 0 and the peak cohesion); NaN when elastic.
-  double friction_angle() const {
-    return model == Model::MohrCoulomb ? mohr_coulomb.friction : plastic() ? 0.0 : NAN;
-  }
-  double strength_cohesion() const {
+  double friction_angle() const { return strength().friction; }
+  double strength_cohesion() const { return strength().cohesion; }
+  // Name, description and declared parameters of the model (its folder's info.hpp).
+  const ModelInfo& info() const {
     switch (model) {
-      case Model::MohrCoulomb:
-      case Model::Tresca: return mohr_coulomb.cohesion;
-      case Model::VonMises: return von_mises.cohesion_peak;
+      case Model::MohrCoulomb: return kMohrCoulombInfo;
+      case Model::Tresca: return kTrescaInfo;
+      case Model::VonMises: return kVonMisesInfo;
       case Model::LinearElastic: break;
     }
-    return NAN;
+    return kLinearElasticInfo;
   }
 };
 

@@ -10,7 +10,7 @@
 // Both are exact, so a step that crosses the kink lands on f = 0 with c = c_r. If G + H_s <= 0
 // (snap-back) h_s stays positive for a yielding trial and the root is dl_r: the point softens to
 // c_r at once.
-#include "material/von_mises.hpp"
+#include "material/von_mises/von_mises.hpp"
 
 namespace skred {
 

@@ -37,7 +37,7 @@
 // within round-off of a region boundary is the correct answer to round-off. If none passes
 // (round-off in degenerate input, or a non-associated gap as at the apex above) the
 // least-violating candidate is used.
-#include "material/mohr_coulomb.hpp"
+#include "material/mohr_coulomb/mohr_coulomb.hpp"
 
 namespace skred {
 
