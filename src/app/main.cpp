@@ -18,7 +18,7 @@
 namespace {
 
 int cmd_run(const std::string& file, const std::string& outdir, int threads) {
-  const skred::Scenario s = skred::load_scenario(file);
+  const skred::AnyScenario s = skred::load_any_scenario(file);
   skred::RunOptions opt;
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto res = skred::run_simulation(s, outdir, opt);
@@ -34,11 +34,14 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads) {
 }
 
 int cmd_check(const std::string& file) {
-  const skred::Scenario s = skred::load_scenario(file);
-  const auto particles = skred::build_particles(s);
-  fmt::print("{}\nparticles: {}\ntime step: {:.6g} s ({} steps)\nscenario is valid\n",
-             skred::describe(s), particles.size(), skred::scenario_time_step(s),
-             static_cast<long>(std::ceil(s.end_time / skred::scenario_time_step(s) - 1e-9)));
+  std::visit(
+      [](const auto& s) {
+        const auto particles = skred::build_particles(s);
+        fmt::print("{}\nparticles: {}\ntime step: {:.6g} s ({} steps)\nscenario is valid\n",
+                   skred::describe(s), particles.size(), skred::scenario_time_step(s),
+                   static_cast<long>(std::ceil(s.end_time / skred::scenario_time_step(s) - 1e-9)));
+      },
+      skred::load_any_scenario(file));
   return 0;
 }
 
