@@ -205,3 +205,12 @@ end_time = 1
                                      "here: x_min, x_max, y_min, y_max");
   }
 }
+
+TEST(Scenario3D, TheThreeDimensionalExamplesAreValid) {
+  const Scenario3 slab = load3(kSource + "/examples/column_slab_3d.toml");
+  EXPECT_EQ(build_particles(slab).size(), 12800u);  // 20 x 40 x 2 cells, 8 points each
+  EXPECT_EQ(slab.boundaries[4].kind, BoundaryKind::Roller);
+  EXPECT_EQ(slab.boundaries[5].kind, BoundaryKind::Roller);
+  const Scenario3 square = load3(kSource + "/examples/column_3d.toml");
+  EXPECT_EQ(build_particles(square).size(), 18432u);  // 12 x 16 x 12 cells
+}

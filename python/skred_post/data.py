@@ -158,7 +158,9 @@ UNITS = {
 }
 
 
-def unit_of(name):
+def unit_of(name, dim=2):
+    if name == "volume" and dim == 3:
+        return "m³"
     if name in UNITS:
         return UNITS[name]
     if "stress" in name or name.endswith("_p") or name.endswith("_q") or name == "stress_from_Fe":
@@ -176,7 +178,7 @@ def select(frame, spec):
                         + ", ".join(sorted(frame.arrays)))
     values = frame.arrays[name]
     names = frame.components[name]
-    unit = unit_of(name)
+    unit = unit_of(name, frame.dim)
     if values.ndim == 1:
         if comp:
             raise PostError(f"field '{name}' has a single component; drop ':{comp}'")

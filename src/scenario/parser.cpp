@@ -72,11 +72,9 @@ int material_index(const TableReader& t, std::string_view key, const ScenarioCom
 
 namespace {
 
-using scenario_detail::Choices;
 using scenario_detail::fail;
 using scenario_detail::Location;
 using scenario_detail::location_of;
-using scenario_detail::node_vec2;
 using scenario_detail::Range;
 using scenario_detail::TableReader;
 using scenario_detail::kDeg;
