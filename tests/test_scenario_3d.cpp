@@ -214,3 +214,27 @@ TEST(Scenario3D, TheThreeDimensionalExamplesAreValid) {
   const Scenario3 square = load3(kSource + "/examples/column_3d.toml");
   EXPECT_EQ(build_particles(square).size(), 18432u);  // 12 x 16 x 12 cells
 }
+
+TEST(Scenario3D, SweepOverridesApplyToThreeDimensionalFiles) {
+  const std::string text = R"([grid]
+size = [2.0, 1.0, 1.0]
+cell_size = 0.5
+[[material]]
+name = "m"
+model = "linear-elastic"
+density = 1
+young = 1
+poisson = 0
+[[body]]
+material = "m"
+shape = "sphere"
+center = [1, 0.5, 0.5]
+radius = 0.4
+[solver]
+end_time = 1
+)";
+  const AnyScenario any = parse_any_scenario(text, "sweep.toml", {{"grid.cell_size", 0.25}, {"body[0].radius", 0.3}});
+  const Scenario3& s = std::get<Scenario3>(any);
+  EXPECT_EQ(s.cells, (std::array<int, 3>{8, 4, 4}));
+  EXPECT_EQ(std::get<Sphere>(s.bodies[0].shape).radius, 0.3);
+}
