@@ -8,7 +8,7 @@ from .data import PostError, frames_index, read_frame
 from .render import bounds, check_style, draw_frame, finite_range, save, select
 
 
-def render_all(outdir, style, gif_path, fps=8, log=print):
+def render_all(outdir, style, gif_path, fps=8, log=print, view=None):
     """Renders frame_NNNNNN.png for every frame into GIF_STEM_frames/ with one set of axis
     limits and one colour range for all, then writes the GIF. Returns the PNG paths."""
     index = frames_index(outdir)
@@ -18,7 +18,7 @@ def render_all(outdir, style, gif_path, fps=8, log=print):
     # (frames are read twice rather than all held in memory).
     boxes, ranges = [], []
     for i, t, p in index:
-        f = read_frame(p, t, i)
+        f = read_frame(p, t, i, view)
         if i == 0:
             check_style(f, style)
         boxes.append(bounds([f], margin=0.0))
@@ -29,7 +29,7 @@ def render_all(outdir, style, gif_path, fps=8, log=print):
     folder = os.path.splitext(gif_path)[0] + "_frames"
     pngs = []
     for i, t, p in index:
-        fig, _ = draw_frame(read_frame(p, t, i), style, xlim, ylim, vrange)
+        fig, _ = draw_frame(read_frame(p, t, i, view), style, xlim, ylim, vrange)
         path = os.path.join(folder, f"frame_{i:06}.png")
         save(fig, path)
         pngs.append(path)

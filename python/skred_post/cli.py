@@ -4,7 +4,7 @@ import argparse
 import os
 import sys
 
-from .data import PostError, frames_index, load_frame
+from .data import PostError, View, frames_index, load_frame
 
 
 def field_slug(style):
@@ -23,6 +23,7 @@ def cmd_render(a):
                   arrows=a.arrows, crosses=a.crosses, sample=a.sample, dpi=a.dpi,
                   body_names=body_names_of(a.outdir))
     pictures = os.path.join(a.outdir, "pictures")
+    view = View(kind=a.view, z=a.section_z, width=a.slab)  # 3D frames only
     if a.series:
         from .series import plot_series
         out = a.output or os.path.join(pictures, "series.png")
@@ -32,9 +33,9 @@ def cmd_render(a):
     if a.all:
         from .animate import render_all
         out = a.output or os.path.join(pictures, field_slug(style) + ".gif")
-        render_all(a.outdir, style, out, fps=a.fps)
+        render_all(a.outdir, style, out, fps=a.fps, view=view)
         return 0
-    frame = load_frame(a.outdir, a.step)
+    frame = load_frame(a.outdir, a.step, view)
     check_style(frame, style)
     xlim, ylim = bounds([frame])
     fig, info = draw_frame(frame, style, xlim, ylim)
@@ -78,6 +79,10 @@ def parser():
     r.add_argument("--fps", type=float, default=8.0)
     r.add_argument("--dpi", type=int, default=100)
     r.add_argument("--info", help="write where the axes and colour bar are (JSON)")
+    r.add_argument("--view", choices=["section", "top"], default="section",
+                   help="3D runs: a section z = const (default) or the surface seen from above")
+    r.add_argument("--section-z", type=float, help="3D section: z of the plane [m] (default: mid material)")
+    r.add_argument("--slab", type=float, help="3D section: thickness of the slab of points shown [m] (default: one voxel)")
     r.set_defaults(run=cmd_render)
     rep = sub.add_parser("report", help="self-contained HTML report")
     rep.add_argument("outdir")

@@ -17,14 +17,29 @@ class PostError(Exception):
 
 
 @dataclass
+class View:
+    """How a 3D frame is drawn in the plane: "section", the voxels whose centres lie in the
+    slab z0 - width/2 <= z < z0 + width/2 (default: the middle of the material, one voxel
+    thick) cut through their centres, in x-y; or "top", every voxel's top face seen from
+    above, in x-z (the higher drawn over the lower: the surface of the material)."""
+    kind: str = "section"
+    z: float = None
+    width: float = None
+
+
+@dataclass
 class Frame:
-    """One particle output step: deformed voxels and their cell data."""
+    """One particle output step: deformed voxels and their cell data. A 3D frame is held as
+    the quadrilaterals of its View (see project3d); `axes` names the picture's axes."""
     path: str
     time: float
     step: int                      # index of the frame in particles.pvd
     quads: np.ndarray              # (n, 4, 2) corners of the deformed voxels [m]
     arrays: dict = field(default_factory=dict)       # name -> (n,) or (n, k) array
     components: dict = field(default_factory=dict)   # name -> list of component names
+    dim: int = 2
+    axes: tuple = ("x", "y")
+    view_label: str = ""
 
     @property
     def size(self):
@@ -44,7 +59,7 @@ def read_pvd(outdir, name="particles.pvd"):
             for d in root.iter("DataSet")]
 
 
-def read_frame(path, time=math.nan, step=-1):
+def read_frame(path, time=math.nan, step=-1, view=None):
     reader = vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
@@ -52,15 +67,21 @@ def read_frame(path, time=math.nan, step=-1):
         raise PostError(f"VTK cannot read {path}")
     grid = reader.GetOutput()
     n = grid.GetNumberOfCells()
+    hexes = None
     if n == 0 or grid.GetPoints() is None:
         quads = np.zeros((0, 4, 2))
     else:
-        points = vtk_to_numpy(grid.GetPoints().GetData())[:, :2]
+        points = vtk_to_numpy(grid.GetPoints().GetData())
         cells = grid.GetCells()
         offsets = vtk_to_numpy(cells.GetOffsetsArray())
-        if not np.all(np.diff(offsets) == 4):
-            raise PostError(f"{path}: expected one quadrilateral (deformed voxel) per cell")
-        quads = points[vtk_to_numpy(cells.GetConnectivityArray()).reshape(-1, 4)]
+        ids = vtk_to_numpy(cells.GetConnectivityArray())
+        if np.all(np.diff(offsets) == 8):
+            hexes = points[ids.reshape(-1, 8)]
+            quads = np.zeros((n, 4, 2))
+        elif np.all(np.diff(offsets) == 4):
+            quads = points[:, :2][ids.reshape(-1, 4)]
+        else:
+            raise PostError(f"{path}: expected one quadrilateral or hexahedron (deformed voxel) per cell")
     frame = Frame(path, time, step, quads)
     data = grid.GetCellData()
     for a in range(data.GetNumberOfArrays()):
@@ -69,7 +90,49 @@ def read_frame(path, time=math.nan, step=-1):
         frame.arrays[arr.GetName()] = values
         k = arr.GetNumberOfComponents()
         frame.components[arr.GetName()] = [arr.GetComponentName(c) or str(c) for c in range(k)]
+    if hexes is not None:
+        project3d(frame, hexes, view or View())
     return frame
+
+
+# Swapping y and z for the top view: vectors (x, z, y); Voigt (xx, zz, yy, xz, zy, xy).
+SWAP_YZ = {3: [0, 2, 1], 6: [0, 2, 1, 5, 4, 3]}
+
+
+def project3d(frame, hexes, view):
+    """Turns a 3D frame's hexahedra (n, 8, 3; VTK order: the z- face, then the z+ face) into
+    the quadrilaterals of `view` and keeps the cell data of the cells shown (Post §5)."""
+    frame.dim = 3
+    centres = hexes.mean(axis=1)
+    if view.kind == "top":
+        order = np.argsort(centres[:, 1], kind="stable")   # the highest drawn last
+        top = hexes[order][:, [3, 2, 6, 7]]                # the +y face
+        frame.quads = top[:, :, [0, 2]]
+        frame.axes = ("x", "z")
+        frame.view_label = "top view (seen from +y)"
+        for name, values in frame.arrays.items():
+            values = values[order]
+            if values.ndim == 2 and values.shape[1] in SWAP_YZ and name not in ("principal_stress", "smoothed_principal_stress"):
+                values = values[:, SWAP_YZ[values.shape[1]]]
+                frame.components[name] = [frame.components[name][k] for k in SWAP_YZ[values.shape[1]]]
+            frame.arrays[name] = values
+        return
+    if view.kind != "section":
+        raise PostError(f"unknown view '{view.kind}'; views: section, top")
+    z = centres[:, 2]
+    z0 = view.z if view.z is not None else 0.5 * (float(z.min()) + float(z.max())) if len(z) else 0.0
+    thickness = np.median(hexes[:, :, 2].max(axis=1) - hexes[:, :, 2].min(axis=1)) if len(z) else 1.0
+    width = view.width if view.width is not None else float(thickness)
+    keep = np.nonzero((z >= z0 - 0.5 * width) & (z < z0 + 0.5 * width))[0]
+    if len(keep) == 0:
+        raise PostError(f"no voxel centre lies in the section {z0 - 0.5 * width:.6g} <= z < "
+                        f"{z0 + 0.5 * width:.6g}; the points span z = {float(z.min()):.6g} to "
+                        f"{float(z.max()):.6g} (choose --section-z and --slab)")
+    mid = 0.5 * (hexes[keep, :4] + hexes[keep, 4:])       # the voxel cut through its centre
+    frame.quads = mid[:, :, :2]
+    frame.view_label = f"section z = {z0:.4g} m (slab {width:.3g} m)"
+    for name in frame.arrays:
+        frame.arrays[name] = frame.arrays[name][keep]
 
 
 def frames_index(outdir):
@@ -77,7 +140,7 @@ def frames_index(outdir):
     return [(i, t, p) for i, (t, p) in enumerate(read_pvd(outdir))]
 
 
-def load_frame(outdir, step):
+def load_frame(outdir, step, view=None):
     index = frames_index(outdir)
     if not index:
         raise PostError(f"{outdir}/particles.pvd lists no frames")
@@ -86,16 +149,18 @@ def load_frame(outdir, step):
     if not 0 <= step < len(index):
         raise PostError(f"step {step} out of range: {outdir} has frames 0..{len(index) - 1}")
     i, t, p = index[step]
-    return read_frame(p, t, i)
+    return read_frame(p, t, i, view)
 
 
 UNITS = {
-    "velocity": "m/s", "speed": "m/s", "displacement": "m", "volume": "m³/m",
+    "velocity": "m/s", "speed": "m/s", "displacement": "m", "volume": "m³/m",  # m³ in 3D
     "principal_angle": "°", "smoothed_principal_angle": "°",
 }
 
 
-def unit_of(name):
+def unit_of(name, dim=2):
+    if name == "volume" and dim == 3:
+        return "m³"
     if name in UNITS:
         return UNITS[name]
     if "stress" in name or name.endswith("_p") or name.endswith("_q") or name == "stress_from_Fe":
@@ -113,7 +178,7 @@ def select(frame, spec):
                         + ", ".join(sorted(frame.arrays)))
     values = frame.arrays[name]
     names = frame.components[name]
-    unit = unit_of(name)
+    unit = unit_of(name, frame.dim)
     if values.ndim == 1:
         if comp:
             raise PostError(f"field '{name}' has a single component; drop ':{comp}'")
@@ -146,8 +211,8 @@ def voxel_size(frame):
     if frame.size == 0:
         return 1.0
     if "volume" in frame.arrays and "det_F" in frame.arrays:
-        area = frame.arrays["volume"] / frame.arrays["det_F"]
-        return float(np.sqrt(np.median(area)))
+        area = frame.arrays["volume"] / frame.arrays["det_F"]  # V0: an area in 2D, a volume in 3D
+        return float(np.median(area) ** (1.0 / frame.dim))
     edges = np.linalg.norm(frame.quads[:, 1] - frame.quads[:, 0], axis=1)
     return float(np.median(edges))
 

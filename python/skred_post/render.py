@@ -174,9 +174,10 @@ def draw_frame(frame, style, xlim, ylim, vrange=None):
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel("x [m]")
-    ax.set_ylabel("y [m]")
-    ax.set_title(f"{what}\nt = {frame.time:.4g} s (frame {frame.step})", fontsize="medium")
+    ax.set_xlabel(f"{frame.axes[0]} [m]")
+    ax.set_ylabel(f"{frame.axes[1]} [m]")
+    view = f", {frame.view_label}" if frame.view_label else ""
+    ax.set_title(f"{what}\nt = {frame.time:.4g} s (frame {frame.step}{view})", fontsize="medium")
     fig.canvas.draw()
     info.update(image_size=[int(round(v)) for v in fig.canvas.get_width_height()],
                 axes=pixel_box(fig, ax), xlim=list(xlim), ylim=list(ylim),

@@ -18,7 +18,7 @@
 namespace {
 
 int cmd_run(const std::string& file, const std::string& outdir, int threads) {
-  const skred::Scenario s = skred::load_scenario(file);
+  const skred::AnyScenario s = skred::load_any_scenario(file);
   skred::RunOptions opt;
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto res = skred::run_simulation(s, outdir, opt);
@@ -34,11 +34,14 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads) {
 }
 
 int cmd_check(const std::string& file) {
-  const skred::Scenario s = skred::load_scenario(file);
-  const auto particles = skred::build_particles(s);
-  fmt::print("{}\nparticles: {}\ntime step: {:.6g} s ({} steps)\nscenario is valid\n",
-             skred::describe(s), particles.size(), skred::scenario_time_step(s),
-             static_cast<long>(std::ceil(s.end_time / skred::scenario_time_step(s) - 1e-9)));
+  std::visit(
+      [](const auto& s) {
+        const auto particles = skred::build_particles(s);
+        fmt::print("{}\nparticles: {}\ntime step: {:.6g} s ({} steps)\nscenario is valid\n",
+                   skred::describe(s), particles.size(), skred::scenario_time_step(s),
+                   static_cast<long>(std::ceil(s.end_time / skred::scenario_time_step(s) - 1e-9)));
+      },
+      skred::load_any_scenario(file));
   return 0;
 }
 
@@ -126,6 +129,8 @@ int main(int argc, char** argv) {
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
   bench->add_option("--problem", bo.problem, "block (elastic, adjustable size) | column (Mohr-Coulomb collapse)")
       ->check(CLI::IsMember({"block", "column"}));
+  bench->add_option("--dim", bo.dim, "column: 2 (plane strain) or 3 (a slab 4 cells thick, roller z sides)")
+      ->check(CLI::IsMember({2, 3}));
   bench->add_option("--refine", bo.refine, "column: cells per 0.05 m (particles x refine^2)")->check(CLI::Range(1, 20));
   bench->add_option("--particles", bo.particles, "block: approximate number of particles")->check(CLI::Range(100L, 100000000L));
   bench->add_option("--steps", bo.steps, "Timed steps per repeat")->check(CLI::Range(1, 1000000));
@@ -145,6 +150,8 @@ int main(int argc, char** argv) {
     if (*check) return cmd_check(scenario);
     if (*sweep) return cmd_sweep(scenario, outdir, set, threads);
     if (*bench) {
+      if (bo.dim == 3 && bo.problem != "column")
+        throw std::invalid_argument("--dim 3 is available for --problem column only");
       bo.threads = threads > 0 ? threads : omp_get_max_threads();
       bo.interpolation = interp == "linear" ? skred::Interpolation::Linear
                          : interp == "gimp" ? skred::Interpolation::Gimp
@@ -154,8 +161,8 @@ int main(int argc, char** argv) {
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
       const auto r = skred::run_bench(bo);
-      fmt::print("bench {}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
-                 bo.problem, r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
+      fmt::print("bench {}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
+                 bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "", r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
                  bo.problem == "column" ? "usf" : scheme);
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n",

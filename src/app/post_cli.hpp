@@ -36,6 +36,11 @@ class PostCommands {
     render_->add_option("--fps", fps_, "Frames per second of the GIF (default 8)")->check(CLI::PositiveNumber);
     render_->add_option("--dpi", dpi_, "Pixels per inch (default 100; 8 x 6 inch pictures)")->check(CLI::Range(20, 1000));
     render_->add_option("--info", info_, "Also write where axes and colour bar lie in the picture (JSON)");
+    render_->add_option("--view", view_, "3D runs: section (z = const, default) or top (the surface from above)")
+        ->check(CLI::IsMember({"section", "top"}));
+    render_->add_option("--section-z", section_z_, "3D section: z of the plane [m] (default: the middle of the material)");
+    render_->add_option("--slab", slab_, "3D section: thickness of the slab of points drawn [m] (default: one voxel)")
+        ->check(CLI::PositiveNumber);
 
     report_ = app.add_subcommand("report", "Write a self-contained HTML report of a run");
     report_->add_option("outdir", outdir_, "Output folder of `skred run`")->required()->check(CLI::ExistingDirectory);
@@ -73,16 +78,19 @@ class PostCommands {
     if (render_->count("--fps")) opt("--fps", num(fps_));
     if (render_->count("--dpi")) opt("--dpi", std::to_string(dpi_));
     opt("--info", info_);
+    opt("--view", view_);
+    if (render_->count("--section-z")) opt("--section-z", num(section_z_));
+    if (render_->count("--slab")) opt("--slab", num(slab_));
     return a;
   }
 
   CLI::App* render_ = nullptr;
   CLI::App* report_ = nullptr;
-  std::string outdir_, field_, output_, cmap_, info_;
+  std::string outdir_, field_, output_, cmap_, info_, view_;
   int step_ = -1, sample_ = 4, dpi_ = 100;
   bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, stripes_ = false,
        checker_ = false;
-  double pattern_width_ = 0.0, pattern_angle_ = 0.0, fps_ = 8.0;
+  double pattern_width_ = 0.0, pattern_angle_ = 0.0, fps_ = 8.0, section_z_ = 0.0, slab_ = 0.0;
   std::vector<double> range_;
 };
 

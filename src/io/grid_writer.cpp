@@ -23,19 +23,20 @@ struct Array {
   std::vector<double> values;
 };
 
-std::string header(const GridGeometry<2>& g, const std::vector<Array>& coords,
+template <int D>
+std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
                    const std::vector<Array>& point_data) {
   constexpr bool little = std::endian::native == std::endian::little;
   std::string h;
   auto out = std::back_inserter(h);
-  const int nx = g.nodes(0) - 1, ny = g.nodes(1) - 1;
+  const int nx = g.nodes(0) - 1, ny = g.nodes(1) - 1, nz = D == 3 ? g.nodes(D - 1) - 1 : 0;
   fmt::format_to(out,
                  "<?xml version=\"1.0\"?>\n"
                  "<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"{}\" "
                  "header_type=\"UInt64\">\n"
-                 "  <RectilinearGrid WholeExtent=\"0 {} 0 {} 0 0\">\n"
-                 "    <Piece Extent=\"0 {} 0 {} 0 0\">\n",
-                 little ? "LittleEndian" : "BigEndian", nx, ny, nx, ny);
+                 "  <RectilinearGrid WholeExtent=\"0 {} 0 {} 0 {}\">\n"
+                 "    <Piece Extent=\"0 {} 0 {} 0 {}\">\n",
+                 little ? "LittleEndian" : "BigEndian", nx, ny, nz, nx, ny, nz);
   std::size_t offset = 0;
   auto arrays = [&](const char* section, const std::vector<Array>& list) {
     fmt::format_to(out, "      <{}>\n", section);
@@ -55,10 +56,9 @@ std::string header(const GridGeometry<2>& g, const std::vector<Array>& coords,
   return h;
 }
 
-}  // namespace
-
-void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
-                    const GridNodeFields& f) {
+template <int D>
+void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid,
+               const GridNodeFieldsOf<D>& f) {
   const std::size_t n = grid.node_count();
   if (f.mass.size() != n || f.velocity.size() != n || f.stress.size() != n)
     throw std::invalid_argument(fmt::format(
@@ -66,12 +66,12 @@ void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& gr
         f.mass.size(), f.velocity.size(), f.stress.size()));
 
   std::vector<Array> coords;
-  for (int d = 0; d < 2; ++d) {
-    Array a{d == 0 ? "x" : "y", 1, {}, {}};
+  for (int d = 0; d < D; ++d) {
+    Array a{d == 0 ? "x" : d == 1 ? "y" : "z", 1, {}, {}};
     for (int j = 0; j < grid.nodes(d); ++j) a.values.push_back(grid.origin[d] + grid.node_coordinate(d, j));
     coords.push_back(std::move(a));
   }
-  coords.push_back({"z", 1, {}, {0.0}});
+  if (D == 2) coords.push_back({"z", 1, {}, {0.0}});
 
   std::vector<Array> data = {{"mass", 1, {}, {}},
                              {"velocity", 3, {}, {}},
@@ -81,7 +81,8 @@ void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& gr
   for (Array& a : data) a.values.reserve(n * static_cast<std::size_t>(a.components));
   for (std::size_t i = 0; i < n; ++i) {
     data[0].values.push_back(f.mass[i]);
-    data[1].values.insert(data[1].values.end(), {f.velocity[i][0], f.velocity[i][1], 0.0});
+    data[1].values.insert(data[1].values.end(),
+                          {f.velocity[i][0], f.velocity[i][1], D == 3 ? f.velocity[i][D - 1] : 0.0});
     data[2].values.insert(data[2].values.end(), f.stress[i].data(), f.stress[i].data() + 6);
     data[3].values.push_back(mean_stress(f.stress[i]));        // Post eq. 61
     data[4].values.push_back(deviatoric_stress(f.stress[i]));  // Post eq. 62
@@ -98,6 +99,18 @@ void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& gr
       }
     os << "\n  </AppendedData>\n</VTKFile>\n";
   });
+}
+
+}  // namespace
+
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
+                    const GridNodeFields& f) {
+  write_vtr(file, grid, f);
+}
+
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<3>& grid,
+                    const GridNodeFieldsOf<3>& f) {
+  write_vtr(file, grid, f);
 }
 
 }  // namespace skred

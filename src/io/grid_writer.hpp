@@ -10,11 +10,12 @@
 namespace skred {
 
 // Nodal arrays, flat-indexed like GridGeometry (axis 0 fastest), each grid.node_count() long.
-struct GridNodeFields {
+template <int D> struct GridNodeFieldsOf {
   std::span<const double> mass;      // m_i = sum_p N_ip m_p
-  std::span<const Vec<2>> velocity;  // v_i = sum_p N_ip m_p v_p / m_i (0 where m_i = 0)
+  std::span<const Vec<D>> velocity;  // v_i = sum_p N_ip m_p v_p / m_i (0 where m_i = 0)
   std::span<const Sym3> stress;      // sigma_i = sum_p N_ip m_p sigma_p / m_i (Post eq. 57)
 };
+using GridNodeFields = GridNodeFieldsOf<2>;
 
 // Writes every node of `grid`, ghost nodes included, as a point of a rectilinear grid (one
 // coordinate array per axis, from GridGeometry::node_coordinate, so the uneven spacing of
@@ -25,5 +26,8 @@ struct GridNodeFields {
 // grid.node_count() entries, std::runtime_error on I/O failure.
 void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
                     const GridNodeFields& fields);
+// The same in 3D (z coordinates from the grid, velocity with its z component).
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<3>& grid,
+                    const GridNodeFieldsOf<3>& fields);
 
 }  // namespace skred

@@ -21,6 +21,7 @@ struct SeriesRow {
   int stage;             // zero-based stage index
   double runout;         // front advance since the stage start [m] (StageTracker::runout)
   long yielding_points;  // points whose last stress update was plastic
+  double momentum_z = 0.0;  // 3D runs only (last column)
 };
 
 // Collects rows in memory; flush() rewrites the whole file atomically, so the file on disk is
@@ -34,7 +35,8 @@ struct SeriesRow {
 class SeriesWriter {
  public:
   // Nothing is written until the first flush().
-  explicit SeriesWriter(const std::filesystem::path& file);
+  // With momentum_z (3D runs) the rows end with a momentum_z column.
+  explicit SeriesWriter(const std::filesystem::path& file, bool momentum_z = false);
   // Flushes rows added since the last flush(); errors are swallowed here (call flush()
   // yourself to see them), so a run that ends by an exception still leaves its series.
   ~SeriesWriter();
@@ -54,6 +56,7 @@ class SeriesWriter {
  private:
   std::filesystem::path file_;
   std::vector<SeriesRow> rows_;
+  bool momentum_z_ = false;
   std::string text_;  // the formatted rows, kept so a flush does not reformat them
   bool dirty_ = false;
 };

@@ -75,6 +75,13 @@ std::string json_string(const std::string& s) {
 
 namespace {
 
+// 3D runs: the runout along z, after runout_x_max.
+std::string z_runout(const StageMeasures& m) {
+  if (std::isnan(m.runout_z_min) && std::isnan(m.runout_z_max)) return "";
+  return fmt::format(", \"runout_z_min\": {}, \"runout_z_max\": {}", json_number(m.runout_z_min),
+                     json_number(m.runout_z_max));
+}
+
 std::string stages_json(const std::vector<StageMeasures>& stages) {
   std::string out;
   for (const StageMeasures& m : stages) {
@@ -87,7 +94,7 @@ std::string stages_json(const std::vector<StageMeasures>& stages) {
         "\"gravity_work\": {}, \"kinetic_energy_change\": {}, \"strain_energy\": {}, "
         "\"plastic_dissipation\": {},\n     \"plastic_volume\": {}, \"plastic_points\": {}}}",
         out.empty() ? "" : ",", json_string(m.name), num(m.start_time), num(m.end_time), m.steps,
-        json_string(m.ended_by), num(m.runout), num(m.runout_x_min), num(m.runout_x_max),
+        json_string(m.ended_by), num(m.runout), num(m.runout_x_min), num(m.runout_x_max) + z_runout(m),
         num(m.max_displacement), num(m.height_start), num(m.height_end), num(m.peak_mean_speed), num(m.peak_time),
         num(m.final_mean_speed), m.stop_time ? num(*m.stop_time) : std::string("null"),
         num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy),
@@ -114,7 +121,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"simulated_time\": {},\n"
       "  \"end_time\": {},\n"
       "  \"particles\": {},\n"
-      "  \"cells\": {},\n"
+      "  \"cells\": {},\n{}"
       "  \"wall_seconds\": {},\n"
       "  \"particle_updates_per_second\": {},\n"
       "  \"threads\": {},\n"
@@ -126,7 +133,9 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"stages\": [{}]\n"
       "}}\n",
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
-      json_number(s.end_time), s.particles, s.cells, json_number(s.wall_seconds),
+      json_number(s.end_time), s.particles, s.cells,
+      s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
+      json_number(s.wall_seconds),
       json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
       json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), phases_json(s.phase_seconds),
       stages_json(s.stages));

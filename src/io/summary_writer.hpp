@@ -1,6 +1,7 @@
 // The end-of-run summary (summary.json).
 #pragma once
 #include <filesystem>
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -17,6 +18,8 @@ struct StageMeasures {
   // Runout: how far the front of the moving mass (points displaced more than half a cell)
   // has advanced beyond its start position, towards -x and +x, and the larger of the two.
   double runout_x_min = 0.0, runout_x_max = 0.0, runout = 0.0;
+  // 3D only (NaN in 2D, not written): the same towards -z and +z.
+  double runout_z_min = NAN, runout_z_max = NAN;
   double max_displacement = 0.0;  // largest point displacement in the stage [m]
   double height_start = 0.0, height_end = 0.0;  // top of the material above its lowest point
   double peak_mean_speed = 0.0, peak_time = 0.0, final_mean_speed = 0.0;  // eq. 5.12
@@ -38,7 +41,7 @@ struct Summary {
   double simulated_time;
   double end_time;
   long particles;
-  long cells;
+  long cells;  // product over the axes
   double wall_seconds;
   double particle_updates_per_second;
   int threads;
@@ -49,6 +52,7 @@ struct Summary {
   std::vector<StageMeasures> stages = {};
   // Wall seconds spent in each phase of the time step over the run, in step order.
   std::vector<std::pair<std::string, double>> phase_seconds = {};
+  int dimension = 2;  // written (after cells) only when 3
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

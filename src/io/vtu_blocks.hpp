@@ -1,6 +1,6 @@
 // Internal to the VTU writer: one binary block of the appended section per data array.
-// Every block holds a fixed number of bytes per material point (points: 4 corners x 3
-// coordinates; connectivity: 4 ids; cell data: one tuple), so all blocks are filled chunk by
+// Every block holds a fixed number of bytes per material point (points: 4 corners (2D) or 8
+// (3D) x 3 coordinates; connectivity: 4 or 8 ids; cell data: one tuple), so all blocks are filled chunk by
 // chunk over the particles.
 #pragma once
 #include <cstddef>
@@ -79,6 +79,7 @@ namespace skred {
 struct ParticleFields;
 namespace vtu {
 // Appends the post-processing cell fields of Post §5-7 (vtu_post_fields.cpp).
-void add_post_blocks(std::vector<Block>& blocks, const Particles<2>& P, const ParticleFields& extra);
+template <int D>
+void add_post_blocks(std::vector<Block>& blocks, const Particles<D>& P, const ParticleFields& extra);
 }  // namespace vtu
 }  // namespace skred

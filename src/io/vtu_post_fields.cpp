@@ -14,12 +14,13 @@ namespace {
 
 inline const Sym3& full(const Sym3& s) { return s; }
 inline Sym3 full(const PointStress<2>& s) { return full_stress<2>(s); }
+// PointStress<3> is Sym3 itself: the first overload.
 
 // principal_stress (3), principal_angle and, with strength, relative_yield of `stress`
 // (Sym3 or the points' stored PointStress<2>).
-template <class V>
+template <int D, class V>
 void add_invariant_blocks(std::vector<Block>& blocks, const std::string& prefix,
-                          const std::vector<V>& stress, const Particles<2>& P,
+                          const std::vector<V>& stress, const Particles<D>& P,
                           const std::vector<MaterialStrength>* strength) {
   blocks.push_back(doubles(
       prefix + "principal_stress", 3,
@@ -39,24 +40,25 @@ void add_invariant_blocks(std::vector<Block>& blocks, const std::string& prefix,
                            }));
 }
 
-template <class Measure>
-Block strain_block(std::string name, const Particles<2>& P, Measure measure) {
+template <int D, class Measure>
+Block strain_block(std::string name, const Particles<D>& P, Measure measure) {
   return doubles(
       std::move(name), 6,
       [&P, measure](std::size_t p, unsigned char* o) {
-        return put_sym3(o, measure(deformation3<2>(P.F[p])));
+        return put_sym3(o, measure(deformation3<D>(P.F[p])));
       },
       voigt_names());
 }
 
 }  // namespace
 
-void add_post_blocks(std::vector<Block>& blocks, const Particles<2>& P, const ParticleFields& extra) {
+template <int D>
+void add_post_blocks(std::vector<Block>& blocks, const Particles<D>& P, const ParticleFields& extra) {
   blocks.push_back(doubles("speed", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, P.v[p].norm());
   }));
   blocks.push_back(doubles(
-      "F", 9, [&P](std::size_t p, unsigned char* o) { return put_mat3(o, deformation3<2>(P.F[p])); },
+      "F", 9, [&P](std::size_t p, unsigned char* o) { return put_mat3(o, deformation3<D>(P.F[p])); },
       tensor_names()));
   blocks.push_back(strain_block("engineering_strain", P, engineering_strain));      // eq. 63
   blocks.push_back(strain_block("green_strain", P, green_lagrange_strain));         // eq. 64
@@ -72,7 +74,7 @@ void add_post_blocks(std::vector<Block>& blocks, const Particles<2>& P, const Pa
     blocks.push_back(doubles(
         "Fp", 9,
         [&Fe, &P](std::size_t p, unsigned char* o) {
-          return put_mat3(o, plastic_F(Fe[p], deformation3<2>(P.F[p])));  // Post eq. 74
+          return put_mat3(o, plastic_F(Fe[p], deformation3<D>(P.F[p])));  // Post eq. 74
         },
         tensor_names()));
   }
@@ -83,5 +85,8 @@ void add_post_blocks(std::vector<Block>& blocks, const Particles<2>& P, const Pa
         voigt_names()));
   }
 }
+
+template void add_post_blocks<2>(std::vector<Block>&, const Particles<2>&, const ParticleFields&);
+template void add_post_blocks<3>(std::vector<Block>&, const Particles<3>&, const ParticleFields&);
 
 }  // namespace skred::vtu

@@ -22,55 +22,71 @@ namespace {
 using namespace vtu;
 
 constexpr std::uint8_t kVtkQuad = 9;
+constexpr std::uint8_t kVtkHexahedron = 12;
+
+// Velocity-like vectors padded to three components (z = 0 in 2D).
+template <int D> unsigned char* put_vec3(unsigned char* o, const Vec<D>& v) {
+  o = put(put(o, v[0]), v[1]);
+  return put(o, D == 3 ? v[D - 1] : 0.0);
+}
+
+// The corners x_p + F_p (+-l0) of a deformed voxel (Thesis eq. 3.6-3.12), in VTK order:
+// a quad counter-clockwise (2D, z = 0), or a hexahedron's z- face then its z+ face.
+template <int D> unsigned char* put_corners(unsigned char* out, const Particles<D>& P, std::size_t p) {
+  static constexpr double sx[8] = {-1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0};
+  static constexpr double sy[8] = {-1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0};
+  static constexpr double sz[8] = {-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0};
+  const Vec<D>& l0 = P.half0[p];
+  for (int k = 0; k < (1 << D); ++k) {
+    Vec<D> a;
+    a[0] = sx[k] * l0[0];
+    a[1] = sy[k] * l0[1];
+    if constexpr (D == 3) a[2] = sz[k] * l0[2];
+    out = put_vec3<D>(out, Vec<D>(P.x[p] + P.F[p] * a));
+  }
+  return out;
+}
 constexpr std::size_t kChunk = 1 << 15;  // particles converted per buffer fill
 
-std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extra) {
+template <int D> std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra) {
   const std::vector<std::string>& voigt = voigt_names();
   std::vector<Block> blocks;
+  constexpr std::size_t corners = 1 << D;
 
-  blocks.push_back({"Points", "", "Float64", 3, sizeof(double), 12, {},
+  blocks.push_back({"Points", "", "Float64", 3, sizeof(double), 3 * corners, {},
                     [&P](std::size_t b, std::size_t e, unsigned char* out) {
-                      static constexpr double sx[4] = {-1.0, 1.0, 1.0, -1.0};
-                      static constexpr double sy[4] = {-1.0, -1.0, 1.0, 1.0};
-                      for (std::size_t p = b; p < e; ++p) {
-                        const Vec<2>& l0 = P.half0[p];
-                        for (int k = 0; k < 4; ++k) {
-                          const Vec<2> c = P.x[p] + P.F[p] * Vec<2>(sx[k] * l0[0], sy[k] * l0[1]);
-                          out = put(put(put(out, c[0]), c[1]), 0.0);
-                        }
-                      }
+                      for (std::size_t p = b; p < e; ++p) out = put_corners<D>(out, P, p);
                     }});
-  blocks.push_back({"Cells", "connectivity", "Int64", 1, 8, 4, {},
+  blocks.push_back({"Cells", "connectivity", "Int64", 1, 8, corners, {},
                     [](std::size_t b, std::size_t e, unsigned char* out) {
-                      for (std::size_t i = 4 * b; i < 4 * e; ++i)
+                      for (std::size_t i = corners * b; i < corners * e; ++i)
                         out = put(out, static_cast<std::int64_t>(i));
                     }});
   blocks.push_back({"Cells", "offsets", "Int64", 1, 8, 1, {},
                     [](std::size_t b, std::size_t e, unsigned char* out) {
                       for (std::size_t p = b; p < e; ++p)
-                        out = put(out, static_cast<std::int64_t>(4 * (p + 1)));
+                        out = put(out, static_cast<std::int64_t>(corners * (p + 1)));
                     }});
   blocks.push_back({"Cells", "types", "UInt8", 1, 1, 1, {},
                     [](std::size_t b, std::size_t e, unsigned char* out) {
-                      std::fill(out, out + (e - b), kVtkQuad);
+                      std::fill(out, out + (e - b), D == 3 ? kVtkHexahedron : kVtkQuad);
                     }});
 
   blocks.push_back(doubles("velocity", 3, [&P](std::size_t p, unsigned char* o) {
-    return put(put(put(o, P.v[p][0]), P.v[p][1]), 0.0);
+    return put_vec3<D>(o, P.v[p]);
   }));
   blocks.push_back(doubles("displacement", 3, [&P](std::size_t p, unsigned char* o) {
-    const Vec<2> u = P.x[p] - P.x_ref[p];
-    return put(put(put(o, u[0]), u[1]), 0.0);
+    return put_vec3<D>(o, Vec<D>(P.x[p] - P.x_ref[p]));
   }));
   blocks.push_back(doubles(
       "stress", 6,
-      [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<2>(P.stress[p])); },
+      [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<D>(P.stress[p])); },
       voigt));
   blocks.push_back(doubles("mean_stress_p", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, mean_stress(full_stress<2>(P.stress[p])));
+    return put(o, mean_stress(full_stress<D>(P.stress[p])));
   }));
   blocks.push_back(doubles("deviatoric_stress_q", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, deviatoric_stress(full_stress<2>(P.stress[p])));
+    return put(o, deviatoric_stress(full_stress<D>(P.stress[p])));
   }));
   blocks.push_back(doubles("volume", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, P.volume(p));
@@ -100,7 +116,7 @@ std::vector<Block> make_blocks(const Particles<2>& P, const ParticleFields& extr
       return put(o, deviatoric_stress(s[p]));
     }));
   }
-  add_post_blocks(blocks, P, extra);
+  add_post_blocks<D>(blocks, P, extra);
   return blocks;
 }
 
@@ -111,7 +127,7 @@ void check_optional(const std::vector<T>* v, const char* name, std::size_t n) {
         "write_particles_vtu: {} has {} entries for {} particles", name, v->size(), n));
 }
 
-void check_sizes(const Particles<2>& P, const ParticleFields& extra) {
+template <int D> void check_sizes(const Particles<D>& P, const ParticleFields& extra) {
   const std::size_t n = P.size();
   const std::size_t sizes[] = {P.x_ref.size(), P.v.size(),     P.volume0.size(),
                                P.half0.size(), P.F.size(),     P.stress.size(),
@@ -129,7 +145,7 @@ void check_sizes(const Particles<2>& P, const ParticleFields& extra) {
             P.material[p], extra.strength->size()));
 }
 
-std::string xml_header(const std::vector<Block>& blocks, std::size_t n) {
+std::string xml_header(const std::vector<Block>& blocks, std::size_t n, std::size_t corners) {
   constexpr bool little = std::endian::native == std::endian::little;
   std::string h;
   auto out = std::back_inserter(h);
@@ -139,7 +155,7 @@ std::string xml_header(const std::vector<Block>& blocks, std::size_t n) {
                  "header_type=\"UInt64\">\n"
                  "  <UnstructuredGrid>\n"
                  "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-                 little ? "LittleEndian" : "BigEndian", 4 * n, n);
+                 little ? "LittleEndian" : "BigEndian", corners * n, n);
   std::size_t offset = 0;
   const char* open = nullptr;
   for (const Block& b : blocks) {
@@ -161,14 +177,12 @@ std::string xml_header(const std::vector<Block>& blocks, std::size_t n) {
   return h;
 }
 
-}  // namespace
-
-void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
-                         const ParticleFields& extra) {
+template <int D>
+void write_vtu(const std::filesystem::path& file, const Particles<D>& P, const ParticleFields& extra) {
   check_sizes(P, extra);
   const std::size_t n = P.size();
   const std::vector<Block> blocks = make_blocks(P, extra);
-  const std::string header = xml_header(blocks, n);
+  const std::string header = xml_header(blocks, n, std::size_t{1} << D);
 
   write_file_atomically(file, [&](std::ostream& os) {
     os.write(header.data(), static_cast<std::streamsize>(header.size()));
@@ -186,6 +200,18 @@ void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& 
     }
     os << "\n  </AppendedData>\n</VTKFile>\n";
   });
+}
+
+}  // namespace
+
+void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
+                         const ParticleFields& extra) {
+  write_vtu(file, P, extra);
+}
+
+void write_particles_vtu(const std::filesystem::path& file, const Particles<3>& P,
+                         const ParticleFields& extra) {
+  write_vtu(file, P, extra);
 }
 
 }  // namespace skred

@@ -44,5 +44,10 @@ struct ParticleFields {
 // I/O failure.
 void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
                          const ParticleFields& extra = {});
+// The same in 3D: each point a VTK_HEXAHEDRON with the 8 corners x_p + F_p (+-l0x, +-l0y,
+// +-l0z) (Thesis eq. 3.6-3.12; the z- face counter-clockwise seen from +z, then the z+
+// face), vectors with their z components, the full 3D stress and F; the same fields.
+void write_particles_vtu(const std::filesystem::path& file, const Particles<3>& P,
+                         const ParticleFields& extra = {});
 
 }  // namespace skred

@@ -50,13 +50,19 @@ void add_phases(BenchResult& res, const PhaseTimer& before, const PhaseTimer& af
   }
 }
 
-// The Mohr-Coulomb column collapse, built through the scenario parser like a user's file.
-BenchResult run_column(const BenchOptions& opt) {
+// The Mohr-Coulomb column collapse, built through the scenario parser like a user's file. In
+// 3D (dim = 3) the same column as a slab kSlabCells cells thick between roller z walls,
+// 2 x 2 x 2 points per cell (the plane-strain problem again, tests/test_column_3d.cpp).
+constexpr int kSlabCells = 4;
+
+std::string column_text(const BenchOptions& opt) {
   const double h = 0.05 / opt.refine;
-  const std::string text = fmt::format(R"(
+  const bool d3 = opt.dim == 3;
+  const std::string z = d3 ? fmt::format(", {}", kSlabCells * h) : "", z0 = d3 ? ", 0.0" : "";
+  return fmt::format(R"(
 [grid]
-size = [10.0, 4.5]
-cell_size = {}
+size = [10.0, 4.5{2}]
+cell_size = {0}
 [[material]]
 name = "soil"
 model = "mohr-coulomb"
@@ -68,31 +74,36 @@ cohesion = 500.0
 [[body]]
 material = "soil"
 particles_per_cell = 2
-shape = "rectangle"
-min = [0.0, 0.0]
-max = [2.0, 4.0]
+shape = "{4}"
+min = [0.0, 0.0{3}]
+max = [2.0, 4.0{2}]
 [initial_stress]
 k0 = "poisson"
 [gravity]
-acceleration = [0.0, -9.81]
+acceleration = [0.0, -9.81{3}]
 [boundary]
 x_min = "roller"
 x_max = "roller"
 y_min = "fixed"
+{5}
 [solver]
-interpolation = "{}"
-quadrature_points = {}
+interpolation = "{1}"
+quadrature_points = {6}
 scheme = "usf"
 time_step = 1e-4
 end_time = 1.0
-)", h, to_string(opt.interpolation), opt.quadrature_points);
-  const Scenario s = parse_scenario(text, "bench-column");
+)", h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
+                     d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points);
+}
+
+template <int D> BenchResult run_column(const BenchOptions& opt) {
+  const ScenarioOf<D> s = std::get<ScenarioOf<D>>(parse_any_scenario(column_text(opt), "bench-column"));
   BenchResult res;
   for (int r = 0; r < opt.repeats; ++r) {
-    Particles<2> P = build_particles(s);
+    Particles<D> P = build_particles(s);
     apply_initial_stress(s, P);
-    const GridGeometry<2> grid = scenario_grid(s);
-    ExplicitSolver<2> solver(grid, P, stage_materials(s, s.stages[0]), solver_settings(s), opt.threads);
+    const GridGeometry<D> grid = scenario_grid(s);
+    ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), solver_settings(s), opt.threads);
     const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
@@ -117,7 +128,7 @@ end_time = 1.0
 
 BenchResult run_bench(const BenchOptions& opt) {
   if (opt.problem == "column") {
-    BenchResult res = run_column(opt);
+    BenchResult res = opt.dim == 3 ? run_column<3>(opt) : run_column<2>(opt);
     res.median = sorted(res.updates_per_second)[res.updates_per_second.size() / 2];
     res.peak_rss_bytes = peak_rss_bytes();
     return res;

@@ -5,6 +5,8 @@
 //    10 m x 4.5 m, cell 0.05 m / refine, column 2 m x 4 m against the left wall, 2 x 2 points
 //    per cell (12,800 points at refine 1), phi = 30, psi = 0, c = 0.5 kPa, E = 10 MPa,
 //    nu = 0.3, rho = 1800, K0 = nu/(1 - nu), roller sides, fixed base, USF, dt = 0.1 ms.
+//    With dim = 3 the same column as a slab 4 cells thick between roller z walls, 2 x 2 x 2
+//    points per cell (102,400 points at refine 1).
 #pragma once
 #include <string>
 #include <utility>
@@ -17,6 +19,7 @@ namespace skred {
 struct BenchOptions {
   std::string problem = "block";  // "block" or "column"
   int refine = 1;                 // column: cells per 0.05 m (particles grow as refine^2)
+  int dim = 2;                    // column: 3 for the 3D slab
   long particles = 200000;  // approximate number of material points
   int steps = 100;
   int repeats = 5;

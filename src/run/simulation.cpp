@@ -26,18 +26,18 @@ namespace skred {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-double scenario_time_step(const Scenario& s) {
+template <int D> double scenario_time_step(const ScenarioOf<D>& s) {
   if (s.time_step > 0.0) return s.time_step;
   double c = 0.0;
   for (const Material& m : s.materials) c = std::max(c, m.wave_speed());
   double v = 0.0;
-  for (const Body& b : s.bodies)
+  for (const BodyOf<D>& b : s.bodies)
     v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());
   return s.cfl * s.cell_size / (c + v);
 }
 
-SolverSettings<2> solver_settings(const Scenario& s) {
-  SolverSettings<2> st;
+template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
+  SolverSettings<D> st;
   st.interpolation = s.interpolation;
   st.quadrature_points = s.quadrature_points;
   st.scheme = s.scheme;
@@ -49,8 +49,8 @@ SolverSettings<2> solver_settings(const Scenario& s) {
   return st;
 }
 
-GridGeometry<2> scenario_grid(const Scenario& s) {
-  GridGeometry<2> grid;
+template <int D> GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
+  GridGeometry<D> grid;
   grid.origin = s.origin;
   grid.h = s.cell_size;
   grid.cells = s.cells;
@@ -66,7 +66,8 @@ std::string hms(double seconds) {
                    : fmt::format("{:02}:{:02}", s / 60, s % 60);
 }
 
-SeriesRow series_row(const ExplicitSolver<2>& solver, const ParticleTotals<2>& t, long particles,
+template <int D>
+SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t, long particles,
                      int stage, double runout) {
   const auto& e = solver.energy();
   SeriesRow r{};
@@ -84,6 +85,7 @@ SeriesRow series_row(const ExplicitSolver<2>& solver, const ParticleTotals<2>& t
   r.stage = stage;
   r.runout = runout;
   r.yielding_points = t.yielding;
+  if constexpr (D == 3) r.momentum_z = t.momentum[2];
   return r;
 }
 
@@ -100,20 +102,22 @@ void copy_scenario(const std::string& source, const fs::path& outdir) {
 
 // The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
 // smoothed_stress() call, and its entry in grid.pvd (post).
-void write_grid_frame(const ExplicitSolver<2>& solver, const fs::path& outdir, int frame,
+template <int D>
+void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame,
                       PvdWriter& index) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
   write_grid_vtr(outdir / name, solver.grid(),
-                 {solver.node_mass(), solver.node_velocity(), solver.node_stress()});
+                 GridNodeFieldsOf<D>{solver.node_mass(), solver.node_velocity(), solver.node_stress()});
   index.add(solver.time(), name);
 }
 
 }  // namespace
 
-RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOptions& opt) {
-  Particles<2> particles = build_particles(s);
+template <int D>
+RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt) {
+  Particles<D> particles = build_particles(s);
   apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
-  ExplicitSolver<2> solver(scenario_grid(s), particles, stage_materials(s, s.stages.front()),
+  ExplicitSolver<D> solver(scenario_grid(s), particles, stage_materials(s, s.stages.front()),
                            solver_settings(s), opt.threads);
 
   fs::create_directories(outdir);
@@ -125,7 +129,7 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   std::vector<MaterialStrength> strength = material_strengths(s.materials);
   std::vector<Mat3> elastic_F;
   std::vector<Sym3> stress_from_Fe;
-  SeriesWriter series(outdir / "series.csv");
+  SeriesWriter series(outdir / "series.csv", D == 3);  // 3D: with momentum_z
   std::vector<Sym3> smoothed;
   int frame = 0;
   auto write_frame = [&]() {
@@ -138,9 +142,9 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
     elastic_F.resize(particles.size());
     stress_from_Fe.resize(particles.size());
     for (std::size_t p = 0; p < particles.size(); ++p) {
-      elastic_F[p] = embed3<2>(particles.Fe[p], 1.0);
+      elastic_F[p] = embed3<D>(particles.Fe[p], 1.0);
       const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
-      stress_from_Fe[p] = stress_from_elastic_F(full_stress<2>(particles.reference_stress(p)),
+      stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)),
                                                 elastic_F[p], mat.elastic_constants);
     }
     extra.elastic_F = &elastic_F;
@@ -173,11 +177,12 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
     const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
     const long first_step = solver.steps();
     const double stage_start = solver.time();
-    StageTracker tracker(st.name, particles, stage_start, solver.totals().kinetic_energy,
-                         st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
-                         s.cells[0] * s.cell_size);
+    StageTracker<D> tracker(st.name, particles, stage_start, solver.totals().kinetic_energy,
+                            st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
+                            s.cells[0] * s.cell_size, s.origin[D - 1],
+                            D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
     auto sample = [&]() {
-      const ParticleTotals<2> t = solver.totals();
+      const ParticleTotals<D> t = solver.totals();
       series.add(series_row(solver, t, n, static_cast<int>(k), tracker.runout(particles)));
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time;
       return tracker.observe(solver.time(), t.mean_speed) && !ramping;
@@ -224,7 +229,7 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
         break;
       }
     }
-    const ParticleTotals<2> t = solver.totals();
+    const ParticleTotals<D> t = solver.totals();
     const EnergyTotals& e = solver.energy();
     measures.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
                                       t.kinetic_energy, e.gravity_work, e.strain_energy,
@@ -238,9 +243,10 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   if (!status.ok) {
     const long p = status.particle;
     res.message = fmt::format(
-        "unstable at step {} (t = {:.6g} s): particle {} of body '{}' at ({:.6g}, {:.6g}): {}",
+        "unstable at step {} (t = {:.6g} s): particle {} of body '{}' at ({:.6g}, {:.6g}{}): {}",
         solver.steps() + 1, solver.time(), p, s.bodies[particles.body[p]].name, particles.x[p][0],
-        particles.x[p][1], status.reason);
+        particles.x[p][1], D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "",
+        status.reason);
     write_frame();  // the last state, for diagnosis
   }
   series.flush();
@@ -252,7 +258,8 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   sum.simulated_time = res.simulated_time;
   sum.end_time = s.end_time;
   sum.particles = n;
-  sum.cells = static_cast<long>(s.cells[0]) * s.cells[1];
+  sum.cells = s.cell_count();
+  sum.dimension = D;
   sum.wall_seconds = res.wall_seconds;
   sum.particle_updates_per_second = res.particle_updates_per_second;
   sum.threads = solver.threads();
@@ -266,5 +273,18 @@ RunResult run_simulation(const Scenario& s, const fs::path& outdir, const RunOpt
   res.stages = std::move(measures);
   return res;
 }
+
+RunResult run_simulation(const AnyScenario& s, const fs::path& outdir, const RunOptions& opt) {
+  return std::visit([&](const auto& sc) { return run_simulation(sc, outdir, opt); }, s);
+}
+
+template double scenario_time_step<2>(const Scenario&);
+template double scenario_time_step<3>(const Scenario3&);
+template SolverSettings<2> solver_settings<2>(const Scenario&);
+template SolverSettings<3> solver_settings<3>(const Scenario3&);
+template GridGeometry<2> scenario_grid<2>(const Scenario&);
+template GridGeometry<3> scenario_grid<3>(const Scenario3&);
+template RunResult run_simulation<2>(const Scenario&, const fs::path&, const RunOptions&);
+template RunResult run_simulation<3>(const Scenario3&, const fs::path&, const RunOptions&);
 
 }  // namespace skred

@@ -28,13 +28,17 @@ struct RunResult {
 
 // The time step of a scenario: the fixed one, or cfl * h / (fastest P-wave speed +
 // fastest initial particle speed).
-double scenario_time_step(const Scenario& s);
+template <int D> double scenario_time_step(const ScenarioOf<D>& s);
 
-SolverSettings<2> solver_settings(const Scenario& s);
+template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s);
 
 // The background grid of a scenario (origin, cell size, cells per axis).
-GridGeometry<2> scenario_grid(const Scenario& s);
+template <int D> GridGeometry<D> scenario_grid(const ScenarioOf<D>& s);
 
-RunResult run_simulation(const Scenario& s, const std::filesystem::path& outdir, const RunOptions& opt);
+// Runs a 2D or 3D scenario (the driver is the same template; 3D adds momentum_z to
+// series.csv and the runout along z to summary.json).
+template <int D>
+RunResult run_simulation(const ScenarioOf<D>& s, const std::filesystem::path& outdir, const RunOptions& opt);
+RunResult run_simulation(const AnyScenario& s, const std::filesystem::path& outdir, const RunOptions& opt);
 
 }  // namespace skred

@@ -5,28 +5,36 @@
 
 namespace skred {
 
-MaterialExtent material_extent(const Particles<2>& P) {
+template <int D> MaterialExtent material_extent(const Particles<D>& P) {
   double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
+  double z_min = D == 3 ? INFINITY : 0.0, z_max = D == 3 ? -INFINITY : 0.0;
   const long n = static_cast<long>(P.size());
-#pragma omp parallel for reduction(min : x_min, y_min) reduction(max : x_max, y_max)
+#pragma omp parallel for reduction(min : x_min, y_min, z_min) reduction(max : x_max, y_max, z_max)
   for (long p = 0; p < n; ++p) {
-    // Corners x_p + F (+-l0x, +-l0y); the extreme corner along each axis.
-    const Vec<2> r = P.F[p].cwiseAbs() * P.half0[p];
+    // Corners x_p + F (+-l0) (Thesis eq. 3.6-3.12); the extreme corner along each axis.
+    const Vec<D> r = P.F[p].cwiseAbs() * P.half0[p];
     x_min = std::min(x_min, P.x[p][0] - r[0]);
     x_max = std::max(x_max, P.x[p][0] + r[0]);
     y_min = std::min(y_min, P.x[p][1] - r[1]);
     y_max = std::max(y_max, P.x[p][1] + r[1]);
+    if constexpr (D == 3) {
+      z_min = std::min(z_min, P.x[p][2] - r[2]);
+      z_max = std::max(z_max, P.x[p][2] + r[2]);
+    }
   }
-  const MaterialExtent e{x_min, x_max, y_min, y_max};
+  const MaterialExtent e{x_min, x_max, y_min, y_max, z_min, z_max};
   return e;
 }
 
-StageTracker::StageTracker(std::string name, const Particles<2>& P, double time,
-                           double kinetic_energy, double rest_speed, double rest_time,
-                           double x0, double width, double length)
+template <int D>
+StageTracker<D>::StageTracker(std::string name, const Particles<D>& P, double time,
+                              double kinetic_energy, double rest_speed, double rest_time,
+                              double x0, double width, double length, double z0, double z_length)
     : start_(material_extent(P)), kinetic_start_(kinetic_energy), rest_speed_(rest_speed),
-      rest_time_(rest_time), threshold_(0.5 * width), x0_(x0), width_(width), length_(length) {
+      rest_time_(rest_time), threshold_(0.5 * width), x0_(x0), width_(width), length_(length),
+      z0_(z0), z_length_(z_length) {
   profile_ = surface_profile(P, x0_, width_, bins());
+  if constexpr (D == 3) profile_z_ = surface_profile(P, z0_, width_, bins_z(), 2);
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
@@ -34,7 +42,7 @@ StageTracker::StageTracker(std::string name, const Particles<2>& P, double time,
   for (std::size_t p = 0; p < P.size(); ++p) plastic_start_[p] = P.state[p].plastic_shear_strain;
 }
 
-bool StageTracker::observe(double time, double mean_speed) {
+template <int D> bool StageTracker<D>::observe(double time, double mean_speed) {
   if (mean_speed > m_.peak_mean_speed) {
     m_.peak_mean_speed = mean_speed;
     m_.peak_time = time - m_.start_time;
@@ -50,12 +58,15 @@ bool StageTracker::observe(double time, double mean_speed) {
   return time - *quiet_since_ >= rest_time_ * (1.0 - 1e-9);
 }
 
-std::vector<double> surface_profile(const Particles<2>& P, double x0, double width, int bins) {
+template <int D>
+std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins,
+                                   int axis) {
   std::vector<double> top(static_cast<std::size_t>(bins), -INFINITY);
+  const int a = axis;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<2> r = P.F[p].cwiseAbs() * P.half0[p];  // half extent of the deformed voxel
-    const int lo = std::max(0, static_cast<int>(std::floor((P.x[p][0] - r[0] - x0) / width)));
-    const int hi = std::min(bins - 1, static_cast<int>(std::floor((P.x[p][0] + r[0] - x0) / width)));
+    const Vec<D> r = P.F[p].cwiseAbs() * P.half0[p];  // half extent of the deformed voxel
+    const int lo = std::max(0, static_cast<int>(std::floor((P.x[p][a] - r[a] - x0) / width)));
+    const int hi = std::min(bins - 1, static_cast<int>(std::floor((P.x[p][a] + r[a] - x0) / width)));
     for (int b = lo; b <= hi; ++b)
       top[static_cast<std::size_t>(b)] = std::max(top[static_cast<std::size_t>(b)], P.x[p][1] + r[1]);
   }
@@ -85,15 +96,16 @@ Runout runout_of(const std::vector<double>& before, const std::vector<double>& a
   return r;
 }
 
-double StageTracker::runout(const Particles<2>& P) const {
+template <int D> double StageTracker<D>::runout(const Particles<D>& P) const {
   const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
   return std::max(r.x_min, r.x_max);
 }
 
-StageMeasures StageTracker::finish(const Particles<2>& P, double time, long steps,
-                                   double kinetic_energy, double gravity_work,
-                                   double strain_energy, double plastic_dissipation,
-                                   const std::string& ended_by) const {
+template <int D>
+StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long steps,
+                                      double kinetic_energy, double gravity_work,
+                                      double strain_energy, double plastic_dissipation,
+                                      const std::string& ended_by) const {
   StageMeasures m = m_;
   const MaterialExtent e = material_extent(P);
   m.end_time = time;
@@ -103,6 +115,12 @@ StageMeasures StageTracker::finish(const Particles<2>& P, double time, long step
   m.runout_x_min = r.x_min;
   m.runout_x_max = r.x_max;
   m.runout = std::max(r.x_min, r.x_max);
+  if constexpr (D == 3) {
+    const Runout z = runout_of(profile_z_, surface_profile(P, z0_, width_, bins_z(), 2), width_,
+                               threshold_);
+    m.runout_z_min = z.x_min;
+    m.runout_z_max = z.x_max;
+  }
   for (std::size_t p = 0; p < P.size(); ++p)
     m.max_displacement = std::max(m.max_displacement, (P.x[p] - P.x_ref[p]).norm());
   m.height_end = e.y_max - e.y_min;
@@ -124,5 +142,12 @@ StageMeasures StageTracker::finish(const Particles<2>& P, double time, long step
   }
   return m;
 }
+
+template MaterialExtent material_extent<2>(const Particles<2>&);
+template MaterialExtent material_extent<3>(const Particles<3>&);
+template std::vector<double> surface_profile<2>(const Particles<2>&, double, double, int, int);
+template std::vector<double> surface_profile<3>(const Particles<3>&, double, double, int, int);
+template class StageTracker<2>;
+template class StageTracker<3>;
 
 }  // namespace skred

@@ -13,14 +13,18 @@
 namespace skred {
 
 // Extent of the material: the deformed voxels' corners x_p + F_p (+-l0) (Thesis eq. 3.6-3.12).
+// In 2D z_min = z_max = 0.
 struct MaterialExtent {
-  double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0;
+  double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0, z_min = 0.0, z_max = 0.0;
 };
-MaterialExtent material_extent(const Particles<2>& P);
+template <int D> MaterialExtent material_extent(const Particles<D>& P);
 
-// Top of the material in columns of `width` from x0 (the highest deformed-voxel corner in
-// each column; -inf where there is none).
-std::vector<double> surface_profile(const Particles<2>& P, double x0, double width, int bins);
+// Top of the material in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D), the
+// highest deformed-voxel corner in each column (-inf where there is none). In 3D a column
+// is a slice across the whole domain (for axis 0, every z; for axis 2, every x).
+template <int D>
+std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins,
+                                    int axis = 0);
 
 // Runout from the surface profiles before and after, towards +x and -x: the tip is the
 // outermost column the deposit has raised by more than `threshold`; the toe is the outermost
@@ -33,18 +37,22 @@ Runout runout_of(const std::vector<double>& before, const std::vector<double>& a
                  double width, double threshold);
 
 // Follows one stage: record the start, observe the mean speed as the run goes, finish.
-class StageTracker {
+// In 3D the runout is measured along x as in 2D (`runout`, `runout_x_min/max`), and along z
+// the same way from profiles across z (`runout_z_min/max`).
+template <int D> class StageTracker {
  public:
-  // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length].
-  StageTracker(std::string name, const Particles<2>& P, double time, double kinetic_energy,
-               double rest_speed, double rest_time, double x0, double width, double length);
+  // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length]
+  // (3D: also over [z0, z0 + z_length] along z).
+  StageTracker(std::string name, const Particles<D>& P, double time, double kinetic_energy,
+               double rest_speed, double rest_time, double x0, double width, double length,
+               double z0 = 0.0, double z_length = 0.0);
   // Records a sample of the mean speed at `time`; true once the rest criterion is met.
   bool observe(double time, double mean_speed);
-  StageMeasures finish(const Particles<2>& P, double time, long steps, double kinetic_energy,
+  StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
                        double gravity_work, double strain_energy, double plastic_dissipation,
                        const std::string& ended_by) const;
   // Current runout and deposit height, for the series rows.
-  double runout(const Particles<2>& P) const;
+  double runout(const Particles<D>& P) const;
 
  private:
   StageMeasures m_;
@@ -52,9 +60,11 @@ class StageTracker {
   std::vector<double> plastic_start_;  // plastic shear strain per point at the stage start
   double kinetic_start_ = 0.0;
   double rest_speed_ = 0.0, rest_time_ = 0.0, threshold_ = 0.0;
-  double x0_ = 0.0, width_ = 1.0, length_ = 0.0;
-  std::vector<double> profile_;  // surface profile at the stage start
+  double x0_ = 0.0, width_ = 1.0, length_ = 0.0, z0_ = 0.0, z_length_ = 0.0;
+  std::vector<double> profile_;    // surface profile along x at the stage start
+  std::vector<double> profile_z_;  // 3D: along z
   int bins() const { return std::max(1, static_cast<int>(std::lround(length_ / width_))); }
+  int bins_z() const { return std::max(1, static_cast<int>(std::lround(z_length_ / width_))); }
   std::optional<double> quiet_since_;  // time the mean speed last fell below rest_speed
   std::vector<std::pair<double, double>> samples_;  // (time, mean speed)
 };

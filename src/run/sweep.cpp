@@ -37,8 +37,8 @@ void write_table(const fs::path& file, const std::string& key, const std::vector
 std::vector<SweepRow> run_sweep(const std::string& scenario_file, const fs::path& outdir,
                                 const SweepOptions& opt) {
   const std::string text = read_scenario_text(scenario_file);
-  std::vector<Scenario> scenarios;  // validate every value before running anything
-  for (double v : opt.values) scenarios.push_back(parse_scenario(text, scenario_file, {{opt.key, v}}));
+  std::vector<AnyScenario> scenarios;  // validate every value before running anything
+  for (double v : opt.values) scenarios.push_back(parse_any_scenario(text, scenario_file, {{opt.key, v}}));
   fs::create_directories(outdir);
   std::vector<SweepRow> rows;
   for (std::size_t i = 0; i < scenarios.size(); ++i) {

@@ -9,28 +9,36 @@
 
 namespace skred {
 
-// Fills every body with n x n material points per grid cell (n = particles_per_cell): each
-// cell is split into n x n sub-squares of side h/n and a sub-square's centre becomes a point
-// if it lies inside the body's shape. Mass = density (h/n)^2 (plane strain, per unit
-// thickness), volume0 = (h/n)^2, half0 = (h/2n, h/2n). Bodies are filled in order, cells in
-// row-major order (x fastest). Throws ScenarioError if a body receives no point.
-Particles<2> build_particles(const Scenario& s);
+// Fills every body with n^D material points per grid cell (n = particles_per_cell): each
+// cell is split into n^D sub-cells of side h/n and a sub-cell's centre becomes a point if it
+// lies inside the body's shape. Mass = density (h/n)^D (in 2D plane strain, per unit
+// thickness), volume0 = (h/n)^D, half0 = h/2n on every axis. Bodies are filled in order,
+// cells in row-major order (x fastest, then y, then z), and the sub-cells of a cell in the
+// same order. Throws ScenarioError if a body receives no point.
+template <int D> Particles<D> build_particles(const ScenarioOf<D>& s);
 
 // Number of material points build_particles gives body `b` on the grid of `s`.
-std::size_t count_points(const Scenario& s, const Body& b);
+template <int D> std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
 // True if body `b` receives at least one point (cheaper than count_points).
-bool has_points(const Scenario& s, const Body& b);
+template <int D> bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
 
 // Point-in-shape test with half-open rules: a point on a rectangle's or polygon's low (left,
 // bottom) edge is inside and on its high edge is outside, so shapes sharing an edge never
-// both claim a point. Discs use the strict test |x - c| < r.
+// both claim a point. Discs use the strict test |x - c| < r. In 3D: boxes and extruded
+// polygons (also z_min <= z < z_max) likewise; spheres and cylinders strictly.
 bool shape_contains(const Shape& shape, const Vec<2>& x);
+bool shape_contains(const Shape3& shape, const Vec<3>& x);
+
+// Axis-aligned bounding box of a shape.
+template <int D> struct ShapeBox { Vec<D> lo, hi; };
+ShapeBox<2> bounding_box(const Shape& shape);
+ShapeBox<3> bounding_box(const Shape3& shape);
 
 // Signed area of a polygon (positive when counter-clockwise).
 double polygon_area(const Polygon& p);
 
 // Short multi-line human summary (grid, materials, bodies, gravity, boundaries, solver and
 // output settings), as printed by `skred check`. Ends with a newline.
-std::string describe(const Scenario& s);
+template <int D> std::string describe(const ScenarioOf<D>& s);
 
 }  // namespace skred

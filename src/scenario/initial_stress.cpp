@@ -17,33 +17,49 @@ double k0_of(const InitialStress& is, const Material& m) {
   return 0.0;
 }
 
-void apply_initial_stress(const Scenario& s, Particles<2>& P) {
+// Columns of width b (the finest point spacing) over the horizontal axes: x in 2D, x and z in
+// 3D. A point loads every column its voxel covers and is loaded by the column it stands in.
+template <int D>
+void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P) {
   if (s.initial_stress.rule == K0Rule::None || P.size() == 0) return;
   const double g = std::abs(s.gravity[1]);
   const std::size_t n = P.size();
-  // Columns of width b (the finest point spacing); a point loads every column its voxel covers.
+  constexpr int H = D == 2 ? 1 : 2;               // horizontal axes
+  constexpr int axis[2] = {0, 2};                 // x, then z
   double b = INFINITY;
   for (std::size_t p = 0; p < n; ++p) b = std::min(b, 2.0 * P.half0[p][0]);
-  const auto column = [&](double x) { return static_cast<long>(std::floor((x - s.origin[0]) / b)); };
-  long cols = column(s.origin[0] + s.cells[0] * s.cell_size) + 1;
-  std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(cols));
+  const auto column = [&](int h, double x) {
+    return static_cast<long>(std::floor((x - s.origin[axis[h]]) / b));
+  };
+  long cols[2] = {1, 1};
+  for (int h = 0; h < H; ++h)
+    cols[h] = column(h, s.origin[axis[h]] + s.cells[static_cast<std::size_t>(axis[h])] * s.cell_size) + 1;
+  const auto flat = [&](long cx, long cz) { return static_cast<std::size_t>(cz * cols[0] + cx); };
+  std::vector<std::vector<std::size_t>> members(static_cast<std::size_t>(cols[0] * cols[1]));
   for (std::size_t p = 0; p < n; ++p) {
-    const long lo = column(P.x[p][0] - P.half0[p][0] + 0.5 * b);
-    const long hi = column(P.x[p][0] + P.half0[p][0] - 0.5 * b);
-    for (long c = std::max(0L, lo); c <= std::min(cols - 1, hi); ++c)
-      members[static_cast<std::size_t>(c)].push_back(p);
-  }
-  std::vector<double> overburden(n, 0.0);  // weight per unit width above the point [Pa]
-  for (long c = 0; c < cols; ++c) {
-    auto& m = members[static_cast<std::size_t>(c)];
-    std::sort(m.begin(), m.end(), [&](std::size_t a, std::size_t d) { return P.x[a][1] > P.x[d][1]; });
-    double above = 0.0;
-    for (std::size_t p : m) {
-      const double w = P.mass[p] * g / (2.0 * P.half0[p][0]);  // weight per unit width
-      if (column(P.x[p][0]) == c) overburden[p] = above + 0.5 * w;  // the point's own column
-      above += w;
+    long lo[2] = {0, 0}, hi[2] = {0, 0};
+    for (int h = 0; h < H; ++h) {
+      const double x = P.x[p][axis[h]], l = P.half0[p][axis[h]];
+      lo[h] = std::max(0L, column(h, x - l + 0.5 * b));
+      hi[h] = std::min(cols[h] - 1, column(h, x + l - 0.5 * b));
     }
+    for (long cz = lo[1]; cz <= hi[1]; ++cz)
+      for (long cx = lo[0]; cx <= hi[0]; ++cx) members[flat(cx, cz)].push_back(p);
   }
+  std::vector<double> overburden(n, 0.0);  // weight per unit area above the point [Pa]
+  for (long cz = 0; cz < cols[1]; ++cz)
+    for (long cx = 0; cx < cols[0]; ++cx) {
+      auto& m = members[flat(cx, cz)];
+      std::sort(m.begin(), m.end(), [&](std::size_t a, std::size_t d) { return P.x[a][1] > P.x[d][1]; });
+      double above = 0.0;
+      for (std::size_t p : m) {
+        double w = P.mass[p] * g;  // weight per unit width (2D) or area (3D)
+        for (int h = 0; h < H; ++h) w /= 2.0 * P.half0[p][axis[h]];
+        const bool own = column(0, P.x[p][0]) == cx && (H == 1 || column(1, P.x[p][axis[1]]) == cz);
+        if (own) overburden[p] = above + 0.5 * w;  // the point's own column
+        above += w;
+      }
+    }
   for (std::size_t p = 0; p < n; ++p) {
     const double syy = -overburden[p];  // Thesis eq. 5.6
     const double k0 = k0_of(s.initial_stress, s.materials[static_cast<std::size_t>(P.material[p])]);
@@ -55,7 +71,10 @@ void apply_initial_stress(const Scenario& s, Particles<2>& P) {
   P.set_reference_stress();  // reference state of Fe (Post eq. 77)
 }
 
-std::vector<Material> stage_materials(const Scenario& s, const Stage& stage) {
+template void apply_initial_stress<2>(const Scenario&, Particles<2>&);
+template void apply_initial_stress<3>(const Scenario3&, Particles<3>&);
+
+std::vector<Material> stage_materials(const ScenarioCommon& s, const Stage& stage) {
   std::vector<Material> mats = s.materials;
   for (const MaterialOverride& o : stage.overrides) {
     Material& m = mats[static_cast<std::size_t>(o.material)];

@@ -5,6 +5,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -17,28 +18,51 @@
 
 namespace skred {
 
+// 2D shapes (plane strain, in the x-y plane).
 struct Rectangle { Vec<2> min, max; };
 struct Polygon { std::vector<Vec<2>> vertices; };
 struct Disc { Vec<2> center; double radius = 0.0; };
 using Shape = std::variant<Rectangle, Polygon, Disc>;
 
+// 3D shapes (y vertical, x and z horizontal).
+struct Box { Vec<3> min, max; };
+// A polygon in the x-y plane extruded along z over [z_min, z_max).
+struct ExtrudedPolygon {
+  Polygon section;
+  double z_min = 0.0, z_max = 0.0;
+};
+// A circular cylinder: axis through `center` along the unit vector `axis`, end faces at
+// center +- length/2 axis.
+struct Cylinder {
+  Vec<3> center = Vec<3>::Zero();
+  Vec<3> axis = Vec<3>::UnitY();
+  double radius = 0.0, length = 0.0;
+};
+struct Sphere { Vec<3> center; double radius = 0.0; };
+using Shape3 = std::variant<Box, ExtrudedPolygon, Cylinder, Sphere>;
+
+template <int D> using ShapeOf = std::conditional_t<D == 2, Shape, Shape3>;
+
 // A sine-shaped initial velocity added to the body's uniform one (for mode shapes such as
 // reference R1): v(x) += amplitude sin(2 pi (x[axis] - origin) / wavelength).
-struct SineVelocity {
-  Vec<2> amplitude = Vec<2>::Zero();  // [m/s]
+template <int D> struct SineVelocityOf {
+  Vec<D> amplitude = Vec<D>::Zero();  // [m/s]
   double wavelength = 0.0;            // [m]; 0: none
-  int axis = 0;                       // 0: along x, 1: along y
+  int axis = 0;                       // 0: along x, 1: along y, 2: along z (3D)
   double origin = 0.0;                // [m]; where the sine is zero
 };
+using SineVelocity = SineVelocityOf<2>;
 
-struct Body {
+template <int D> struct BodyOf {
   std::string name;
-  Shape shape;
+  ShapeOf<D> shape;
   int material = 0;              // index into Scenario::materials
-  int particles_per_cell = 2;    // n: n x n material points per grid cell
-  Vec<2> velocity = Vec<2>::Zero();  // initial velocity
-  SineVelocity velocity_sine = {};   // added to `velocity`
+  int particles_per_cell = 2;    // n: n^D material points per grid cell
+  Vec<D> velocity = Vec<D>::Zero();  // initial velocity
+  SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
 };
+using Body = BodyOf<2>;
+using Body3 = BodyOf<3>;
 
 // Initial stress from the weight of the soil above each point (Thesis eq. 5.6-5.7):
 // sigma_yy = -g sum(rho h) over the column above, sigma_xx = sigma_zz = K0 sigma_yy.
@@ -75,26 +99,15 @@ struct Stage {
   double rest_time = 0.0;
 };
 
-struct Scenario {
+// What a scenario says apart from its geometry: the same in 2D and 3D.
+struct ScenarioCommon {
   std::string source;  // path of the scenario file (for messages)
   std::string title;
-
-  // Background grid (Thesis §2.1): origin of the low corner, cells per axis, cell size.
-  Vec<2> origin = Vec<2>::Zero();
-  std::array<int, 2> cells{};
   double cell_size = 0.0;
 
   std::vector<Material> materials;
-  std::vector<Body> bodies;
   InitialStress initial_stress;
-
-  // Gravity: full acceleration vector g and the ramp time T of Thesis eq. 4.13
-  // (0: gravity applied at once).
-  Vec<2> gravity = Vec<2>::Zero();
-  double gravity_ramp_time = 0.0;
-
-  // Boundaries per grid side, in the order x_min, x_max, y_min, y_max.
-  std::array<BoundarySide, 4> boundaries{};
+  double gravity_ramp_time = 0.0;  // ramp time T of Thesis eq. 4.13 (0: gravity at once)
 
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;  // per direction, GimpQuadrature only (1, 2 or 3)
@@ -112,12 +125,41 @@ struct Scenario {
   double series_interval = 0.0;  // simulated time between rows of series.csv
 };
 
+// A scenario in D dimensions (2: plane strain in x-y; 3: x, y, z with y vertical). The
+// dimension is that of [grid] size (docs/scenario.md).
+template <int D> struct ScenarioOf : ScenarioCommon {
+  static constexpr int dimension = D;
+  // Background grid (Thesis §2.1): origin of the low corner, cells per axis (cell_size above).
+  Vec<D> origin = Vec<D>::Zero();
+  std::array<int, D> cells{};
+
+  std::vector<BodyOf<D>> bodies;
+
+  // Gravity: full acceleration vector g (ramp time above).
+  Vec<D> gravity = Vec<D>::Zero();
+
+  // Boundaries per grid side, in the order x_min, x_max, y_min, y_max (, z_min, z_max).
+  std::array<BoundarySide, 2 * D> boundaries{};
+
+  // Number of grid cells, the product over the axes.
+  long cell_count() const {
+    long n = 1;
+    for (int c : cells) n *= c;
+    return n;
+  }
+};
+using Scenario = ScenarioOf<2>;
+using Scenario3 = ScenarioOf<3>;
+// A parsed file of either dimension.
+using AnyScenario = std::variant<Scenario, Scenario3>;
+
 // A scenario that cannot be used. what() reads "FILE:LINE:COLUMN: key 'a.b': message".
 struct ScenarioError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Parses and validates a scenario file. Throws ScenarioError naming file, line and key.
+// Parses and validates a 2D scenario file. Throws ScenarioError naming file, line and key
+// (also for a 3D file, naming grid.size).
 Scenario load_scenario(const std::string& path);
 // The same from text in memory; `source` names it in messages.
 Scenario parse_scenario(const std::string& text, const std::string& source);
@@ -125,6 +167,10 @@ Scenario parse_scenario(const std::string& text, const std::string& source);
 // such as "material[0].friction", "material[sand].cohesion" or "stage[1].duration".
 Scenario parse_scenario(const std::string& text, const std::string& source,
                         const std::vector<std::pair<std::string, double>>& overrides);
+// A scenario file of either dimension (2D, or 3D when [grid] size has three components).
+AnyScenario load_any_scenario(const std::string& path);
+AnyScenario parse_any_scenario(const std::string& text, const std::string& source,
+                               const std::vector<std::pair<std::string, double>>& overrides = {});
 // The text of a scenario file. Throws ScenarioError if it cannot be read.
 std::string read_scenario_text(const std::string& path);
 

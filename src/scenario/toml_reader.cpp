@@ -71,6 +71,21 @@ Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::stri
   return v;
 }
 
+Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key,
+                 Location fallback) {
+  const Location at = location_of(n.source(), fallback);
+  const auto* arr = n.as_array();
+  if (!arr)
+    fail(source, at, key, fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
+                                      "got {}", type_name(n)));
+  if (arr->size() != 3)
+    fail(source, at, key, fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
+                                      "got {} elements", arr->size()));
+  Vec<3> v;
+  for (int d = 0; d < 3; ++d) v[d] = node_number(*arr->get(d), source, key, at);
+  return v;
+}
+
 TableReader::TableReader(const toml::table& table, std::string path, const std::string& source,
                          Location fallback)
     : table_(table), path_(std::move(path)), source_(source),
@@ -159,6 +174,15 @@ Vec<2> TableReader::vec2(std::string_view name, std::optional<Vec<2>> def) const
     fail_missing(name);
   }
   return node_vec2(*n, source_, key(name), where_);
+}
+
+Vec<3> TableReader::vec3(std::string_view name, std::optional<Vec<3>> def) const {
+  const auto* n = find(name);
+  if (!n) {
+    if (def) return *def;
+    fail_missing(name);
+  }
+  return node_vec3(*n, source_, key(name), where_);
 }
 
 std::optional<TableReader> TableReader::table(std::string_view name, bool required) const {

@@ -87,6 +87,13 @@ class TableReader {
   std::string string(std::string_view name, std::optional<std::string> def = {}) const;
   // An array of exactly two numbers.
   Vec<2> vec2(std::string_view name, std::optional<Vec<2>> def = {}) const;
+  // An array of exactly three numbers (3D scenarios).
+  Vec<3> vec3(std::string_view name, std::optional<Vec<3>> def = {}) const;
+  // vec2 or vec3 by dimension.
+  template <int D> Vec<D> vec(std::string_view name, std::optional<Vec<D>> def = {}) const {
+    if constexpr (D == 2) return vec2(name, def);
+    else return vec3(name, def);
+  }
   // A sub-table (standard or inline); nullopt when absent and not required.
   std::optional<TableReader> table(std::string_view name, bool required) const;
   // An array whose elements must all be tables ([[name]]); empty when absent.
@@ -121,6 +128,9 @@ double node_number(const toml::node& n, const std::string& source, const std::st
                    Location fallback);
 // Reads an array of exactly two finite numbers from an arbitrary node.
 Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::string& key,
+                 Location fallback);
+// Reads an array of exactly three finite numbers (a 3D scenario's vectors).
+Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key,
                  Location fallback);
 
 }  // namespace skred::scenario_detail

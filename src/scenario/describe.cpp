@@ -1,0 +1,152 @@
+// The human summary of a scenario printed by `skred check`.
+#include <fmt/format.h>
+
+#include <cmath>
+#include <type_traits>
+
+#include "scenario/build.hpp"
+
+namespace skred {
+namespace {
+
+// The strength parameters of a material, for describe().
+std::string strength_summary(const Material& m) {
+  constexpr double deg = 180.0 / M_PI;
+  switch (m.model) {
+    case Model::LinearElastic: return "";
+    case Model::MohrCoulomb: {
+      const auto& mc = m.mohr_coulomb;
+      std::string t = fmt::format(", friction {:.4g} deg, cohesion {} Pa, dilation {:.4g} deg",
+                                  mc.friction * deg, mc.cohesion, mc.dilation * deg);
+      if (std::isfinite(mc.tension_cutoff)) t += fmt::format(", tension cut-off {} Pa", mc.tension_cutoff);
+      if (mc.max_void_ratio > 0)
+        t += fmt::format(", void ratio {} -> max {}", mc.initial_void_ratio, mc.max_void_ratio);
+      return t;
+    }
+    case Model::Tresca: return fmt::format(", cohesion {} Pa", m.mohr_coulomb.cohesion);
+    case Model::VonMises:
+      return fmt::format(", cohesion {} Pa -> residual {} Pa, softening modulus {} Pa",
+                         m.von_mises.cohesion_peak, m.von_mises.cohesion_residual,
+                         m.von_mises.softening_modulus);
+  }
+  return "";
+}
+
+std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
+  std::string t = fmt::format("  {}: {} s", st.name, st.duration);
+  if (st.gravity_ramp_time > 0) t += fmt::format(", gravity ramp {} s", st.gravity_ramp_time);
+  if (st.elastic) t += ", held elastic";
+  if (st.strength_reduction != 1.0) t += fmt::format(", strength reduction {}", st.strength_reduction);
+  for (const auto& o : st.overrides) {
+    t += fmt::format(", {}:", s.materials[static_cast<std::size_t>(o.material)].name);
+    if (o.friction) t += fmt::format(" friction {:.4g} deg", *o.friction * 180.0 / M_PI);
+    if (o.cohesion) t += fmt::format(" cohesion {} Pa", *o.cohesion);
+    if (o.dilation) t += fmt::format(" dilation {:.4g} deg", *o.dilation * 180.0 / M_PI);
+  }
+  if (st.rest_speed > 0)
+    t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed,
+                     st.rest_time);
+  return t;
+}
+
+std::string vec(const Vec<2>& v) { return fmt::format("({}, {})", v[0], v[1]); }
+std::string vec(const Vec<3>& v) { return fmt::format("({}, {}, {})", v[0], v[1], v[2]); }
+
+std::string shape_summary(const Shape& shape) {
+  return std::visit(
+      [](const auto& sh) -> std::string {
+        using T = std::decay_t<decltype(sh)>;
+        if constexpr (std::is_same_v<T, Rectangle>) {
+          return fmt::format("rectangle {} to {}", vec(sh.min), vec(sh.max));
+        } else if constexpr (std::is_same_v<T, Disc>) {
+          return fmt::format("disc centre {} radius {} m", vec(sh.center), sh.radius);
+        } else {
+          return fmt::format("polygon with {} vertices, area {} m^2", sh.vertices.size(),
+                             std::abs(polygon_area(sh)));
+        }
+      },
+      shape);
+}
+
+std::string shape_summary(const Shape3& shape) {
+  return std::visit(
+      [](const auto& sh) -> std::string {
+        using T = std::decay_t<decltype(sh)>;
+        if constexpr (std::is_same_v<T, Box>) {
+          return fmt::format("box {} to {}", vec(sh.min), vec(sh.max));
+        } else if constexpr (std::is_same_v<T, Sphere>) {
+          return fmt::format("sphere centre {} radius {} m", vec(sh.center), sh.radius);
+        } else if constexpr (std::is_same_v<T, Cylinder>) {
+          return fmt::format("cylinder centre {} axis {} radius {} m length {} m", vec(sh.center),
+                             vec(sh.axis), sh.radius, sh.length);
+        } else {
+          return fmt::format("polygon with {} vertices, area {} m^2, extruded over z {} to {}",
+                             sh.section.vertices.size(), std::abs(polygon_area(sh.section)),
+                             sh.z_min, sh.z_max);
+        }
+      },
+      shape);
+}
+
+std::string boundary_summary(const BoundarySide& b) {
+  if (b.kind == BoundaryKind::Friction) return fmt::format("friction (mu = {})", b.friction);
+  return to_string(b.kind);
+}
+
+}  // namespace
+
+template <int D> std::string describe(const ScenarioOf<D>& s) {
+  std::string out;
+  auto line = [&out](const std::string& text) { out += text + '\n'; };
+  line(fmt::format("scenario: {}{}", s.source, s.title.empty() ? "" : " (\"" + s.title + "\")"));
+  std::string cells, extent;
+  for (int d = 0; d < D; ++d) {
+    cells += fmt::format("{}{}", d ? " x " : "", s.cells[static_cast<std::size_t>(d)]);
+    extent += fmt::format("{}{}", d ? " x " : "", s.cells[static_cast<std::size_t>(d)] * s.cell_size);
+  }
+  line(fmt::format("grid{}: {} cells of {} m, origin {}, extent {} m", D == 3 ? " (3D)" : "",
+                   cells, s.cell_size, vec(s.origin), extent));
+  line(fmt::format("materials ({}):", s.materials.size()));
+  for (const auto& m : s.materials)
+    line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}{}", m.name,
+                     to_string(m.model), m.density, m.elastic.young, m.elastic.poisson,
+                     strength_summary(m)));
+  line(fmt::format("bodies ({}):", s.bodies.size()));
+  for (const auto& b : s.bodies) {
+    const std::string mat = b.material >= 0 && static_cast<std::size_t>(b.material) < s.materials.size()
+                                ? s.materials[static_cast<std::size_t>(b.material)].name
+                                : "?";
+    line(fmt::format("  {}: {}, material {}, {} points per cell, velocity {} m/s", b.name,
+                     shape_summary(b.shape), mat, D == 3 ? fmt::format("{0}x{0}x{0}", b.particles_per_cell) : fmt::format("{0}x{0}", b.particles_per_cell),
+                     vec(b.velocity)));
+  }
+  line(fmt::format("gravity: {} m/s^2", vec(s.gravity)));
+  switch (s.initial_stress.rule) {
+    case K0Rule::None: break;
+    case K0Rule::Poisson: line("initial stress: K0 = nu / (1 - nu) from the overburden"); break;
+    case K0Rule::Jaky: line("initial stress: K0 = 1 - sin(phi) from the overburden"); break;
+    case K0Rule::Value: line(fmt::format("initial stress: K0 = {} from the overburden", s.initial_stress.k0)); break;
+  }
+  line(fmt::format("stages ({}):", s.stages.size()));
+  for (const auto& st : s.stages) line(stage_summary(s, st));
+  static const char* const names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  std::string sides;
+  for (int k = 0; k < 2 * D; ++k)
+    sides += fmt::format("{}{} {}", k ? ", " : "", names[k], boundary_summary(s.boundaries[static_cast<std::size_t>(k)]));
+  line("boundaries: " + sides);
+  std::string interp = to_string(s.interpolation);
+  if (s.interpolation == Interpolation::GimpQuadrature)
+    interp += fmt::format(" ({} points per direction)", s.quadrature_points);
+  const std::string step = s.time_step > 0.0 ? fmt::format("time step {} s", s.time_step)
+                                             : fmt::format("time step from CFL {}", s.cfl);
+  line(fmt::format("solver: {} interpolation, {} scheme, end time {} s, {}", interp,
+                   to_string(s.scheme), s.end_time, step));
+  line(fmt::format("output: particle frames every {} s, series rows every {} s",
+                   s.output_interval, s.series_interval));
+  return out;
+}
+
+template std::string describe<2>(const Scenario&);
+template std::string describe<3>(const Scenario3&);
+
+}  // namespace skred

@@ -1,0 +1,70 @@
+// Internal to the scenario parser: the parts of a file that depend on the dimension (grid,
+// bodies, gravity, boundaries; parser_geometry.cpp, 3D shapes in parser_shapes3.cpp) and the
+// helpers they share with parser.cpp.
+#pragma once
+#include <fmt/format.h>
+
+#include <string>
+#include <string_view>
+
+#include "scenario/scenario.hpp"
+#include "scenario/toml_reader.hpp"
+
+namespace skred::scenario_detail {
+
+constexpr double kDeg = M_PI / 180.0;
+
+inline const char* axis_name(int d) { return d == 0 ? "x" : d == 1 ? "y" : "z"; }
+
+// Index of the material called `name`, or a message listing the defined ones.
+int material_index(const TableReader& t, std::string_view key, const ScenarioCommon& s);
+
+// High corner of the grid and the tolerance for "inside the grid" tests.
+template <int D> Vec<D> grid_high(const ScenarioOf<D>& s) {
+  Vec<D> hi = s.origin;
+  for (int d = 0; d < D; ++d) hi[d] += s.cell_size * s.cells[static_cast<std::size_t>(d)];
+  return hi;
+}
+template <int D> double grid_tolerance(const ScenarioOf<D>& s) {
+  return 1e-9 * (grid_high(s) - s.origin).maxCoeff();
+}
+template <int D> bool inside_grid(const ScenarioOf<D>& s, const Vec<D>& x) {
+  const double tol = grid_tolerance(s);
+  return (x.array() >= s.origin.array() - tol).all() && (x.array() <= grid_high(s).array() + tol).all();
+}
+template <int D> std::string grid_bounds(const ScenarioOf<D>& s) {
+  const Vec<D> hi = grid_high(s);
+  std::string t;
+  for (int d = 0; d < D; ++d) t += fmt::format("{}[{}, {}]", d ? " x " : "", s.origin[d], hi[d]);
+  return t;
+}
+template <int D> std::string point_text(const Vec<D>& x) {
+  if constexpr (D == 2) return fmt::format("({}, {})", x[0], x[1]);
+  else return fmt::format("({}, {}, {})", x[0], x[1], x[2]);
+}
+// Checks that point x lies within the grid; `what` names it in the message.
+template <int D>
+void check_inside(const TableReader& t, std::string_view key, const ScenarioOf<D>& s,
+                  const Vec<D>& x, const std::string& what) {
+  if (!inside_grid(s, x))
+    t.fail_at(key, fmt::format("{} {} lies outside the grid {}", what, point_text<D>(x), grid_bounds(s)));
+}
+
+// The geometric tables, in the dimension of the scenario.
+template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s);
+template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
+template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
+template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
+
+// A 3D body's shape (box, extruded polygon, cylinder, sphere) from its [[body]] table.
+Shape3 parse_shape3(const TableReader& b, const Scenario3& s);
+// The [x, y] vertices of a polygon (2D body or the section of an extruded one), each checked
+// against the grid's x-y extent `lo`-`hi`.
+Polygon parse_vertices(const TableReader& b, const Vec<2>& lo, const Vec<2>& hi, double tol,
+                       const std::string& bounds);
+
+// Sets the value at a key path such as "material[0].friction" or "material[sand].friction"
+// (an array element chosen by its name key) or "stage[1].material[0].cohesion".
+void set_key(toml::table& doc, const std::string& path, double value, const std::string& source);
+
+}  // namespace skred::scenario_detail

@@ -1,0 +1,202 @@
+// The dimension-dependent tables of a scenario file: [grid], [[body]] (2D shapes here, 3D
+// shapes in parser_shapes3.cpp), [gravity] and [boundary]. docs/scenario.md documents them.
+#include <cmath>
+
+#include "scenario/build.hpp"
+#include "scenario/parser_detail.hpp"
+
+namespace skred::scenario_detail {
+
+namespace {
+
+constexpr int kMaxCells = 100000;
+constexpr int kMaxParticlesPerCell = 8;
+
+Shape parse_rectangle(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "min", "max"});
+  Rectangle r{b.vec2("min"), b.vec2("max")};
+  if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
+    b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components",
+                                 r.max[0], r.max[1], r.min[0], r.min[1]));
+  check_inside(b, "min", s, r.min, "min corner");
+  check_inside(b, "max", s, r.max, "max corner");
+  return r;
+}
+
+Shape parse_polygon(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "vertices"});
+  return parse_vertices(b, s.origin, grid_high(s), grid_tolerance(s), grid_bounds(s));
+}
+
+Shape parse_disc(const TableReader& b, const Scenario& s) {
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+                 "center", "radius"});
+  Disc c{b.vec2("center"), b.number("radius", Range::positive())};
+  check_inside(b, "center", s, c.center, "centre");
+  const Vec<2> r = Vec<2>::Constant(c.radius);
+  if (!inside_grid(s, Vec<2>(c.center - r)) || !inside_grid(s, Vec<2>(c.center + r)))
+    b.fail_at("radius", fmt::format("the disc of radius {} around ({}, {}) extends outside the "
+                                    "grid {}", c.radius, c.center[0], c.center[1],
+                                    grid_bounds(s)));
+  return c;
+}
+
+Shape parse_shape2(const TableReader& t, const Scenario& s) {
+  enum class Kind { Rectangle, Polygon, Disc };
+  const Kind kind = t.choice<Kind>(
+      "shape", {{"rectangle", Kind::Rectangle}, {"polygon", Kind::Polygon}, {"disc", Kind::Disc}});
+  switch (kind) {
+    case Kind::Rectangle: return parse_rectangle(t, s);
+    case Kind::Polygon: return parse_polygon(t, s);
+    case Kind::Disc: break;
+  }
+  return parse_disc(t, s);
+}
+
+}  // namespace
+
+Polygon parse_vertices(const TableReader& b, const Vec<2>& lo, const Vec<2>& hi, double tol,
+                       const std::string& bounds) {
+  if (!b.has("vertices")) b.fail_missing("vertices");
+  const auto* arr = b.find("vertices")->as_array();
+  if (!arr) b.fail_type("vertices", "an array of [x, y] pairs");
+  if (arr->size() < 3)
+    b.fail_at("vertices", fmt::format("a polygon needs at least 3 vertices, got {}", arr->size()));
+  Polygon p;
+  for (std::size_t k = 0; k < arr->size(); ++k) {
+    const std::string key = fmt::format("{}[{}]", b.key("vertices"), k);
+    const Vec<2> v = node_vec2(*arr->get(k), b.source(), key, b.where("vertices"));
+    if (!((v.array() >= lo.array() - tol).all() && (v.array() <= hi.array() + tol).all()))
+      fail(b.source(), location_of(arr->get(k)->source(), b.where("vertices")), key,
+           fmt::format("vertex ({}, {}) lies outside the grid {}", v[0], v[1], bounds));
+    p.vertices.push_back(v);
+  }
+  Vec<2> a = p.vertices[0], c = p.vertices[0];
+  for (const auto& v : p.vertices) a = a.cwiseMin(v), c = c.cwiseMax(v);
+  const Vec<2> span = c - a;
+  if (!(std::abs(polygon_area(p)) > 1e-12 * span.squaredNorm()))
+    b.fail_at("vertices", "the polygon has zero area");
+  return p;
+}
+
+template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
+  const TableReader g = *root.table("grid", true);
+  g.allow_only({"origin", "size", "cell_size"});
+  s.origin = g.vec<D>("origin", Vec<D>::Zero());
+  const Vec<D> size = g.vec<D>("size");
+  for (int d = 0; d < D; ++d)
+    if (!(size[d] > 0.0))
+      g.fail_at("size", fmt::format("the {} extent must be > 0, got {}", axis_name(d), size[d]));
+  const double h = g.number("cell_size", Range::positive());
+  for (int d = 0; d < D; ++d) {
+    const double ratio = size[d] / h;
+    if (ratio < 0.5)
+      g.fail_at("cell_size", fmt::format("cell_size {} is larger than the grid size {} along {}",
+                                         h, size[d], axis_name(d)));
+    if (ratio > kMaxCells + 0.5)
+      g.fail_at("cell_size", fmt::format("gives {:.0f} cells along {}; at most {} are allowed",
+                                         ratio, axis_name(d), kMaxCells));
+    const double n = std::round(ratio);
+    if (std::abs(n * h - size[d]) > 1e-9 * size[d])
+      g.fail_at("size", fmt::format("the {} extent {} is not a whole multiple of cell_size {} "
+                                    "({} cells)", axis_name(d), size[d], h, ratio));
+    s.cells[static_cast<std::size_t>(d)] = static_cast<int>(n);
+  }
+  s.cell_size = h;
+}
+
+template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
+  const auto tables = root.array_of_tables("body");
+  if (tables.empty())
+    fail(s.source, root.where("body"), "body", "at least one [[body]] table is required");
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const TableReader& t = tables[i];
+    BodyOf<D> b;
+    if constexpr (D == 2) b.shape = parse_shape2(t, s);
+    else b.shape = parse_shape3(t, s);
+    b.name = t.string("name", fmt::format("body-{}", i));
+    b.material = material_index(t, "material", s);
+    b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
+    b.velocity = t.vec<D>("velocity", Vec<D>::Zero());
+    if (const auto vs = t.table("velocity_sine", false)) {
+      vs->allow_only({"amplitude", "wavelength", "axis", "origin"});
+      b.velocity_sine.amplitude = vs->vec<D>("amplitude");
+      b.velocity_sine.wavelength = vs->number("wavelength", Range::positive());
+      if constexpr (D == 2) b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}}, 0);
+      else b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}, {"z", 2}}, 0);
+      b.velocity_sine.origin = vs->number("origin", Range::any(), 0.0);
+    }
+    if (!has_points(s, b))
+      t.fail_at("shape", fmt::format("body \"{}\" contains no material point: it covers no "
+                                     "sub-cell centre (spacing {} m); enlarge it, refine the grid "
+                                     "or raise particles_per_cell", b.name,
+                                     s.cell_size / b.particles_per_cell));
+    s.bodies.push_back(std::move(b));
+  }
+}
+
+template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s) {
+  const auto g = root.table("gravity", false);
+  if (!g) return;
+  g->allow_only({"acceleration", "ramp_time"});
+  s.gravity = g->vec<D>("acceleration", Vec<D>::Zero());
+  s.gravity_ramp_time = g->number("ramp_time", Range::non_negative(), 0.0);
+}
+
+namespace {
+
+BoundarySide parse_side(const TableReader& bt, std::string_view side) {
+  constexpr const char* allowed =
+      "\"free\", \"fixed\", \"roller\", { type = \"friction\", friction = MU }";
+  const toml::node& n = *bt.find(side);
+  if (n.is_string()) {
+    const Choices<BoundaryKind> choices = {{"free", BoundaryKind::Free},
+                                           {"fixed", BoundaryKind::Fixed},
+                                           {"roller", BoundaryKind::Roller}};
+    const std::string v = bt.string(side);
+    if (v == to_string(BoundaryKind::Friction))
+      bt.fail_at(side, "\"friction\" needs a coefficient: write { type = \"friction\", "
+                       "friction = 0.6 }");
+    for (const auto& [name, kind] : choices)
+      if (v == name) return BoundarySide{kind, 0.0};
+    bt.fail_at(side, fmt::format("unknown value \"{}\"; allowed values: {}", v, allowed));
+  }
+  if (!n.is_table()) bt.fail_type(side, "a string or an inline table { type = ... }");
+  const TableReader t = *bt.table(side, true);
+  const BoundaryKind kind = t.choice<BoundaryKind>(
+      "type", {{"free", BoundaryKind::Free}, {"fixed", BoundaryKind::Fixed},
+               {"roller", BoundaryKind::Roller}, {"friction", BoundaryKind::Friction}});
+  if (kind != BoundaryKind::Friction) {
+    if (t.has("friction"))
+      t.fail_at("friction", "only allowed together with type = \"friction\"");
+    t.allow_only({"type"});
+    return BoundarySide{kind, 0.0};
+  }
+  t.allow_only({"type", "friction"});
+  return BoundarySide{kind, t.number("friction", Range::non_negative())};
+}
+
+}  // namespace
+
+template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s) {
+  const auto b = root.table("boundary", false);
+  if (!b) return;
+  if constexpr (D == 2) b->allow_only({"x_min", "x_max", "y_min", "y_max"});
+  else b->allow_only({"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"});
+  const char* sides[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+  for (std::size_t k = 0; k < 2 * D; ++k)
+    if (b->has(sides[k])) s.boundaries[k] = parse_side(*b, sides[k]);
+}
+
+template void parse_grid<2>(const TableReader&, Scenario&);
+template void parse_grid<3>(const TableReader&, Scenario3&);
+template void parse_bodies<2>(const TableReader&, Scenario&);
+template void parse_bodies<3>(const TableReader&, Scenario3&);
+template void parse_gravity<2>(const TableReader&, Scenario&);
+template void parse_gravity<3>(const TableReader&, Scenario3&);
+template void parse_boundary<2>(const TableReader&, Scenario&);
+template void parse_boundary<3>(const TableReader&, Scenario3&);
+
+}  // namespace skred::scenario_detail

@@ -1,0 +1,179 @@
+// The scenario pipeline in 3D (issue "The engine opened up": dimension end to end):
+//  - the Mohr-Coulomb column of `skred bench --problem column` (phi = 30, c = 0.5 kPa,
+//    K0 = nu/(1 - nu) initial stress, Thesis eq. 5.6-5.7) as a slab two cells thick between
+//    roller z walls must reproduce the 2D plane-strain run of the same column (runout, front
+//    travel and final height within 2 %, gravity work per metre of thickness within 2 %);
+//  - a square column collapsing in both horizontal directions spreads symmetrically: runout
+//    along x and z (and towards - and +) and the deposit's extents agree to one cell, and no
+//    mass is lost.
+// Coarse grids (h = 0.25 m, 2 points per cell and axis) keep each run to a few seconds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+
+#include <fmt/format.h>
+
+#include "run/simulation.hpp"
+#include "run/slide_measures.hpp"
+#include "scenario/build.hpp"
+#include "scenario/initial_stress.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace fs = std::filesystem;
+using namespace skred;
+
+namespace {
+
+constexpr double kCell = 0.25;
+
+// The bench's Mohr-Coulomb column, 1.5 m wide and 3 m high against the x_min wall: in 2D, or
+// (three_d) as a slab between z = 0 and z = 2 cells with roller z walls.
+std::string column_text(bool three_d) {
+  const std::string z = three_d ? ", 0.5" : "", zg = three_d ? ", 0.0" : "";
+  return fmt::format(R"(
+[grid]
+size = [7.5, 3.5{0}]
+cell_size = {2}
+[[material]]
+name = "soil"
+model = "mohr-coulomb"
+density = 1800.0
+young = 10e6
+poisson = 0.3
+friction = 30.0
+cohesion = 500.0
+[[body]]
+material = "soil"
+particles_per_cell = 2
+shape = "{3}"
+min = [0.0, 0.0{1}]
+max = [1.5, 3.0{0}]
+[initial_stress]
+k0 = "poisson"
+[gravity]
+acceleration = [0.0, -9.81{1}]
+[boundary]
+x_min = "roller"
+x_max = "roller"
+y_min = "fixed"
+{4}
+[solver]
+scheme = "usf"
+cfl = 0.4
+end_time = 2.5
+[output]
+interval = 2.5
+)", z, zg, kCell, three_d ? "box" : "rectangle",
+                     three_d ? "z_min = \"roller\"\nz_max = \"roller\"" : "");
+}
+
+template <int D> RunResult run(const ScenarioOf<D>& s, const std::string& name) {
+  const fs::path out = fs::temp_directory_path() / ("skred_column3d_" + name);
+  fs::remove_all(out);
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 2;
+  RunResult r = run_simulation(s, out, opt);
+  EXPECT_TRUE(fs::exists(out / "particles_000001.vtu"));
+  EXPECT_TRUE(fs::exists(out / "grid_000001.vtr"));
+  fs::remove_all(out);
+  return r;
+}
+
+double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+}  // namespace
+
+TEST(Column3D, SlabWithRollerSidesReproducesThePlaneStrainRun) {
+  const AnyScenario any2 = parse_any_scenario(column_text(false), "plane.toml");
+  const AnyScenario any3 = parse_any_scenario(column_text(true), "slab.toml");
+  ASSERT_TRUE(std::holds_alternative<Scenario>(any2));
+  ASSERT_TRUE(std::holds_alternative<Scenario3>(any3));
+  const Scenario3& s3 = std::get<Scenario3>(any3);
+  EXPECT_EQ(s3.cell_count(), 30L * 14 * 2);
+  const RunResult r2 = run(std::get<Scenario>(any2), "plane");
+  const RunResult r3 = run(s3, "slab");
+  ASSERT_TRUE(r2.completed) << r2.message;
+  ASSERT_TRUE(r3.completed) << r3.message;
+  EXPECT_EQ(r3.particles, 4 * r2.particles);  // two cells of 2 points each along z
+  const StageMeasures &m2 = r2.stages.back(), &m3 = r3.stages.back();
+  const double thickness = 2 * kCell;
+  std::printf("slab vs plane strain: runout %.4g vs %.4g m (z: %.4g, %.4g), front travel %.5g vs "
+              "%.5g m (%.3f %%), final height %.5g vs %.5g m (%.3f %%), gravity work per metre "
+              "%.6g vs %.6g J/m (%.3f %%)\n",
+              m3.runout, m2.runout, m3.runout_z_min, m3.runout_z_max, m3.max_displacement,
+              m2.max_displacement, 100 * rel(m3.max_displacement, m2.max_displacement),
+              m3.height_end, m2.height_end, 100 * rel(m3.height_end, m2.height_end),
+              m3.gravity_work / thickness, m2.gravity_work, 100 * rel(m3.gravity_work / thickness, m2.gravity_work));
+  EXPECT_GT(m2.runout, 4 * kCell);  // the column did collapse
+  EXPECT_LT(m2.height_end, 0.8 * m2.height_start);
+  EXPECT_LE(rel(m3.runout, m2.runout), 0.02);
+  EXPECT_LE(rel(m3.max_displacement, m2.max_displacement), 0.02);
+  EXPECT_LE(rel(m3.height_end, m2.height_end), 0.02);
+  EXPECT_LE(rel(m3.gravity_work / thickness, m2.gravity_work), 0.02);
+  EXPECT_EQ(m3.runout_z_min, 0.0);  // nothing moves across the slab
+  EXPECT_EQ(m3.runout_z_max, 0.0);
+}
+
+TEST(Column3D, SquareColumnSpreadsSymmetricallyInXAndZ) {
+  // A 1 m x 1.5 m x 1 m column in the middle of a 5 m x 5 m floor (fixed base), free to
+  // spread towards -x, +x, -z and +z.
+  const Scenario3 s = std::get<Scenario3>(parse_any_scenario(fmt::format(R"(
+[grid]
+size = [5.0, 2.0, 5.0]
+cell_size = {}
+[[material]]
+name = "soil"
+model = "mohr-coulomb"
+density = 1800.0
+young = 10e6
+poisson = 0.3
+friction = 30.0
+cohesion = 500.0
+[[body]]
+material = "soil"
+shape = "box"
+min = [2.0, 0.0, 2.0]
+max = [3.0, 1.5, 3.0]
+[initial_stress]
+k0 = "poisson"
+[gravity]
+acceleration = [0.0, -9.81, 0.0]
+[boundary]
+y_min = "fixed"
+[solver]
+scheme = "usf"
+cfl = 0.4
+end_time = 1.5
+)", kCell), "square.toml"));
+  Particles<3> P = build_particles(s);
+  ASSERT_EQ(P.size(), 4u * 6 * 4 * 8);
+  apply_initial_stress(s, P);
+  ExplicitSolver<3> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), solver_settings(s), 2);
+  const double mass0 = solver.totals().mass;
+  EXPECT_NEAR(mass0, 1800.0 * 1.5, 1e-9 * mass0);
+  const double L = s.cells[0] * kCell;
+  StageTracker<3> tracker("collapse", P, 0.0, 0.0, 0.0, 0.0, 0.0, kCell, L, 0.0, L);
+  while (solver.time() < s.end_time - 0.5 * solver.dt()) ASSERT_TRUE(solver.step().ok);
+  const auto t = solver.totals();
+  const StageMeasures m = tracker.finish(P, solver.time(), solver.steps(), t.kinetic_energy, 0, 0, 0, "duration");
+  const MaterialExtent e = material_extent(P);
+  std::printf("square column: runout -x %.4g +x %.4g -z %.4g +z %.4g m; deposit x [%.4f, %.4f], "
+              "z [%.4f, %.4f], height %.4g m (from 1.5); mass change %.2e, momentum (%.2e, %.2e, %.2e)\n",
+              m.runout_x_min, m.runout_x_max, m.runout_z_min, m.runout_z_max, e.x_min, e.x_max,
+              e.z_min, e.z_max, m.height_end, t.mass - mass0, t.momentum[0], t.momentum[1], t.momentum[2]);
+  EXPECT_EQ(t.mass, mass0);  // mass conservation: point masses never change
+  EXPECT_GE(std::min({m.runout_x_min, m.runout_x_max, m.runout_z_min, m.runout_z_max}), 2 * kCell);
+  EXPECT_LT(m.height_end, 0.8 * 1.5);
+  const double tol = kCell + 1e-9;  // symmetric within one cell
+  EXPECT_LE(std::abs(m.runout_x_max - m.runout_z_max), tol);
+  EXPECT_LE(std::abs(m.runout_x_min - m.runout_z_min), tol);
+  EXPECT_LE(std::abs(m.runout_x_min - m.runout_x_max), tol);
+  EXPECT_LE(std::abs(m.runout_z_min - m.runout_z_max), tol);
+  const double reach[4] = {2.5 - e.x_min, e.x_max - 2.5, 2.5 - e.z_min, e.z_max - 2.5};
+  for (double r : reach) EXPECT_LE(std::abs(r - reach[0]), tol);
+  EXPECT_LT(std::abs(t.momentum[0]) + std::abs(t.momentum[2]), 1e-6 * mass0);
+}
