@@ -23,6 +23,7 @@ struct BenchOptions {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
+  long sort_every = 100;  // sort the points by cell every N steps, as a run does (kSortEvery); 0: never
 };
 
 struct BenchResult {

@@ -21,7 +21,7 @@ MaterialExtent material_extent(const Particles<2>& P) {
   return e;
 }
 
-StageTracker::StageTracker(std::string name, const Particles<2>& P, double time,
+StageTracker::StageTracker(std::string name, Particles<2>& P, double time,
                            double kinetic_energy, double rest_speed, double rest_time,
                            double x0, double width, double length)
     : start_(material_extent(P)), kinetic_start_(kinetic_energy), rest_speed_(rest_speed),
@@ -30,8 +30,7 @@ StageTracker::StageTracker(std::string name, const Particles<2>& P, double time,
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
-  plastic_start_.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p) plastic_start_[p] = P.state[p].plastic_shear_strain;
+  for (std::size_t p = 0; p < P.size(); ++p) P.plastic_ref[p] = P.state[p].plastic_shear_strain;
 }
 
 bool StageTracker::observe(double time, double mean_speed) {
@@ -111,7 +110,7 @@ StageMeasures StageTracker::finish(const Particles<2>& P, double time, long step
   m.strain_energy = strain_energy;
   m.plastic_dissipation = plastic_dissipation;
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.state[p].plastic_shear_strain > plastic_start_[p]) {
+    if (P.state[p].plastic_shear_strain > P.plastic_ref[p]) {
       m.plastic_volume += P.volume(p);
       ++m.plastic_points;
     }

@@ -1,0 +1,132 @@
+#include "run/checkpointing.hpp"
+
+#include <fmt/core.h>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "scenario/initial_stress.hpp"
+
+namespace skred {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Set by the SIGINT/SIGTERM handler, read between steps.
+volatile std::sig_atomic_t g_stop_requested = 0;
+extern "C" void request_stop(int) { g_stop_requested = 1; }
+
+template <class A> void archive_row(A& a, SeriesRow& r) {
+  a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
+  a(r.plastic_dissipation); a(r.mean_speed); a(r.max_speed); a(r.momentum_x); a(r.momentum_y);
+  a(r.num_particles); a(r.stage); a(r.runout); a(r.yielding_points);
+}
+
+// The run's state besides the particles, in payload order.
+template <class A> void archive_run(A& a, SolverClock& c, RunProgress& at) {
+  a(c.time); a(c.steps); a(c.ramp_start); a(c.gravity_ramp_time);
+  a(c.energy.strain_energy); a(c.energy.gravity_work); a(c.energy.plastic_dissipation);
+  a(at.stage); a(at.in_stage); a(at.stage_first_step); a(at.stage_start);
+  a(at.next_output); a(at.next_series); a(at.frame_times); a(at.checkpoint_every);
+  std::uint64_t n = at.finished.size();
+  a(n);
+  at.finished.resize(n);
+  for (StageMeasures& m : at.finished) archive_measures(a, m);
+  if (at.in_stage) at.tracker.archive(a);
+}
+
+}  // namespace
+
+fs::path checkpoint_file(const fs::path& outdir) { return outdir / "checkpoint.skc"; }
+
+std::uint64_t scenario_hash(const Scenario& s) {
+  std::ifstream in(s.source, std::ios::binary);
+  std::string text = s.source;
+  if (in && fs::is_regular_file(s.source))
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return fnv1a64(text.data(), text.size());
+}
+
+Checkpointing::Checkpointing(const Scenario& s, const fs::path& outdir, const RunOptions& opt)
+    : s_(s), file_(checkpoint_file(outdir)), restart_(opt.restart), every_(opt.checkpoint_every),
+      stop_at_(opt.stop_at_step), signals_(opt.handle_signals) {
+  if (!signals_) return;
+  g_stop_requested = 0;
+  struct sigaction sa {};
+  sa.sa_handler = request_stop;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+}
+
+Checkpointing::~Checkpointing() {
+  if (!signals_) return;
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+void Checkpointing::write(const Particles<2>& P, const ExplicitSolver<2>& solver,
+                          const RunProgress& at, const SeriesWriter& series) {
+  std::ostringstream os(std::ios::binary);
+  ByteWriter w{os};
+  SolverClock c = solver.clock();
+  RunProgress& progress = const_cast<RunProgress&>(at);  // archive_run only reads through w
+  const long every = progress.checkpoint_every;
+  progress.checkpoint_every = every_;
+  archive_run(w, c, progress);
+  progress.checkpoint_every = every;
+  w(static_cast<std::uint64_t>(series.rows().size()));
+  for (SeriesRow r : series.rows()) archive_row(w, r);
+  P.serialise(os);
+  write_checkpoint(file_, {2, scenario_hash(s_)}, os.str());
+}
+
+bool Checkpointing::restore(Particles<2>& P, ExplicitSolver<2>& solver, RunProgress& at,
+                            SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
+  if (restart_.empty()) return false;
+  std::istringstream is(read_checkpoint(restart_, {2, scenario_hash(s_)}), std::ios::binary);
+  ByteReader r{is, restart_.string()};
+  SolverClock c;
+  archive_run(r, c, at);
+  if (every_ == 0) every_ = at.checkpoint_every;  // a resume keeps the run's period
+  std::uint64_t rows = 0;
+  r(rows);
+  for (std::uint64_t i = 0; i < rows; ++i) {
+    SeriesRow row{};
+    archive_row(r, row);
+    series.add(row);
+  }
+  try {
+    P.deserialise(is);
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError(fmt::format("checkpoint '{}': {}", restart_.string(), e.what()));
+  }
+  r.need(is.peek() == std::char_traits<char>::eof() && at.stage <= s_.stages.size() &&
+         (at.stage < s_.stages.size() || !at.in_stage));
+  const std::size_t stage = std::min<std::size_t>(at.stage, s_.stages.size() - 1);
+  solver.restore(c, stage_materials(s_, s_.stages[stage]));
+  for (std::size_t f = 0; f < at.frame_times.size(); ++f) {
+    particles_pvd.add(at.frame_times[f], fmt::format("particles_{:06}.vtu", f));
+    grid_pvd.add(at.frame_times[f], fmt::format("grid_{:06}.vtr", f));
+  }
+  return true;
+}
+
+bool Checkpointing::after_step(const Particles<2>& P, const ExplicitSolver<2>& solver,
+                               const RunProgress& at, const SeriesWriter& series) {
+  if (g_stop_requested || solver.steps() == stop_at_) {
+    write(P, solver, at, series);
+    return true;
+  }
+  if (every_ > 0 && solver.steps() % every_ == 0) write(P, solver, at, series);
+  return false;
+}
+
+void Checkpointing::at_end(const Particles<2>& P, const ExplicitSolver<2>& solver,
+                           const RunProgress& at, const SeriesWriter& series) {
+  if (every_ > 0) write(P, solver, at, series);
+}
+
+}  // namespace skred
