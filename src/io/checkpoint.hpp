@@ -75,7 +75,7 @@ struct ByteReader {
   std::istream& is;
   std::string what;  // the file, for messages
   void need(bool ok) const {
-    if (!ok) throw CheckpointError(what + ": checkpoint payload ends early or is inconsistent");
+    if (!ok) throw CheckpointError(what + ": payload ends early or is inconsistent");
   }
   template <class T> void operator()(T& v) {
     if constexpr (std::is_arithmetic_v<T>) {

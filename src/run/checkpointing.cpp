@@ -83,28 +83,33 @@ void Checkpointing::write(const Particles<2>& P, const ExplicitSolver<2>& solver
   write_checkpoint(file_, {2, scenario_hash(s_)}, os.str());
 }
 
-bool Checkpointing::restore(Particles<2>& P, ExplicitSolver<2>& solver, RunProgress& at,
-                            SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
-  if (restart_.empty()) return false;
-  std::istringstream is(read_checkpoint(restart_, {2, scenario_hash(s_)}), std::ios::binary);
-  ByteReader r{is, restart_.string()};
-  SolverClock c;
+void load_checkpoint(const fs::path& file, const Scenario& s, Particles<2>& P, SolverClock& c,
+                     RunProgress& at, std::vector<SeriesRow>& series) {
+  std::istringstream is(read_checkpoint(file, {2, scenario_hash(s)}), std::ios::binary);
+  ByteReader r{is, fmt::format("checkpoint '{}'", file.string())};
   archive_run(r, c, at);
-  if (every_ == 0) every_ = at.checkpoint_every;  // a resume keeps the run's period
   std::uint64_t rows = 0;
   r(rows);
-  for (std::uint64_t i = 0; i < rows; ++i) {
-    SeriesRow row{};
-    archive_row(r, row);
-    series.add(row);
-  }
+  r.need(rows < (1ull << 32));
+  series.resize(rows);
+  for (SeriesRow& row : series) archive_row(r, row);
   try {
     P.deserialise(is);
   } catch (const std::runtime_error& e) {
-    throw CheckpointError(fmt::format("checkpoint '{}': {}", restart_.string(), e.what()));
+    throw CheckpointError(fmt::format("checkpoint '{}': {}", file.string(), e.what()));
   }
-  r.need(is.peek() == std::char_traits<char>::eof() && at.stage <= s_.stages.size() &&
-         (at.stage < s_.stages.size() || !at.in_stage));
+  r.need(is.peek() == std::char_traits<char>::eof() && at.stage <= s.stages.size() &&
+         (at.stage < s.stages.size() || !at.in_stage));
+}
+
+bool Checkpointing::restore(Particles<2>& P, ExplicitSolver<2>& solver, RunProgress& at,
+                            SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
+  if (restart_.empty()) return false;
+  SolverClock c;
+  std::vector<SeriesRow> rows;
+  load_checkpoint(restart_, s_, P, c, at, rows);
+  if (every_ == 0) every_ = at.checkpoint_every;  // a resume keeps the run's period
+  for (const SeriesRow& row : rows) series.add(row);
   const std::size_t stage = std::min<std::size_t>(at.stage, s_.stages.size() - 1);
   solver.restore(c, stage_materials(s_, s_.stages[stage]));
   for (std::size_t f = 0; f < at.frame_times.size(); ++f) {

@@ -35,6 +35,11 @@ std::filesystem::path checkpoint_file(const std::filesystem::path& outdir);
 // source name when it is not a file).
 std::uint64_t scenario_hash(const Scenario& s);
 
+// Reads checkpoint `file` of scenario `s`: the particles, the solver's clock, the progress and
+// the series rows so far. Throws CheckpointError naming the file when it cannot be used.
+void load_checkpoint(const std::filesystem::path& file, const Scenario& s, Particles<2>& P,
+                     SolverClock& clock, RunProgress& at, std::vector<SeriesRow>& series);
+
 class Checkpointing {
  public:
   // Installs the SIGINT/SIGTERM handlers when opt.handle_signals (restored on destruction).
