@@ -25,6 +25,10 @@ namespace skred {
 // builder checks).
 inline constexpr int kMaxIds = 32767;
 
+// A run sorts the points by cell (Particles::sort_by_cell) before every step whose number is
+// a multiple of this, the first step included (docs/method.md, "Point order").
+inline constexpr long kSortEvery = 100;
+
 // One per-point field: its name (in checkpoints), the array, and the value a new point gets.
 // An optional field may be empty, meaning every point has the initial value (it is then left
 // empty by every operation).

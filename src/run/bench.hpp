@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/particles.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -23,7 +24,7 @@ struct BenchOptions {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
-  long sort_every = 100;  // sort the points by cell every N steps, as a run does (kSortEvery); 0: never
+  long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
 };
 
 struct BenchResult {

@@ -14,9 +14,16 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Set by the SIGINT/SIGTERM handler, read between steps.
+// Set by the SIGINT/SIGTERM handler, read between steps. A second signal before the run
+// stops ends the program at once (the default action).
 volatile std::sig_atomic_t g_stop_requested = 0;
-extern "C" void request_stop(int) { g_stop_requested = 1; }
+extern "C" void request_stop(int sig) {
+  if (g_stop_requested) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+  g_stop_requested = 1;
+}
 
 template <class A> void archive_row(A& a, SeriesRow& r) {
   a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
@@ -68,15 +75,12 @@ Checkpointing::~Checkpointing() {
 }
 
 void Checkpointing::write(const Particles<2>& P, const ExplicitSolver<2>& solver,
-                          const RunProgress& at, const SeriesWriter& series) {
+                          RunProgress& at, const SeriesWriter& series) {
   std::ostringstream os(std::ios::binary);
   ByteWriter w{os};
   SolverClock c = solver.clock();
-  RunProgress& progress = const_cast<RunProgress&>(at);  // archive_run only reads through w
-  const long every = progress.checkpoint_every;
-  progress.checkpoint_every = every_;
-  archive_run(w, c, progress);
-  progress.checkpoint_every = every;
+  at.checkpoint_every = every_;
+  archive_run(w, c, at);
   w(static_cast<std::uint64_t>(series.rows().size()));
   for (SeriesRow r : series.rows()) archive_row(w, r);
   P.serialise(os);
@@ -120,7 +124,7 @@ bool Checkpointing::restore(Particles<2>& P, ExplicitSolver<2>& solver, RunProgr
 }
 
 bool Checkpointing::after_step(const Particles<2>& P, const ExplicitSolver<2>& solver,
-                               const RunProgress& at, const SeriesWriter& series) {
+                               RunProgress& at, const SeriesWriter& series) {
   if (g_stop_requested || solver.steps() == stop_at_) {
     write(P, solver, at, series);
     return true;
@@ -130,7 +134,7 @@ bool Checkpointing::after_step(const Particles<2>& P, const ExplicitSolver<2>& s
 }
 
 void Checkpointing::at_end(const Particles<2>& P, const ExplicitSolver<2>& solver,
-                           const RunProgress& at, const SeriesWriter& series) {
+                           RunProgress& at, const SeriesWriter& series) {
   if (every_ > 0) write(P, solver, at, series);
 }
 

@@ -55,12 +55,13 @@ class Checkpointing {
                PvdWriter& particles_pvd, PvdWriter& grid_pvd);
   // After a step: writes the periodic checkpoint when one is due; when a signal arrived (or
   // the step is opt.stop_at_step) writes one and returns true: the run stops.
-  bool after_step(const Particles<2>& P, const ExplicitSolver<2>& solver, const RunProgress& at,
+  bool after_step(const Particles<2>& P, const ExplicitSolver<2>& solver, RunProgress& at,
                   const SeriesWriter& series);
   // At the end of a completed run (when checkpoints are enabled).
-  void at_end(const Particles<2>& P, const ExplicitSolver<2>& solver, const RunProgress& at,
+  void at_end(const Particles<2>& P, const ExplicitSolver<2>& solver, RunProgress& at,
               const SeriesWriter& series);
-  void write(const Particles<2>& P, const ExplicitSolver<2>& solver, const RunProgress& at,
+  // Writes the checkpoint now (recording the checkpoint period in `at`).
+  void write(const Particles<2>& P, const ExplicitSolver<2>& solver, RunProgress& at,
              const SeriesWriter& series);
 
  private:

@@ -11,10 +11,6 @@
 
 namespace skred {
 
-// Points are sorted by cell (Particles::sort_by_cell) before every step whose number is a
-// multiple of this, the first step included (docs/method.md, "Point order").
-inline constexpr long kSortEvery = 100;
-
 struct RunOptions {
   int threads = 1;
   bool progress = true;  // progress line on stderr
