@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/post_cli.hpp"
+#include "io/checkpoint.hpp"
 #include "run/bench.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
@@ -17,11 +18,17 @@
 
 namespace {
 
-int cmd_run(const std::string& file, const std::string& outdir, int threads) {
+// Exit codes of `skred run` / `skred resume`: 0 completed, 1 error, 2 unstable, 3 interrupted
+// (SIGINT/SIGTERM; a checkpoint was written, continue with `skred resume OUTDIR`).
+int cmd_run(const std::string& file, const std::string& outdir, int threads, skred::RunOptions opt) {
   const skred::AnyScenario s = skred::load_any_scenario(file);
-  skred::RunOptions opt;
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
+  opt.handle_signals = true;
   const auto res = skred::run_simulation(s, outdir, opt);
+  if (res.interrupted) {
+    fmt::print(stderr, "skred: {}\n", res.message);
+    return 3;
+  }
   if (!res.completed) {
     fmt::print(stderr, "skred: {}\n", res.message);
     return 2;
@@ -112,6 +119,18 @@ int main(int argc, char** argv) {
   run->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
   run->add_option("-o,--output", outdir, "Output folder")->required();
   run->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  skred::RunOptions ro;
+  std::string restart;
+  run->add_option("--checkpoint-every", ro.checkpoint_every,
+                  "Write OUTDIR/checkpoint.skc every N steps and at the end")->check(CLI::Range(1L, 1000000000L));
+  run->add_option("--restart", restart, "Continue from this checkpoint (of the same scenario)")
+      ->check(CLI::ExistingFile);
+
+  auto* resume = app.add_subcommand("resume", "Continue an interrupted run from OUTDIR/checkpoint.skc");
+  resume->add_option("outdir", outdir, "Output folder of the run")->required()->check(CLI::ExistingDirectory);
+  resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  resume->add_option("--checkpoint-every", ro.checkpoint_every,
+                     "Checkpoint period in steps (default: that of the run)")->check(CLI::Range(1L, 1000000000L));
 
   auto* check = app.add_subcommand("check", "Validate a scenario without running it");
   check->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
@@ -139,6 +158,8 @@ int main(int argc, char** argv) {
   bench->add_option("--interpolation", interp, "linear | gimp | gimp-quadrature | bspline")
       ->check(CLI::IsMember({"linear", "gimp", "gimp-quadrature", "bspline"}));
   bench->add_option("--quadrature-points", bo.quadrature_points, "1, 2 or 3")->check(CLI::Range(1, 3));
+  bench->add_option("--sort-every", bo.sort_every, "Sort the points by cell every N steps (0: never)")
+      ->check(CLI::Range(0L, 1000000000L));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")->check(CLI::IsMember({"usf", "usl", "averaged"}));
 
   skred::PostCommands post(app);  // render, report
@@ -146,7 +167,14 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
   if (post.chosen()) return post.run();
   try {
-    if (*run) return cmd_run(scenario, outdir, threads);
+    if (*run) {
+      ro.restart = restart;
+      return cmd_run(scenario, outdir, threads, ro);
+    }
+    if (*resume) {
+      ro.restart = std::filesystem::path(outdir) / "checkpoint.skc";
+      return cmd_run((std::filesystem::path(outdir) / "scenario.toml").string(), outdir, threads, ro);
+    }
     if (*check) return cmd_check(scenario);
     if (*sweep) return cmd_sweep(scenario, outdir, set, threads);
     if (*bench) {
@@ -178,6 +206,9 @@ int main(int argc, char** argv) {
       for (const auto& [name, s] : r.phase_seconds)
         fmt::print("  {:<24} {:8.3f} s  {:5.1f} %\n", name, s, 100.0 * s / total);
     }
+  } catch (const skred::CheckpointError& e) {
+    fmt::print(stderr, "skred: {}\n", e.what());
+    return 1;
   } catch (const skred::ScenarioError& e) {
     fmt::print(stderr, "skred: {}\n", e.what());
     return 1;

@@ -1,10 +1,20 @@
-// Material points stored as structure-of-arrays (one std::vector per field).
+// Material points stored as structure-of-arrays (one std::vector per field). Every per-point
+// field is declared once, in fields(); the lifecycle of the points (reserve, add, erase,
+// duplicate, reorder, sort by cell, serialise) is written once over that list, so a field
+// added to the list is carried by all of them.
 #pragma once
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
+#include <istream>
+#include <ostream>
+#include <stdexcept>
+#include <string>
+#include <tuple>
+#include <type_traits>
 #include <vector>
 
+#include "core/grid.hpp"
 #include "core/huge_pages.hpp"
 #include "core/types.hpp"
 #include "material/state.hpp"
@@ -14,6 +24,21 @@ namespace skred {
 // Material and body ids are stored in 16 bits: a scenario has fewer of each (the scenario
 // builder checks).
 inline constexpr int kMaxIds = 32767;
+
+// A run sorts the points by cell (Particles::sort_by_cell) before every step whose number is
+// a multiple of this, the first step included (docs/method.md, "Point order").
+inline constexpr long kSortEvery = 100;
+
+// One per-point field: its name (in checkpoints), the array, and the value a new point gets.
+// An optional field may be empty, meaning every point has the initial value (it is then left
+// empty by every operation).
+template <class P, class T> struct ParticleField {
+  using value_type = T;
+  const char* name;
+  std::vector<T> P::*member;
+  T (*initial)();
+  bool optional = false;
+};
 
 template <int D> struct Particles {
   // Thesis §2.2: position, velocity, mass and initial volume of each material point.
@@ -33,28 +58,204 @@ template <int D> struct Particles {
   // stored only once an initial stress is set (see set_reference_stress); empty, it is zero.
   std::vector<Mat<D>> Fe;
   std::vector<PointStress<D>> stress_ref;
+  // Plastic shear strain at the start of the stage (like x_ref; set by the StageTracker),
+  // for the plastified volume of a stage.
+  std::vector<double> plastic_ref;
+
+  // The field list: every per-point array, once, with the value of a new point.
+  static constexpr auto fields() {
+    using Pt = Particles;
+    return std::tuple{
+        ParticleField<Pt, Vec<D>>{"x", &Pt::x, +[] { return Vec<D>(Vec<D>::Zero()); }},
+        ParticleField<Pt, Vec<D>>{"x_ref", &Pt::x_ref, +[] { return Vec<D>(Vec<D>::Zero()); }},
+        ParticleField<Pt, Vec<D>>{"v", &Pt::v, +[] { return Vec<D>(Vec<D>::Zero()); }},
+        ParticleField<Pt, double>{"mass", &Pt::mass, +[] { return 0.0; }},
+        ParticleField<Pt, double>{"volume0", &Pt::volume0, +[] { return 0.0; }},
+        ParticleField<Pt, Vec<D>>{"half0", &Pt::half0, +[] { return Vec<D>(Vec<D>::Zero()); }},
+        ParticleField<Pt, Mat<D>>{"F", &Pt::F, +[] { return Mat<D>(Mat<D>::Identity()); }},
+        ParticleField<Pt, PointStress<D>>{"stress", &Pt::stress,
+                                          +[] { return PointStress<D>(PointStress<D>::Zero()); }},
+        ParticleField<Pt, std::int16_t>{"material", &Pt::material, +[] { return std::int16_t{0}; }},
+        ParticleField<Pt, std::int16_t>{"body", &Pt::body, +[] { return std::int16_t{0}; }},
+        ParticleField<Pt, PointState>{"state", &Pt::state, +[] { return PointState{}; }},
+        ParticleField<Pt, Mat<D>>{"Fe", &Pt::Fe, +[] { return Mat<D>(Mat<D>::Identity()); }},
+        ParticleField<Pt, PointStress<D>>{"stress_ref", &Pt::stress_ref,
+                                          +[] { return PointStress<D>(PointStress<D>::Zero()); },
+                                          true},
+        ParticleField<Pt, double>{"plastic_ref", &Pt::plastic_ref, +[] { return 0.0; }},
+    };
+  }
+
+  // fn(field, array) for every field of the list (the arrays of optional empty fields too).
+  template <class Fn> void for_each_field(Fn&& fn) {
+    std::apply([&](const auto&... f) { (fn(f, this->*f.member), ...); }, fields());
+  }
+  template <class Fn> void for_each_field(Fn&& fn) const {
+    std::apply([&](const auto&... f) { (fn(f, this->*f.member), ...); }, fields());
+  }
+  // The same for the fields that hold one entry per point (every field but empty optional ones).
+  template <class Fn> void for_each_present_field(Fn&& fn) {
+    for_each_field([&](const auto& f, auto& a) {
+      if (!(f.optional && a.empty())) fn(f, a);
+    });
+  }
 
   std::size_t size() const { return x.size(); }
 
   // Room for n points, on huge pages where the arrays are large (see huge_pages.hpp).
   void reserve(std::size_t n) {
-    reserve_huge(x, n); reserve_huge(x_ref, n); reserve_huge(v, n); reserve_huge(mass, n);
-    reserve_huge(volume0, n); reserve_huge(half0, n); reserve_huge(F, n); reserve_huge(stress, n);
-    reserve_huge(material, n); reserve_huge(body, n); reserve_huge(state, n); reserve_huge(Fe, n);
-    if (!stress_ref.empty()) reserve_huge(stress_ref, n);
+    for_each_present_field([&](const auto&, auto& a) { reserve_huge(a, n); });
+  }
+
+  // Appends one point with every field at its initial value; returns its index.
+  std::size_t add_default() {
+    for_each_present_field([&](const auto& f, auto& a) { a.push_back(f.initial()); });
+    return size() - 1;
   }
 
   // Appends one undeformed, stress-free material point.
   void add(const Vec<D>& pos, const Vec<D>& vel, double m, double vol, const Vec<D>& half,
            int mat, int bod) {
     assert(mat >= 0 && mat < kMaxIds && bod >= 0 && bod < kMaxIds);
-    x.push_back(pos); x_ref.push_back(pos); v.push_back(vel); mass.push_back(m);
-    volume0.push_back(vol); half0.push_back(half); F.push_back(Mat<D>::Identity());
-    stress.push_back(PointStress<D>::Zero()); material.push_back(static_cast<std::int16_t>(mat));
-    body.push_back(static_cast<std::int16_t>(bod));
-    state.push_back(PointState{});
-    Fe.push_back(Mat<D>::Identity());
-    if (!stress_ref.empty()) stress_ref.push_back(PointStress<D>::Zero());
+    const std::size_t p = add_default();
+    x[p] = pos; x_ref[p] = pos; v[p] = vel; mass[p] = m; volume0[p] = vol; half0[p] = half;
+    material[p] = static_cast<std::int16_t>(mat);
+    body[p] = static_cast<std::int16_t>(bod);
+  }
+
+  // Appends a copy of point p (every field) and returns its index: the start of a split, or
+  // of any copy with changes.
+  std::size_t duplicate(std::size_t p) {
+    assert(p < size());
+    for_each_present_field([&](const auto&, auto& a) {
+      const auto value = a[p];  // push_back may reallocate
+      a.push_back(value);
+    });
+    return size() - 1;
+  }
+
+  // Splits point p in two along reference axis `axis`: each half keeps p's velocity, stress,
+  // F and state, with half its mass, volume and voxel length along the axis, centred at
+  // x_p -+ F_p l_p^0 e_axis / 2 (the centres of the two halves of the deformed voxel, Thesis
+  // eq. 3.6-3.12). Mass and momentum are conserved exactly. Returns the new point's index.
+  std::size_t split(std::size_t p, int axis) {
+    const std::size_t q = duplicate(p);
+    half0[p][axis] *= 0.5;
+    half0[q][axis] = half0[p][axis];
+    const Vec<D> shift = F[p].col(axis) * half0[p][axis];
+    const Vec<D> shift_ref = Vec<D>::Unit(axis) * half0[p][axis];
+    x[p] -= shift; x[q] += shift;
+    x_ref[p] -= shift_ref; x_ref[q] += shift_ref;
+    mass[p] *= 0.5; mass[q] = mass[p];
+    volume0[p] *= 0.5; volume0[q] = volume0[p];
+    return q;
+  }
+
+  // Removes the points whose keep[p] is 0, keeping the order of the others (stable
+  // compaction; no allocation). keep has one entry per point.
+  void erase(const std::vector<std::uint8_t>& keep) {
+    assert(keep.size() == size());
+    for_each_present_field([&](const auto&, auto& a) {
+      std::size_t j = 0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        if (keep[i]) a[j++] = a[i];
+      a.resize(j);
+    });
+  }
+  // Removes the listed points (any order, repeats allowed).
+  void erase_points(const std::vector<std::size_t>& points) {
+    std::vector<std::uint8_t> keep(size(), 1);
+    for (std::size_t p : points) keep.at(p) = 0;
+    erase(keep);
+  }
+
+  // Reorders the points: the point at new index i is the one at old index order[i]; order is
+  // a permutation of 0..size()-1. In place, one cycle at a time (scratch kept for reuse).
+  void reorder(const std::vector<std::uint32_t>& order) {
+    assert(order.size() == size());
+    const std::size_t n = size();
+    for_each_present_field([&](const auto&, auto& a) {
+      visited_.assign(n, 0);
+      for (std::size_t start = 0; start < n; ++start) {
+        if (visited_[start]) continue;
+        auto carried = a[start];
+        std::size_t i = start;
+        for (;;) {
+          visited_[i] = 1;
+          const std::size_t from = order[i];
+          if (from == start) break;
+          a[i] = a[from];
+          i = from;
+        }
+        a[i] = carried;
+      }
+    });
+  }
+
+  // Sorts the points by the grid cell that holds them (stable; key = flat cell index with axis
+  // 0 fastest, like the grid's node layout), so that points of a cell, which scatter to the
+  // same nodes, are neighbours in memory. Counting sort over the cells; the scratch arrays are
+  // kept, so a sort allocates only when the number of points or cells grows. Returns false
+  // (and changes nothing) when the points were in order already.
+  bool sort_by_cell(const GridGeometry<D>& grid) {
+    const std::size_t n = size();
+    std::size_t cells = 1;
+    for (int d = 0; d < D; ++d) cells *= static_cast<std::size_t>(grid.cells[d]);
+    sort_key_.resize(n);
+    bool sorted = true;
+    for (std::size_t p = 0; p < n; ++p) {
+      std::size_t key = 0, stride = 1;
+      for (int d = 0; d < D; ++d) {
+        const double r = std::floor((x[p][d] - grid.origin[d]) / grid.h);
+        const int c = r < 0.0 ? 0 : r >= grid.cells[d] ? grid.cells[d] - 1 : static_cast<int>(r);
+        key += static_cast<std::size_t>(c) * stride;
+        stride *= static_cast<std::size_t>(grid.cells[d]);
+      }
+      sort_key_[p] = static_cast<std::uint32_t>(key);
+      if (p > 0 && key < sort_key_[p - 1]) sorted = false;
+    }
+    if (sorted) return false;
+    sort_count_.assign(cells + 1, 0);
+    for (std::size_t p = 0; p < n; ++p) ++sort_count_[sort_key_[p] + 1];
+    for (std::size_t c = 0; c < cells; ++c) sort_count_[c + 1] += sort_count_[c];
+    sort_order_.resize(n);
+    for (std::size_t p = 0; p < n; ++p) sort_order_[sort_count_[sort_key_[p]]++] = static_cast<std::uint32_t>(p);
+    reorder(sort_order_);
+    return true;
+  }
+
+  // Binary image of every field, in list order: name, entry size, entry count, raw entries
+  // (host byte order). deserialise() reads it back into these particles, replacing them, and
+  // throws std::runtime_error when the image does not match the field list.
+  void serialise(std::ostream& os) const {
+    for_each_field([&](const auto& f, const auto& a) {
+      using T = typename std::decay_t<decltype(f)>::value_type;
+      const std::string name = f.name;
+      const std::uint64_t head[3] = {name.size(), sizeof(T), a.size()};
+      os.write(reinterpret_cast<const char*>(head), sizeof head);
+      os.write(name.data(), static_cast<std::streamsize>(name.size()));
+      os.write(reinterpret_cast<const char*>(a.data()), static_cast<std::streamsize>(a.size() * sizeof(T)));
+    });
+  }
+  void deserialise(std::istream& is) {
+    std::size_t n = 0;
+    bool first = true;
+    for_each_field([&](const auto& f, auto& a) {
+      using T = typename std::decay_t<decltype(f)>::value_type;
+      std::uint64_t head[3] = {};
+      is.read(reinterpret_cast<char*>(head), sizeof head);
+      std::string name(is ? head[0] : 0, '\0');
+      if (is && head[0] < 64) is.read(name.data(), static_cast<std::streamsize>(name.size()));
+      if (!is || name != f.name || head[1] != sizeof(T))
+        throw std::runtime_error(std::string("particle field '") + f.name + "' missing or of another type");
+      if (first) n = head[2];
+      first = false;
+      if (head[2] != n && !(f.optional && head[2] == 0))
+        throw std::runtime_error(std::string("particle field '") + f.name + "' has the wrong number of points");
+      a.resize(head[2]);
+      is.read(reinterpret_cast<char*>(a.data()), static_cast<std::streamsize>(a.size() * sizeof(T)));
+      if (!is) throw std::runtime_error(std::string("particle field '") + f.name + "' is truncated");
+    });
   }
 
   // The stress of Fe's reference state (Post eq. 77): zero unless an initial stress was set.
@@ -66,6 +267,12 @@ template <int D> struct Particles {
 
   // Current volume V_p = det(F_p) V_p^0.
   double volume(std::size_t p) const { return F[p].determinant() * volume0[p]; }
+
+ private:
+  // Scratch of reorder() and sort_by_cell(), kept between calls (not per-point fields).
+  std::vector<std::uint8_t> visited_;
+  std::vector<std::uint32_t> sort_key_, sort_order_;
+  std::vector<std::size_t> sort_count_;
 };
 
 }  // namespace skred

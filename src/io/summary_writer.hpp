@@ -35,7 +35,7 @@ struct StageMeasures {
 };
 
 struct Summary {
-  std::string status;  // "completed" or "unstable" or "error"
+  std::string status;  // "completed", "unstable", "interrupted" (SIGINT/SIGTERM) or "error"
   std::string message;
   long steps;
   double simulated_time;

@@ -129,11 +129,12 @@ void check_optional(const std::vector<T>* v, const char* name, std::size_t n) {
 
 template <int D> void check_sizes(const Particles<D>& P, const ParticleFields& extra) {
   const std::size_t n = P.size();
-  const std::size_t sizes[] = {P.x_ref.size(), P.v.size(),     P.volume0.size(),
-                               P.half0.size(), P.F.size(),     P.stress.size(),
-                               P.material.size(), P.body.size(), P.state.size()};
-  for (std::size_t s : sizes)
-    if (s != n) throw std::invalid_argument("write_particles_vtu: particle arrays differ in size");
+  P.for_each_field([&](const auto& f, const auto& a) {  // every field of the list
+    if (a.size() != n && !(f.optional && a.empty()))
+      throw std::invalid_argument(fmt::format(
+          "write_particles_vtu: particle arrays differ in size ({} has {} entries for {} particles)",
+          f.name, a.size(), n));
+  });
   check_optional(extra.smoothed_stress, "smoothed_stress", n);
   check_optional(extra.elastic_F, "elastic_F", n);
   check_optional(extra.stress_from_elastic_F, "stress_from_elastic_F", n);

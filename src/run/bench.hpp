@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "core/particles.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -27,6 +28,7 @@ struct BenchOptions {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
+  long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
 };
 
 struct BenchResult {

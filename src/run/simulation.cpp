@@ -17,6 +17,7 @@
 #include "io/vtu_writer.hpp"
 #include "post/elastic_plastic_split.hpp"
 #include "post/material_strength.hpp"
+#include "run/checkpointing.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
@@ -130,12 +131,16 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   std::vector<Mat3> elastic_F;
   std::vector<Sym3> stress_from_Fe;
   SeriesWriter series(outdir / "series.csv", D == 3);  // 3D: with momentum_z
+  RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
+  Checkpointing<D> checkpoints(s, outdir, opt);
+  checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
   std::vector<Sym3> smoothed;
-  int frame = 0;
   auto write_frame = [&]() {
+    const int frame = static_cast<int>(at.frame_times.size());
+    at.frame_times.push_back(solver.time());
     solver.smoothed_stress(smoothed);
     write_grid_frame(solver, outdir, frame, grid_pvd);  // post: after smoothed_stress()
-    const std::string name = fmt::format("particles_{:06}.vtu", frame++);
+    const std::string name = fmt::format("particles_{:06}.vtu", frame);
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
     extra.strength = &strength;  // post: relative yield
@@ -157,44 +162,57 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const double dt = solver.dt();
   long total_steps = 0;  // upper bound: every stage to its full duration
   for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));
-  const long n = static_cast<long>(particles.size());
   const bool tty = isatty(fileno(stderr));
   RunResult res;
-  res.particles = n;
 
   const auto start = Clock::now();
   double compute_seconds = 0.0;
+  long computed_updates = 0;  // point updates stepped (the point count may change)
   auto last_report = start;
   StepStatus status;
-  std::vector<StageMeasures> measures;
-  double next_output = 0.0, next_series = 0.0;
-  for (std::size_t k = 0; k < s.stages.size() && status.ok; ++k) {
+  bool stopped = false;  // by a signal, after a checkpoint
+  for (std::size_t k = at.stage; k < s.stages.size() && status.ok && !stopped; ++k) {
     const Stage& st = s.stages[k];
     Stage as_plastic = st;
     as_plastic.elastic = false;
     strength = material_strengths(stage_materials(s, as_plastic));
-    solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
     const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
-    const long first_step = solver.steps();
-    const double stage_start = solver.time();
-    StageTracker<D> tracker(st.name, particles, stage_start, solver.totals().kinetic_energy,
-                            st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
-                            s.cells[0] * s.cell_size, s.origin[D - 1],
-                            D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+    const bool begins = !at.in_stage;  // false for the stage a restart continues
+    if (begins) {
+      solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
+      at.stage = k;
+      at.in_stage = true;
+      at.stage_first_step = solver.steps();
+      at.stage_start = solver.time();
+      at.tracker = StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy,
+                                   st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
+                                   s.cells[0] * s.cell_size, s.origin[D - 1],
+                                   D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+    }
+    const long first_step = at.stage_first_step;
+    const double stage_start = at.stage_start;
+    StageTracker<D>& tracker = at.tracker;
     auto sample = [&]() {
       const ParticleTotals<D> t = solver.totals();
-      series.add(series_row(solver, t, n, static_cast<int>(k), tracker.runout(particles)));
+      series.add(series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
+                            tracker.runout(particles)));
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time;
       return tracker.observe(solver.time(), t.mean_speed) && !ramping;
     };
-    sample();
-    if (k == 0) {
+    if (begins) sample();
+    if (begins && k == 0) {
       write_frame();
-      next_output = s.output_interval;
-      next_series = s.series_interval;
+      at.next_output = s.output_interval;
+      at.next_series = s.series_interval;
     }
     std::string ended_by = "duration";
     while (solver.steps() - first_step < stage_steps) {
+      // Point order and point changes between steps (docs/method.md, "Point order").
+      if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 &&
+          particles.sort_by_cell(solver.grid()))
+        solver.particles_changed();
+      if constexpr (D == 2)  // the test hook that adds and removes points (2D runs)
+        if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
       const auto t0 = Clock::now();
       status = solver.step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -202,23 +220,24 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         ended_by = "unstable";
         break;
       }
+      computed_updates += static_cast<long>(particles.size());
       const double t = solver.time();
       const bool last = solver.steps() - first_step == stage_steps;
       bool at_rest = false;
-      if (t >= next_series - 0.5 * dt || last) {
+      if (t >= at.next_series - 0.5 * dt || last) {
         at_rest = sample();
-        while (next_series <= t + 0.5 * dt) next_series += s.series_interval;
+        while (at.next_series <= t + 0.5 * dt) at.next_series += s.series_interval;
       }
-      if (t >= next_output - 0.5 * dt || last || at_rest) {
+      if (t >= at.next_output - 0.5 * dt || last || at_rest) {
         write_frame();
-        while (next_output <= t + 0.5 * dt) next_output += s.output_interval;
+        while (at.next_output <= t + 0.5 * dt) at.next_output += s.output_interval;
       }
       const auto now = Clock::now();
       if (opt.progress && (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest)) {
         last_report = now;
         const double elapsed = std::chrono::duration<double>(now - start).count();
         const double frac = static_cast<double>(solver.steps()) / total_steps;
-        const double pups = compute_seconds > 0 ? n * solver.steps() / compute_seconds : 0.0;
+        const double pups = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
         fmt::print(stderr, "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
                    tty ? "\r" : "", k + 1, st.name, solver.steps(), t, 100 * frac,
                    hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest) ? "" : "\n");
@@ -228,18 +247,28 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         ended_by = "rest";
         break;
       }
+      if (checkpoints.after_step(particles, solver, at, series)) {  // periodic; stop on a signal
+        stopped = true;
+        break;
+      }
     }
+    if (stopped) break;
     const ParticleTotals<D> t = solver.totals();
     const EnergyTotals& e = solver.energy();
-    measures.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
-                                      t.kinetic_energy, e.gravity_work, e.strain_energy,
-                                      e.plastic_dissipation, ended_by));
+    at.finished.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
+                                         t.kinetic_energy, e.gravity_work, e.strain_energy,
+                                         e.plastic_dissipation, ended_by));
+    at.in_stage = false;
+    at.stage = k + 1;
   }
+  const long n = static_cast<long>(particles.size());
+  res.particles = n;
   res.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   res.steps = solver.steps();
   res.simulated_time = solver.time();
-  res.particle_updates_per_second = compute_seconds > 0 ? n * res.steps / compute_seconds : 0.0;
-  res.completed = status.ok;
+  res.particle_updates_per_second = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
+  res.completed = status.ok && !stopped;
+  res.interrupted = stopped;
   if (!status.ok) {
     const long p = status.particle;
     res.message = fmt::format(
@@ -248,11 +277,17 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         particles.x[p][1], D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "",
         status.reason);
     write_frame();  // the last state, for diagnosis
+  } else if (stopped) {
+    res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",
+                              solver.steps(), solver.time(), outdir.string());
+    write_frame();  // the state at the checkpoint
+  } else {
+    checkpoints.at_end(particles, solver, at, series);
   }
   series.flush();
 
   Summary sum{};
-  sum.status = status.ok ? "completed" : "unstable";
+  sum.status = stopped ? "interrupted" : status.ok ? "completed" : "unstable";
   sum.message = res.message;
   sum.steps = res.steps;
   sum.simulated_time = res.simulated_time;
@@ -267,10 +302,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.interpolation = to_string(s.interpolation);
   sum.scheme = to_string(s.scheme);
   sum.time_step = dt;
-  sum.stages = measures;
+  sum.stages = at.finished;
   sum.phase_seconds = solver.phase_times().report();
   write_summary_json(outdir / "summary.json", sum);
-  res.stages = std::move(measures);
+  res.stages = std::move(at.finished);
   return res;
 }
 

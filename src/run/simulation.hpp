@@ -2,6 +2,7 @@
 // writes the result files (particle frames, series.csv, summary.json).
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "io/summary_writer.hpp"
@@ -13,10 +14,22 @@ namespace skred {
 struct RunOptions {
   int threads = 1;
   bool progress = true;  // progress line on stderr
+  long sort_every = kSortEvery;  // 0: never sort
+  // Checkpoints (run/checkpointing.hpp): OUTDIR/checkpoint.skc every N steps and at the end
+  // (0: none, except on a signal); continue from `restart` when set; on SIGINT/SIGTERM write a
+  // checkpoint and stop with status "interrupted" when handle_signals.
+  long checkpoint_every = 0;
+  std::filesystem::path restart;
+  bool handle_signals = false;
+  long stop_at_step = -1;  // stop as if interrupted after this step (tests)
+  // Called before every step; may change the points (their number too) and then returns true
+  // (tests of the point lifecycle, adaptive refinement).
+  std::function<bool(Particles<2>&, const ExplicitSolver<2>&)> edit_points;
 };
 
 struct RunResult {
   bool completed = false;
+  bool interrupted = false;  // stopped by a signal (or stop_at_step) after a checkpoint
   std::string message;
   long steps = 0;
   double simulated_time = 0.0;

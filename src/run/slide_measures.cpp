@@ -27,7 +27,7 @@ template <int D> MaterialExtent material_extent(const Particles<D>& P) {
 }
 
 template <int D>
-StageTracker<D>::StageTracker(std::string name, const Particles<D>& P, double time,
+StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time,
                               double kinetic_energy, double rest_speed, double rest_time,
                               double x0, double width, double length, double z0, double z_length)
     : start_(material_extent(P)), kinetic_start_(kinetic_energy), rest_speed_(rest_speed),
@@ -38,8 +38,7 @@ StageTracker<D>::StageTracker(std::string name, const Particles<D>& P, double ti
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
-  plastic_start_.resize(P.size());
-  for (std::size_t p = 0; p < P.size(); ++p) plastic_start_[p] = P.state[p].plastic_shear_strain;
+  for (std::size_t p = 0; p < P.size(); ++p) P.plastic_ref[p] = P.state[p].plastic_shear_strain;
 }
 
 template <int D> bool StageTracker<D>::observe(double time, double mean_speed) {
@@ -129,7 +128,7 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
   m.strain_energy = strain_energy;
   m.plastic_dissipation = plastic_dissipation;
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.state[p].plastic_shear_strain > plastic_start_[p]) {
+    if (P.state[p].plastic_shear_strain > P.plastic_ref[p]) {
       m.plastic_volume += P.volume(p);
       ++m.plastic_points;
     }

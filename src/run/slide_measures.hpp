@@ -36,14 +36,26 @@ struct Runout {
 Runout runout_of(const std::vector<double>& before, const std::vector<double>& after,
                  double width, double threshold);
 
+// Reads or writes a stage's measures through `a` (see StageTracker::archive).
+template <class A> void archive_measures(A& a, StageMeasures& m) {
+  a(m.name); a(m.start_time); a(m.end_time); a(m.steps); a(m.ended_by); a(m.runout_x_min);
+  a(m.runout_x_max); a(m.runout); a(m.max_displacement); a(m.height_start); a(m.height_end);
+  a(m.peak_mean_speed); a(m.peak_time); a(m.final_mean_speed); a(m.gravity_work);
+  a(m.kinetic_energy_change); a(m.strain_energy); a(m.plastic_dissipation); a(m.plastic_volume);
+  a(m.plastic_points); a(m.stop_time);
+}
+
 // Follows one stage: record the start, observe the mean speed as the run goes, finish.
 // In 3D the runout is measured along x as in 2D (`runout`, `runout_x_min/max`), and along z
 // the same way from profiles across z (`runout_z_min/max`).
 template <int D> class StageTracker {
  public:
   // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length]
-  // (3D: also over [z0, z0 + z_length] along z).
-  StageTracker(std::string name, const Particles<D>& P, double time, double kinetic_energy,
+  // (3D: also over [z0, z0 + z_length] along z). Records every point's plastic shear strain
+  // in P.plastic_ref (a particle field, so it follows the points through every change of
+  // their number or order).
+  StageTracker() = default;  // to be filled by archive() (checkpoint restart)
+  StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
                double rest_speed, double rest_time, double x0, double width, double length,
                double z0 = 0.0, double z_length = 0.0);
   // Records a sample of the mean speed at `time`; true once the rest criterion is met.
@@ -54,10 +66,19 @@ template <int D> class StageTracker {
   // Current runout and deposit height, for the series rows.
   double runout(const Particles<D>& P) const;
 
+  // Reads or writes the tracker's whole state through `a` (see run/checkpointing.cpp):
+  // a(value) for every member.
+  template <class A> void archive(A& a) {
+    archive_measures(a, m_);
+    a(start_.x_min); a(start_.x_max); a(start_.y_min); a(start_.y_max);
+    a(kinetic_start_); a(rest_speed_); a(rest_time_); a(threshold_); a(x0_); a(width_); a(length_);
+    a(z0_); a(z_length_); a(profile_z_);
+    a(profile_); a(quiet_since_); a(samples_);
+  }
+
  private:
   StageMeasures m_;
   MaterialExtent start_;
-  std::vector<double> plastic_start_;  // plastic shear strain per point at the stage start
   double kinetic_start_ = 0.0;
   double rest_speed_ = 0.0, rest_time_ = 0.0, threshold_ = 0.0;
   double x0_ = 0.0, width_ = 1.0, length_ = 0.0, z0_ = 0.0, z_length_ = 0.0;

@@ -46,6 +46,16 @@ struct EnergyTotals {
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
 };
 
+// The solver's state between two steps beyond the particles and the scenario, for a
+// checkpoint: clock, gravity ramp of the stage (what begin_stage set) and energy totals.
+struct SolverClock {
+  double time = 0.0;
+  long steps = 0;
+  double ramp_start = 0.0;
+  double gravity_ramp_time = 0.0;
+  EnergyTotals energy;
+};
+
 // Quantities summed over the particles on demand.
 template <int D> struct ParticleTotals {
   double mass = 0.0;
@@ -115,6 +125,23 @@ template <int D> class ExplicitSolver {
   void begin_stage(std::vector<Material> materials, double gravity_ramp_time);
   void reset_reference();
   const std::vector<Material>& materials() const { return materials_; }
+
+  // Checkpoint and restart: the state to save, and restoring it with the current stage's
+  // materials. The next step maps the grid afresh from the particles, which gives the same
+  // points bit for bit as the fused map (test FusedMapEqualsAFreshMapEveryStep).
+  SolverClock clock() const {
+    return {time_, steps_, ramp_start_, settings_.gravity_ramp_time, energy_};
+  }
+  void restore(const SolverClock& c, std::vector<Material> materials) {
+    materials_ = std::move(materials);
+    for (Material& m : materials_) m.prepare();
+    time_ = c.time;
+    steps_ = c.steps;
+    ramp_start_ = c.ramp_start;
+    settings_.gravity_ramp_time = c.gravity_ramp_time;
+    energy_ = c.energy;
+    grid_mapped_ = false;
+  }
 
  private:
   friend struct UpdateStressFirst;

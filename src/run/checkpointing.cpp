@@ -1,0 +1,154 @@
+#include "run/checkpointing.hpp"
+
+#include <fmt/core.h>
+
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "scenario/initial_stress.hpp"
+
+namespace skred {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Set by the SIGINT/SIGTERM handler, read between steps. A second signal before the run
+// stops ends the program at once (the default action).
+volatile std::sig_atomic_t g_stop_requested = 0;
+extern "C" void request_stop(int sig) {
+  if (g_stop_requested) {
+    std::signal(sig, SIG_DFL);
+    std::raise(sig);
+  }
+  g_stop_requested = 1;
+}
+
+template <class A> void archive_row(A& a, SeriesRow& r) {
+  a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
+  a(r.plastic_dissipation); a(r.mean_speed); a(r.max_speed); a(r.momentum_x); a(r.momentum_y);
+  a(r.num_particles); a(r.stage); a(r.runout); a(r.yielding_points); a(r.momentum_z);
+}
+
+// The run's state besides the particles, in payload order.
+template <class A, int D> void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
+  a(c.time); a(c.steps); a(c.ramp_start); a(c.gravity_ramp_time);
+  a(c.energy.strain_energy); a(c.energy.gravity_work); a(c.energy.plastic_dissipation);
+  a(at.stage); a(at.in_stage); a(at.stage_first_step); a(at.stage_start);
+  a(at.next_output); a(at.next_series); a(at.frame_times); a(at.checkpoint_every);
+  std::uint64_t n = at.finished.size();
+  a(n);
+  at.finished.resize(n);
+  for (StageMeasures& m : at.finished) archive_measures(a, m);
+  if (at.in_stage) at.tracker.archive(a);
+}
+
+}  // namespace
+
+fs::path checkpoint_file(const fs::path& outdir) { return outdir / "checkpoint.skc"; }
+
+std::uint64_t scenario_hash(const std::string& source) {
+  std::ifstream in(source, std::ios::binary);
+  std::string text = source;
+  if (in && fs::is_regular_file(source))
+    text.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  return fnv1a64(text.data(), text.size());
+}
+
+template <int D>
+Checkpointing<D>::Checkpointing(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt)
+    : s_(s), file_(checkpoint_file(outdir)), restart_(opt.restart), every_(opt.checkpoint_every),
+      stop_at_(opt.stop_at_step), signals_(opt.handle_signals) {
+  if (!signals_) return;
+  g_stop_requested = 0;
+  struct sigaction sa {};
+  sa.sa_handler = request_stop;
+  sigemptyset(&sa.sa_mask);
+  sigaction(SIGINT, &sa, &old_int_);
+  sigaction(SIGTERM, &sa, &old_term_);
+}
+
+template <int D> Checkpointing<D>::~Checkpointing() {
+  if (!signals_) return;
+  sigaction(SIGINT, &old_int_, nullptr);
+  sigaction(SIGTERM, &old_term_, nullptr);
+}
+
+template <int D>
+void Checkpointing<D>::write(const Particles<D>& P, const ExplicitSolver<D>& solver,
+                          RunProgress<D>& at, const SeriesWriter& series) {
+  std::ostringstream os(std::ios::binary);
+  ByteWriter w{os};
+  SolverClock c = solver.clock();
+  at.checkpoint_every = every_;
+  archive_run(w, c, at);
+  w(static_cast<std::uint64_t>(series.rows().size()));
+  for (SeriesRow r : series.rows()) archive_row(w, r);
+  P.serialise(os);
+  write_checkpoint(file_, {D, scenario_hash(s_.source)}, os.str());
+}
+
+template <int D>
+void load_checkpoint(const fs::path& file, const ScenarioOf<D>& s, Particles<D>& P, SolverClock& c,
+                     RunProgress<D>& at, std::vector<SeriesRow>& series) {
+  std::istringstream is(read_checkpoint(file, {D, scenario_hash(s.source)}), std::ios::binary);
+  ByteReader r{is, fmt::format("checkpoint '{}'", file.string())};
+  archive_run(r, c, at);
+  std::uint64_t rows = 0;
+  r(rows);
+  r.need(rows < (1ull << 32));
+  series.resize(rows);
+  for (SeriesRow& row : series) archive_row(r, row);
+  try {
+    P.deserialise(is);
+  } catch (const std::runtime_error& e) {
+    throw CheckpointError(fmt::format("checkpoint '{}': {}", file.string(), e.what()));
+  }
+  r.need(is.peek() == std::char_traits<char>::eof() && at.stage <= s.stages.size() &&
+         (at.stage < s.stages.size() || !at.in_stage));
+}
+
+template <int D>
+bool Checkpointing<D>::restore(Particles<D>& P, ExplicitSolver<D>& solver, RunProgress<D>& at,
+                            SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
+  if (restart_.empty()) return false;
+  SolverClock c;
+  std::vector<SeriesRow> rows;
+  load_checkpoint(restart_, s_, P, c, at, rows);
+  if (every_ == 0) every_ = at.checkpoint_every;  // a resume keeps the run's period
+  for (const SeriesRow& row : rows) series.add(row);
+  const std::size_t stage = std::min<std::size_t>(at.stage, s_.stages.size() - 1);
+  solver.restore(c, stage_materials(s_, s_.stages[stage]));
+  for (std::size_t f = 0; f < at.frame_times.size(); ++f) {
+    particles_pvd.add(at.frame_times[f], fmt::format("particles_{:06}.vtu", f));
+    grid_pvd.add(at.frame_times[f], fmt::format("grid_{:06}.vtr", f));
+  }
+  return true;
+}
+
+template <int D>
+bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>& solver,
+                               RunProgress<D>& at, const SeriesWriter& series) {
+  if (g_stop_requested || solver.steps() == stop_at_) {
+    write(P, solver, at, series);
+    return true;
+  }
+  if (every_ > 0 && solver.steps() % every_ == 0) write(P, solver, at, series);
+  return false;
+}
+
+template <int D>
+void Checkpointing<D>::at_end(const Particles<D>& P, const ExplicitSolver<D>& solver,
+                           RunProgress<D>& at, const SeriesWriter& series) {
+  if (every_ > 0) write(P, solver, at, series);
+}
+
+template class Checkpointing<2>;
+template class Checkpointing<3>;
+template void load_checkpoint(const fs::path&, const ScenarioOf<2>&, Particles<2>&, SolverClock&,
+                              RunProgress<2>&, std::vector<SeriesRow>&);
+template void load_checkpoint(const fs::path&, const ScenarioOf<3>&, Particles<3>&, SolverClock&,
+                              RunProgress<3>&, std::vector<SeriesRow>&);
+
+}  // namespace skred
