@@ -11,6 +11,7 @@
 #include "app/post_cli.hpp"
 #include "io/checkpoint.hpp"
 #include "run/bench.hpp"
+#include "run/checkpointing.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
 #include "scenario/build.hpp"
@@ -21,6 +22,7 @@ namespace {
 // Exit codes of `skred run` / `skred resume`: 0 completed, 1 error, 2 unstable, 3 interrupted
 // (SIGINT/SIGTERM; a checkpoint was written, continue with `skred resume OUTDIR`).
 int cmd_run(const std::string& file, const std::string& outdir, int threads, skred::RunOptions opt) {
+  skred::watch_stop_signals();
   const skred::AnyScenario s = skred::load_any_scenario(file);
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
   opt.handle_signals = true;

@@ -24,6 +24,7 @@ extern "C" void request_stop(int sig) {
   }
   g_stop_requested = 1;
 }
+bool g_watching = false;  // watch_stop_signals() was called
 
 template <class A> void archive_row(A& a, SeriesRow& r) {
   a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
@@ -46,6 +47,12 @@ template <class A, int D> void archive_run(A& a, SolverClock& c, RunProgress<D>&
 
 }  // namespace
 
+void watch_stop_signals() {
+  g_watching = true;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
+}
+
 fs::path checkpoint_file(const fs::path& outdir) { return outdir / "checkpoint.skc"; }
 
 std::uint64_t scenario_hash(const std::string& source) {
@@ -61,7 +68,7 @@ Checkpointing<D>::Checkpointing(const ScenarioOf<D>& s, const fs::path& outdir, 
     : s_(s), file_(checkpoint_file(outdir)), restart_(opt.restart), every_(opt.checkpoint_every),
       stop_at_(opt.stop_at_step), signals_(opt.handle_signals) {
   if (!signals_) return;
-  g_stop_requested = 0;
+  if (!g_watching) g_stop_requested = 0;  // a signal since watch_stop_signals() still counts
   struct sigaction sa {};
   sa.sa_handler = request_stop;
   sigemptyset(&sa.sa_mask);

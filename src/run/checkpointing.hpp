@@ -29,6 +29,10 @@ template <int D> struct RunProgress {
   long checkpoint_every = 0;             // as the run was started (a resume keeps it)
 };
 
+// Catches SIGINT/SIGTERM from now on (for the command line, before the scenario is read and
+// the points built): a run with RunOptions::handle_signals then stops at its first step.
+void watch_stop_signals();
+
 // The name of the checkpoint file in an output folder.
 std::filesystem::path checkpoint_file(const std::filesystem::path& outdir);
 // The scenario hash a checkpoint is bound to: FNV-1a of the scenario file's text (of its
