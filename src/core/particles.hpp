@@ -17,7 +17,7 @@
 #include "core/grid.hpp"
 #include "core/huge_pages.hpp"
 #include "core/types.hpp"
-#include "material/state.hpp"
+#include "core/point_state.hpp"
 
 namespace skred {
 
