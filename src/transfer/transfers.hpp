@@ -123,32 +123,33 @@ void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, 
   T.reduce(nullptr, f);
 }
 
-// out_p = sum_i N_ip v_i (eq. 2.56 with a nodal field v).
-template <int D, class K>
-void g2p_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v,
-                  Vec<D>* out) {
+// fn(q, shape) for every point q with its weighting functions stored by the last
+// p2g_mass_momentum, in parallel.
+template <int D, class K, class Fn>
+void for_each_stored_shape(Transfer<D>& T, const K& kernel, const Particles<D>& P, Fn&& fn) {
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
 #pragma omp parallel for num_threads(T.threads()) schedule(static)
   for (long q = 0; q < n; ++q) {
     typename K::Shape sh;
     kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
-    out[q] = gather(sh, T.strides(), v);
+    fn(q, sh);
   }
+}
+
+// out_p = sum_i N_ip v_i (eq. 2.56 with a nodal field v).
+template <int D, class K>
+void g2p_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v,
+                  Vec<D>* out) {
+  for_each_stored_shape(T, kernel, P, [&](long q, const auto& sh) { out[q] = gather(sh, T.strides(), v); });
 }
 
 // out_p = sum_i v_i (x) grad N_ip: the velocity gradient of eq. 2.20.
 template <int D, class K>
 void g2p_velocity_gradient(Transfer<D>& T, const K& kernel, const Particles<D>& P,
                            const Vec<D>* v, Mat<D>* out) {
-  const long n = static_cast<long>(P.size());
-  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
-#pragma omp parallel for num_threads(T.threads()) schedule(static)
-  for (long q = 0; q < n; ++q) {
-    typename K::Shape sh;
-    kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
-    out[q] = gather_gradient(sh, T.strides(), v);
-  }
+  for_each_stored_shape(T, kernel, P,
+                        [&](long q, const auto& sh) { out[q] = gather_gradient(sh, T.strides(), v); });
 }
 
 }  // namespace skred
