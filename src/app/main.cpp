@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "app/post_cli.hpp"
+#include "app/scenario_cli.hpp"
 #include "io/checkpoint.hpp"
 #include "run/bench.hpp"
 #include "run/checkpointing.hpp"
@@ -39,18 +40,6 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads, skr
              "{:.2f} M particle-updates/s; results in {}\n",
              res.steps, res.simulated_time, res.particles, res.wall_seconds,
              res.particle_updates_per_second / 1e6, outdir);
-  return 0;
-}
-
-int cmd_check(const std::string& file) {
-  std::visit(
-      [](const auto& s) {
-        const auto particles = skred::build_particles(s);
-        fmt::print("{}\nparticles: {}\ntime step: {:.6g} s ({} steps)\nscenario is valid\n",
-                   skred::describe(s), particles.size(), skred::scenario_time_step(s),
-                   static_cast<long>(std::ceil(s.end_time / skred::scenario_time_step(s) - 1e-9)));
-      },
-      skred::load_any_scenario(file));
   return 0;
 }
 
@@ -134,8 +123,9 @@ int main(int argc, char** argv) {
   resume->add_option("--checkpoint-every", ro.checkpoint_every,
                      "Checkpoint period in steps (default: that of the run)")->check(CLI::Range(1L, 1000000000L));
 
-  auto* check = app.add_subcommand("check", "Validate a scenario without running it");
-  check->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
+  skred::ScenarioCommands scenario_commands(app);  // check, schema
+  bool force = false;
+  run->add_flag("--force", force, "Run a scenario that needs more memory than the machine has");
 
   std::string set;
   auto* sweep = app.add_subcommand("sweep", "Run a scenario once per value of one parameter");
@@ -171,13 +161,14 @@ int main(int argc, char** argv) {
   try {
     if (*run) {
       ro.restart = restart;
+      if (!force) skred::require_fits_machine(scenario);
       return cmd_run(scenario, outdir, threads, ro);
     }
     if (*resume) {
       ro.restart = std::filesystem::path(outdir) / "checkpoint.skc";
       return cmd_run((std::filesystem::path(outdir) / "scenario.toml").string(), outdir, threads, ro);
     }
-    if (*check) return cmd_check(scenario);
+    if (scenario_commands.chosen()) return scenario_commands.run();
     if (*sweep) return cmd_sweep(scenario, outdir, set, threads);
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column")

@@ -27,6 +27,8 @@ struct ParamSpec {
 
 inline constexpr double kNoDefault = std::numeric_limits<double>::quiet_NaN();
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
+// Largest modulus, strength or stress a parameter may have [Pa]: 1000 GPa, above any rock.
+inline constexpr double kMaxStress = 1e12;
 
 struct ModelInfo {
   const char* name;         // as written in the scenario file, e.g. "mohr-coulomb"

@@ -27,16 +27,6 @@ namespace skred {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-template <int D> double scenario_time_step(const ScenarioOf<D>& s) {
-  if (s.time_step > 0.0) return s.time_step;
-  double c = 0.0;
-  for (const Material& m : s.materials) c = std::max(c, m.wave_speed());
-  double v = 0.0;
-  for (const BodyOf<D>& b : s.bodies)
-    v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());
-  return s.cfl * s.cell_size / (c + v);
-}
-
 template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   SolverSettings<D> st;
   st.interpolation = s.interpolation;
@@ -313,8 +303,6 @@ RunResult run_simulation(const AnyScenario& s, const fs::path& outdir, const Run
   return std::visit([&](const auto& sc) { return run_simulation(sc, outdir, opt); }, s);
 }
 
-template double scenario_time_step<2>(const Scenario&);
-template double scenario_time_step<3>(const Scenario3&);
 template SolverSettings<2> solver_settings<2>(const Scenario&);
 template SolverSettings<3> solver_settings<3>(const Scenario3&);
 template GridGeometry<2> scenario_grid<2>(const Scenario&);

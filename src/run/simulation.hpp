@@ -6,6 +6,7 @@
 #include <string>
 
 #include "io/summary_writer.hpp"
+#include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -38,10 +39,6 @@ struct RunResult {
   double particle_updates_per_second = 0.0;
   std::vector<StageMeasures> stages;  // slide measures per stage run
 };
-
-// The time step of a scenario: the fixed one, or cfl * h / (fastest P-wave speed +
-// fastest initial particle speed).
-template <int D> double scenario_time_step(const ScenarioOf<D>& s);
 
 template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s);
 

@@ -2,6 +2,8 @@
 // docs/scenario.md; keep the two in step.
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cstdlib>
 #include <cmath>
@@ -11,6 +13,7 @@
 #include <sstream>
 
 #include "scenario/build.hpp"
+#include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/parser_detail.hpp"
 #include "scenario/toml_reader.hpp"
@@ -61,46 +64,49 @@ using scenario_detail::TableReader;
 using scenario_detail::kDeg;
 using scenario_detail::material_index;
 
-// Strength keys of the plastic models (Thesis eq. 5.1-5.4; Paper III §C.3.2; Acosta §3.2).
+// The strength keys of the model (Thesis eq. 5.1-5.4; Paper III §C.3.2; Acosta §3.2), read
+// against the model's declared parameters (src/material/<model>/info.hpp).
 void parse_strength(const TableReader& t, Material& m) {
+  const std::string model_section = fmt::format("material ({})", to_string(m.model));
+  const TableReader p = m.model == Model::LinearElastic ? t : t.follows(model_section);
+  t.allow_declared(m.model == Model::LinearElastic ? nullptr : &schema::section(model_section));
   switch (m.model) {
-    case Model::LinearElastic:
-      t.allow_only({"name", "model", "density", "young", "poisson"});
-      return;
+    case Model::LinearElastic: return;
     case Model::MohrCoulomb: {
-      t.allow_only({"name", "model", "density", "young", "poisson", "friction", "cohesion",
-                    "dilation", "tension_cutoff", "initial_void_ratio", "max_void_ratio"});
       MohrCoulombParams& mc = m.mohr_coulomb;
-      const double phi_deg = t.number("friction", Range{0.0, 90.0, false, true});
+      const double phi_deg = p.number("friction");
       mc.friction = phi_deg * kDeg;
-      mc.cohesion = t.number("cohesion", Range::non_negative());
+      mc.cohesion = p.number("cohesion");
       if (mc.friction == 0.0 && mc.cohesion == 0.0)
         t.fail_at("cohesion", "a Mohr-Coulomb material needs friction > 0 or cohesion > 0");
-      mc.dilation = t.number("dilation", Range::closed(0.0, phi_deg), 0.0) * kDeg;
-      if (t.has("tension_cutoff"))
-        mc.tension_cutoff = t.number("tension_cutoff", Range::non_negative());
+      if (p.number("dilation") > phi_deg)
+        p.fail_at("dilation", fmt::format("the dilation angle must not exceed the friction angle "
+                                          "{} deg", phi_deg));
+      mc.dilation = p.number("dilation") * kDeg;
+      if (t.has("tension_cutoff")) mc.tension_cutoff = p.number("tension_cutoff");
       if (t.has("initial_void_ratio") != t.has("max_void_ratio"))
         t.fail_at(t.has("max_void_ratio") ? "max_void_ratio" : "initial_void_ratio",
                   "the dilation cut-off needs both initial_void_ratio and max_void_ratio");
       if (t.has("max_void_ratio")) {
-        mc.initial_void_ratio = t.number("initial_void_ratio", Range::positive());
-        mc.max_void_ratio = t.number("max_void_ratio", Range{mc.initial_void_ratio,
-                                                             INFINITY, true, false});
+        mc.initial_void_ratio = p.number("initial_void_ratio");
+        mc.max_void_ratio = p.number("max_void_ratio");
+        if (!(mc.max_void_ratio > mc.initial_void_ratio))
+          t.fail_at("max_void_ratio", fmt::format("must be > initial_void_ratio {}, got {}",
+                                                  mc.initial_void_ratio, mc.max_void_ratio));
       }
       return;
     }
     case Model::Tresca:
-      t.allow_only({"name", "model", "density", "young", "poisson", "cohesion"});
-      m.mohr_coulomb.cohesion = t.number("cohesion", Range::positive());
+      m.mohr_coulomb.cohesion = p.number("cohesion");
       return;
     case Model::VonMises: {
-      t.allow_only({"name", "model", "density", "young", "poisson", "cohesion",
-                    "residual_cohesion", "softening_modulus"});
       VonMisesParams& vm = m.von_mises;
-      vm.cohesion_peak = t.number("cohesion", Range::positive());
-      vm.cohesion_residual = t.number("residual_cohesion", Range::closed(0.0, vm.cohesion_peak),
-                                      vm.cohesion_peak);
-      vm.softening_modulus = t.number("softening_modulus", Range{-INFINITY, 0.0, false, false}, 0.0);
+      vm.cohesion_peak = p.number("cohesion");
+      vm.cohesion_residual = p.number_or("residual_cohesion", vm.cohesion_peak);
+      if (vm.cohesion_residual > vm.cohesion_peak)
+        t.fail_at("residual_cohesion", fmt::format("must be <= cohesion {}, got {}",
+                                                   vm.cohesion_peak, vm.cohesion_residual));
+      vm.softening_modulus = p.number("softening_modulus");
       return;
     }
   }
@@ -124,9 +130,9 @@ void parse_materials(const TableReader& root, ScenarioCommon& s) {
     m.model = t.choice<Model>("model", {M(Model::LinearElastic), M(Model::MohrCoulomb),
                                         M(Model::Tresca), M(Model::VonMises)});
     parse_strength(t, m);
-    m.density = t.number("density", Range::positive());
-    m.elastic.young = t.number("young", Range::positive());
-    m.elastic.poisson = t.number("poisson", Range{0.0, 0.5, false, true});
+    m.density = t.number("density");
+    m.elastic.young = t.number("young");
+    m.elastic.poisson = t.number("poisson");
     s.materials.push_back(std::move(m));
   }
 }
@@ -136,14 +142,13 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
   static const toml::table empty;
   const TableReader t = root.table("solver", !root.has("stage"))
                             .value_or(TableReader(empty, "solver", s.source));
-  t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl",
-                "pic_fraction"});
+  t.allow_declared();
   const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
   s.interpolation = t.choice<Interpolation>(
       "interpolation", {I(Interpolation::Linear), I(Interpolation::Gimp),
                         I(Interpolation::GimpQuadrature), I(Interpolation::Bspline)},
       Interpolation::Gimp);
-  s.quadrature_points = static_cast<int>(t.integer("quadrature_points", 1, 3, 2));
+  s.quadrature_points = static_cast<int>(t.integer("quadrature_points"));
   const auto S = [](StressScheme x) { return std::pair{to_string(x), x}; };
   s.scheme = t.choice<StressScheme>(
       "scheme", {S(StressScheme::USF), S(StressScheme::USL), S(StressScheme::Averaged)},
@@ -153,23 +158,26 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
     if (t.has("end_time"))
       t.fail_at("end_time", "the [[stage]] durations set the end time; remove solver.end_time");
   } else {
-    s.end_time = t.number("end_time", Range::positive());
+    s.end_time = t.number("end_time");
   }
-  s.time_step = t.has("time_step") ? t.number("time_step", Range::positive()) : 0.0;
-  s.cfl = t.number("cfl", Range{0.0, 1.0, true, false}, 0.3);
-  s.pic_fraction = t.number("pic_fraction", Range::closed(0.0, 1.0), 0.0);
+  s.time_step = t.number_or("time_step", 0.0);
+  s.cfl = t.number("cfl");
+  s.allow_unstable_time_step = t.boolean_or("allow_unstable_time_step", false);
+  if (s.allow_unstable_time_step && !t.has("time_step"))
+    t.fail_at("allow_unstable_time_step", "only meaningful with a fixed solver.time_step");
+  s.pic_fraction = t.number("pic_fraction");
 }
 
 void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
   const auto t = root.table("initial_stress", false);
   if (!t) return;
-  t->allow_only({"k0"});
+  t->allow_declared();
   InitialStress& is = s.initial_stress;
   const toml::node* n = t->find("k0");
   if (!n) t->fail_missing("k0");
   if (n->is_number()) {
     is.rule = K0Rule::Value;
-    is.k0 = t->number("k0", Range::closed(0.0, 10.0));
+    is.k0 = t->number("k0");
     return;
   }
   if (!n->is_string()) t->fail_type("k0", "\"poisson\", \"jaky\" or a number");
@@ -177,7 +185,7 @@ void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
 }
 
 MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s) {
-  t.allow_only({"name", "friction", "cohesion", "dilation"});
+  t.allow_declared();
   MaterialOverride o;
   o.material = material_index(t, "name", s);
   const Material& m = s.materials[static_cast<std::size_t>(o.material)];
@@ -188,11 +196,13 @@ MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s) {
                           "angle", m.name, to_string(m.model)));
   if (!m.plastic() && t.has("cohesion"))
     t.fail_at("cohesion", fmt::format("material \"{}\" is linear-elastic and has no cohesion", m.name));
-  if (t.has("friction")) o.friction = t.number("friction", Range{0.0, 90.0, false, true}) * kDeg;
-  if (t.has("cohesion"))
-    o.cohesion = t.number("cohesion", m.model == Model::MohrCoulomb ? Range::non_negative()
-                                                                    : Range::positive());
-  if (t.has("dilation")) o.dilation = t.number("dilation", Range{0.0, 90.0, false, true}) * kDeg;
+  if (t.has("friction")) o.friction = t.number("friction") * kDeg;
+  if (t.has("cohesion")) {
+    o.cohesion = t.number("cohesion");
+    if (!mc && *o.cohesion == 0.0)
+      t.fail_at("cohesion", fmt::format("must be > 0 for {}, got 0", to_string(m.model)));
+  }
+  if (t.has("dilation")) o.dilation = t.number("dilation") * kDeg;
   const double phi = o.friction.value_or(m.mohr_coulomb.friction);
   if (o.dilation.value_or(m.mohr_coulomb.dilation) > phi + 1e-12)
     t.fail_at(o.dilation ? "dilation" : "friction",
@@ -218,48 +228,101 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
   s.end_time = 0.0;
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const TableReader& t = tables[i];
-    t.allow_only({"name", "duration", "gravity_ramp_time", "elastic", "strength_reduction",
-                  "material", "rest_speed", "rest_time"});
+    t.allow_declared();
     Stage st;
     st.name = t.string("name", fmt::format("stage-{}", i));
-    st.duration = t.number("duration", Range::positive());
-    st.gravity_ramp_time = t.number("gravity_ramp_time", Range::non_negative(), 0.0);
+    st.duration = t.number("duration");
+    st.gravity_ramp_time = t.number("gravity_ramp_time");
     if (st.gravity_ramp_time > st.duration)
       t.fail_at("gravity_ramp_time", fmt::format("the ramp ({} s) is longer than the stage ({} s)",
                                                  st.gravity_ramp_time, st.duration));
-    if (t.has("elastic")) {
-      const auto v = t.find("elastic")->value<bool>();
-      if (!v) t.fail_type("elastic", "a boolean (true or false)");
-      st.elastic = *v;
-    }
-    st.strength_reduction = t.number("strength_reduction", Range{1.0, 100.0, false, false}, 1.0);
+    st.elastic = t.boolean_or("elastic", false);
+    st.strength_reduction = t.number("strength_reduction");
     for (const auto& m : t.array_of_tables("material")) st.overrides.push_back(parse_override(m, s));
-    st.rest_speed = t.number("rest_speed", Range::non_negative(), 0.0);
+    st.rest_speed = t.number("rest_speed");
     if (t.has("rest_time") && st.rest_speed == 0.0)
       t.fail_at("rest_time", "only allowed together with rest_speed > 0");
-    st.rest_time = t.number("rest_time", Range::positive(), 0.0);
+    st.rest_time = t.number_or("rest_time", 0.0);
     if (st.rest_speed > 0.0 && !t.has("rest_time")) t.fail_missing("rest_time");
     s.end_time += st.duration;
     s.stages.push_back(std::move(st));
   }
+  if (s.end_time > schema::section("stage").at("duration").range.hi)
+    fail(s.source, tables.back().where("duration"), tables.back().key("duration"),
+         fmt::format("the stages add up to {} s; at most {} s are allowed", s.end_time,
+                     schema::section("stage").at("duration").range.hi));
 }
+
+// Frames and series rows a run may write at most: more is a typo, not an analysis.
+constexpr double kMaxFrames = 1e5;
+constexpr double kMaxSeriesRows = 1e7;
 
 void parse_output(const TableReader& root, ScenarioCommon& s) {
   const auto o = root.table("output", false);
   s.output_interval = s.end_time / 20.0;
   if (o) {
-    o->allow_only({"interval", "series_interval"});
-    s.output_interval = o->number("interval", Range::positive(), s.output_interval);
+    o->allow_declared();
+    s.output_interval = o->number_or("interval", s.output_interval);
+    if (s.end_time / s.output_interval > kMaxFrames)
+      o->fail_at("interval", fmt::format("gives {:.3g} particle frames over {} s; at most {:.0f} are "
+                                         "allowed", s.end_time / s.output_interval, s.end_time,
+                                         kMaxFrames));
   }
   s.series_interval = s.output_interval / 10.0;
-  if (o) s.series_interval = o->number("series_interval", Range::positive(), s.series_interval);
+  if (o) {
+    s.series_interval = o->number_or("series_interval", s.series_interval);
+    if (s.end_time / s.series_interval > kMaxSeriesRows)
+      o->fail_at("series_interval", fmt::format("gives {:.3g} rows of series.csv over {} s; at most "
+                                                "{:.0f} are allowed", s.end_time / s.series_interval,
+                                                s.end_time, kMaxSeriesRows));
+  }
 }
 
 }  // namespace
 
 namespace {
 
+// Parts a dotted key may have. toml++ builds a dotted key's tables recursively, so a key of
+// a million parts would overflow the stack; no scenario key has more than a few.
+constexpr int kMaxKeyParts = 64;
+
+// Refuses a dotted key (or table header) of more than kMaxKeyParts parts before toml++ sees
+// it. Dots are counted in runs of key characters; strings and comments are skipped, and
+// any other character ('=', ',', '[', a newline) ends the run, so float values never add up.
+void check_key_depth(std::string_view text, const std::string& source) {
+  int line = 1, column = 0, dots = 0;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    ++column;
+    if (c == '\n') {
+      ++line, column = 0, dots = 0;
+    } else if (c == '#') {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+    } else if (c == '"' || c == '\'') {
+      const bool triple = text.substr(i, 3) == std::string(3, c);
+      const std::string_view end = triple ? text.substr(i, 3) : text.substr(i, 1);
+      std::size_t j = i + end.size();
+      while (j < text.size() && text.substr(j, end.size()) != end) {
+        if (c == '"' && text[j] == '\\') ++j;  // an escaped character
+        if (j < text.size() && text[j] == '\n') ++line, column = 0;
+        if (!triple && j < text.size() && text[j] == '\n') break;  // left to toml++ to report
+        ++j;
+      }
+      column += static_cast<int>(j - i);
+      i = std::min(text.size(), j + end.size()) - 1;
+    } else if (c == '.') {
+      if (++dots >= kMaxKeyParts)
+        throw ScenarioError(fmt::format("{}:{}:{}: syntax error: a dotted key with more than {} "
+                                        "parts", source, line, column, kMaxKeyParts));
+    } else if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ||
+                 c == ' ' || c == '\t' || c == '+')) {
+      dots = 0;
+    }
+  }
+}
+
 toml::table parse_toml(const std::string& text, const std::string& source) {
+  check_key_depth(text, source);
   try {
     return toml::parse(std::string_view(text), std::string_view(source));
   } catch (const toml::parse_error& e) {
@@ -277,10 +340,38 @@ int dimension_of(const toml::table& doc) {
   return size && size->size() == 3 ? 3 : 2;
 }
 
+// Steps a run may take at most: more is a typo (a 1e-300 s step), not an analysis.
+constexpr double kMaxSteps = 1e9;
+
+// The time step against the stable explicit step (Thesis §2.2: dt <= h / c) and the number
+// of steps it gives.
+template <int D> void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
+  const auto solver = root.table("solver", false);
+  const double stable = stable_time_step(s);
+  if (s.time_step > stable && !s.allow_unstable_time_step)
+    solver->fail_at("time_step",
+                    fmt::format("{} s exceeds the stable time step h / (c + v0) = {:.4g} s (cell "
+                                "size {} m, fastest P-wave speed {:.4g} m/s, fastest initial "
+                                "speed v0): the run would blow up. Lower it, use cfl instead, or "
+                                "set allow_unstable_time_step = true", s.time_step, stable,
+                                s.cell_size, s.cell_size / stable));
+  const double dt = scenario_time_step(s);
+  const double steps = s.end_time / dt;
+  if (!(steps <= kMaxSteps)) {
+    const std::string why = fmt::format("the run would take {:.3g} time steps of {:.4g} s over {} s; "
+                                        "at most {:.0e} are allowed", steps, dt, s.end_time, kMaxSteps);
+    if (s.time_step > 0) solver->fail_at("time_step", why);
+    if (root.has("stage")) {
+      const auto stages = root.array_of_tables("stage");
+      stages.back().fail_at("duration", why);
+    }
+    solver->fail_at("end_time", why);
+  }
+}
+
 template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) {
   const TableReader root(doc, "", source);
-  root.allow_only({"title", "grid", "material", "body", "initial_stress", "gravity", "boundary",
-                   "solver", "stage", "output"});
+  root.allow_declared();
   ScenarioOf<D> s;
   s.source = source;
   s.title = root.string("title", std::string());
@@ -293,6 +384,7 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   parse_solver(root, s);
   parse_stages(root, s);
   parse_output(root, s);
+  check_time_step(root, s);
   return s;
 }
 

@@ -10,12 +10,9 @@ namespace skred::scenario_detail {
 namespace {
 
 constexpr int kMaxCells = 100000;
-constexpr int kMaxParticlesPerCell = 8;
 
 Shape parse_rectangle(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
-                 "min", "max"});
-  Rectangle r{b.vec2("min"), b.vec2("max")};
+  Rectangle r{b.vec<2>("min"), b.vec<2>("max")};
   if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
     b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components",
                                  r.max[0], r.max[1], r.min[0], r.min[1]));
@@ -25,15 +22,11 @@ Shape parse_rectangle(const TableReader& b, const Scenario& s) {
 }
 
 Shape parse_polygon(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
-                 "vertices"});
   return parse_vertices(b, s.origin, grid_high(s), grid_tolerance(s), grid_bounds(s));
 }
 
 Shape parse_disc(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
-                 "center", "radius"});
-  Disc c{b.vec2("center"), b.number("radius", Range::positive())};
+  Disc c{b.vec<2>("center"), b.number("radius")};
   check_inside(b, "center", s, c.center, "centre");
   const Vec<2> r = Vec<2>::Constant(c.radius);
   if (!inside_grid(s, Vec<2>(c.center - r)) || !inside_grid(s, Vec<2>(c.center + r)))
@@ -43,16 +36,23 @@ Shape parse_disc(const TableReader& b, const Scenario& s) {
   return c;
 }
 
+// The body's keys and those of its shape are allowed; the shape's are read against its
+// schema section.
 Shape parse_shape2(const TableReader& t, const Scenario& s) {
   enum class Kind { Rectangle, Polygon, Disc };
   const Kind kind = t.choice<Kind>(
       "shape", {{"rectangle", Kind::Rectangle}, {"polygon", Kind::Polygon}, {"disc", Kind::Disc}});
+  const char* section = kind == Kind::Rectangle ? "body (rectangle)"
+                        : kind == Kind::Polygon ? "body (polygon)"
+                                                : "body (disc)";
+  t.allow_declared(&schema::section(section));
+  const TableReader shape = t.follows(section);
   switch (kind) {
-    case Kind::Rectangle: return parse_rectangle(t, s);
-    case Kind::Polygon: return parse_polygon(t, s);
+    case Kind::Rectangle: return parse_rectangle(shape, s);
+    case Kind::Polygon: return parse_polygon(shape, s);
     case Kind::Disc: break;
   }
-  return parse_disc(t, s);
+  return parse_disc(shape, s);
 }
 
 }  // namespace
@@ -83,13 +83,10 @@ Polygon parse_vertices(const TableReader& b, const Vec<2>& lo, const Vec<2>& hi,
 
 template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
   const TableReader g = *root.table("grid", true);
-  g.allow_only({"origin", "size", "cell_size"});
-  s.origin = g.vec<D>("origin", Vec<D>::Zero());
+  g.allow_declared();
+  s.origin = g.vec_or<D>("origin", Vec<D>::Zero());
   const Vec<D> size = g.vec<D>("size");
-  for (int d = 0; d < D; ++d)
-    if (!(size[d] > 0.0))
-      g.fail_at("size", fmt::format("the {} extent must be > 0, got {}", axis_name(d), size[d]));
-  const double h = g.number("cell_size", Range::positive());
+  const double h = g.number("cell_size");
   for (int d = 0; d < D; ++d) {
     const double ratio = size[d] / h;
     if (ratio < 0.5)
@@ -118,15 +115,15 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     else b.shape = parse_shape3(t, s);
     b.name = t.string("name", fmt::format("body-{}", i));
     b.material = material_index(t, "material", s);
-    b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
-    b.velocity = t.vec<D>("velocity", Vec<D>::Zero());
+    b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell"));
+    b.velocity = t.vec_or<D>("velocity", Vec<D>::Zero());
     if (const auto vs = t.table("velocity_sine", false)) {
-      vs->allow_only({"amplitude", "wavelength", "axis", "origin"});
+      vs->allow_declared();
       b.velocity_sine.amplitude = vs->vec<D>("amplitude");
-      b.velocity_sine.wavelength = vs->number("wavelength", Range::positive());
-      if constexpr (D == 2) b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}}, 0);
-      else b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}, {"z", 2}}, 0);
-      b.velocity_sine.origin = vs->number("origin", Range::any(), 0.0);
+      b.velocity_sine.wavelength = vs->number("wavelength");
+      b.velocity_sine.axis = vs->choice<int>("axis", {{"x", 0}, {"y", 1}, {"z", 2}}, 0);
+      if (b.velocity_sine.axis >= D) vs->fail_at("axis", "\"z\" needs a 3D grid");
+      b.velocity_sine.origin = vs->number("origin");
     }
     if (!has_points(s, b))
       t.fail_at("shape", fmt::format("body \"{}\" contains no material point: it covers no "
@@ -140,9 +137,9 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
 template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s) {
   const auto g = root.table("gravity", false);
   if (!g) return;
-  g->allow_only({"acceleration", "ramp_time"});
-  s.gravity = g->vec<D>("acceleration", Vec<D>::Zero());
-  s.gravity_ramp_time = g->number("ramp_time", Range::non_negative(), 0.0);
+  g->allow_declared();
+  s.gravity = g->vec_or<D>("acceleration", Vec<D>::Zero());
+  s.gravity_ramp_time = g->number("ramp_time");
 }
 
 namespace {
@@ -164,7 +161,7 @@ BoundarySide parse_side(const TableReader& bt, std::string_view side) {
     bt.fail_at(side, fmt::format("unknown value \"{}\"; allowed values: {}", v, allowed));
   }
   if (!n.is_table()) bt.fail_type(side, "a string or an inline table { type = ... }");
-  const TableReader t = *bt.table(side, true);
+  const TableReader t = bt.table(side, true)->follows("boundary.side");
   const BoundaryKind kind = t.choice<BoundaryKind>(
       "type", {{"free", BoundaryKind::Free}, {"fixed", BoundaryKind::Fixed},
                {"roller", BoundaryKind::Roller}, {"friction", BoundaryKind::Friction}});
@@ -174,8 +171,8 @@ BoundarySide parse_side(const TableReader& bt, std::string_view side) {
     t.allow_only({"type"});
     return BoundarySide{kind, 0.0};
   }
-  t.allow_only({"type", "friction"});
-  return BoundarySide{kind, t.number("friction", Range::non_negative())};
+  t.allow_declared();
+  return BoundarySide{kind, t.number("friction")};
 }
 
 }  // namespace
@@ -184,7 +181,7 @@ template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s) 
   const auto b = root.table("boundary", false);
   if (!b) return;
   if constexpr (D == 2) b->allow_only({"x_min", "x_max", "y_min", "y_max"});
-  else b->allow_only({"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"});
+  else b->allow_declared();
   const char* sides[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   for (std::size_t k = 0; k < 2 * D; ++k)
     if (b->has(sides[k])) s.boundaries[k] = parse_side(*b, sides[k]);

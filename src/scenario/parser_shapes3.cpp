@@ -8,11 +8,8 @@ namespace skred::scenario_detail {
 
 namespace {
 
-#define SKRED_BODY_KEYS "name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape"
-
 Shape3 parse_box(const TableReader& b, const Scenario3& s) {
-  b.allow_only({SKRED_BODY_KEYS, "min", "max"});
-  Box r{b.vec3("min"), b.vec3("max")};
+  Box r{b.vec<3>("min"), b.vec<3>("max")};
   if (!(r.max.array() > r.min.array()).all())
     b.fail_at("max", fmt::format("max {} must exceed min {} in every component",
                                  point_text<3>(r.max), point_text<3>(r.min)));
@@ -22,15 +19,14 @@ Shape3 parse_box(const TableReader& b, const Scenario3& s) {
 }
 
 Shape3 parse_extruded(const TableReader& b, const Scenario3& s) {
-  b.allow_only({SKRED_BODY_KEYS, "vertices", "z_min", "z_max"});
   const Vec<3> hi = grid_high(s);
   const double tol = grid_tolerance(s);
   ExtrudedPolygon e;
   e.section = parse_vertices(b, s.origin.head<2>(), hi.head<2>(), tol,
                              fmt::format("[{}, {}] x [{}, {}] (x-y)", s.origin[0], hi[0],
                                          s.origin[1], hi[1]));
-  e.z_min = b.number("z_min", Range::any());
-  e.z_max = b.number("z_max", Range::any());
+  e.z_min = b.number("z_min");
+  e.z_max = b.number("z_max");
   if (e.z_min < s.origin[2] - tol || e.z_min > hi[2] + tol)
     b.fail_at("z_min", fmt::format("z_min {} lies outside the grid's z range [{}, {}]", e.z_min,
                                    s.origin[2], hi[2]));
@@ -43,14 +39,13 @@ Shape3 parse_extruded(const TableReader& b, const Scenario3& s) {
 }
 
 Shape3 parse_cylinder(const TableReader& b, const Scenario3& s) {
-  b.allow_only({SKRED_BODY_KEYS, "center", "axis", "radius", "length"});
   Cylinder c;
-  c.center = b.vec3("center");
-  c.axis = b.vec3("axis", Vec<3>::UnitY());
+  c.center = b.vec<3>("center");
+  c.axis = b.vec_or<3>("axis", Vec<3>::UnitY());
   if (!(c.axis.norm() > 0.0)) b.fail_at("axis", "the axis direction must not be zero");
   c.axis.normalize();
-  c.radius = b.number("radius", Range::positive());
-  c.length = b.number("length", Range::positive());
+  c.radius = b.number("radius");
+  c.length = b.number("length");
   check_inside(b, "center", s, c.center, "centre");
   // Half extent of the cylinder along each axis: |a_d| L/2 + r sqrt(1 - a_d^2).
   Vec<3> half;
@@ -65,8 +60,7 @@ Shape3 parse_cylinder(const TableReader& b, const Scenario3& s) {
 }
 
 Shape3 parse_sphere(const TableReader& b, const Scenario3& s) {
-  b.allow_only({SKRED_BODY_KEYS, "center", "radius"});
-  Sphere c{b.vec3("center"), b.number("radius", Range::positive())};
+  Sphere c{b.vec<3>("center"), b.number("radius")};
   check_inside(b, "center", s, c.center, "centre");
   const Vec<3> r = Vec<3>::Constant(c.radius);
   if (!inside_grid(s, Vec<3>(c.center - r)) || !inside_grid(s, Vec<3>(c.center + r)))
@@ -74,8 +68,6 @@ Shape3 parse_sphere(const TableReader& b, const Scenario3& s) {
                                     c.radius, point_text<3>(c.center), grid_bounds(s)));
   return c;
 }
-
-#undef SKRED_BODY_KEYS
 
 }  // namespace
 
@@ -85,13 +77,19 @@ Shape3 parse_shape3(const TableReader& t, const Scenario3& s) {
                                              {"polygon", Kind::Polygon},
                                              {"cylinder", Kind::Cylinder},
                                              {"sphere", Kind::Sphere}});
+  const char* section = kind == Kind::Box        ? "body (box)"
+                        : kind == Kind::Polygon  ? "body (extruded polygon)"
+                        : kind == Kind::Cylinder ? "body (cylinder)"
+                                                 : "body (sphere)";
+  t.allow_declared(&schema::section(section));
+  const TableReader shape = t.follows(section);
   switch (kind) {
-    case Kind::Box: return parse_box(t, s);
-    case Kind::Polygon: return parse_extruded(t, s);
-    case Kind::Cylinder: return parse_cylinder(t, s);
+    case Kind::Box: return parse_box(shape, s);
+    case Kind::Polygon: return parse_extruded(shape, s);
+    case Kind::Cylinder: return parse_cylinder(shape, s);
     case Kind::Sphere: break;
   }
-  return parse_sphere(t, s);
+  return parse_sphere(shape, s);
 }
 
 }  // namespace skred::scenario_detail

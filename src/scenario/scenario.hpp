@@ -119,6 +119,7 @@ struct ScenarioCommon {
   double end_time = 0.0;
   double time_step = 0.0;  // fixed time step; 0 means "from the CFL number"
   double cfl = 0.3;
+  bool allow_unstable_time_step = false;  // a time_step above the stable step only warns
   double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
 
   double output_interval = 0.0;  // simulated time between particle frames

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace skred::scenario_detail {
 
@@ -16,16 +17,6 @@ void fail(const std::string& source, Location at, const std::string& key,
           const std::string& message) {
   throw ScenarioError(fmt::format("{}:{}:{}: key '{}': {}", source, at.line, at.column, key,
                                   message));
-}
-
-std::string Range::describe() const {
-  const bool has_lo = std::isfinite(lo), has_hi = std::isfinite(hi);
-  const std::string l = fmt::format("{} {}", lo_open ? ">" : ">=", lo);
-  const std::string h = fmt::format("{} {}", hi_open ? "<" : "<=", hi);
-  if (has_lo && has_hi) return l + " and " + h;
-  if (has_lo) return l;
-  if (has_hi) return h;
-  return "finite";
 }
 
 const char* type_name(const toml::node& n) {
@@ -86,10 +77,107 @@ Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::stri
   return v;
 }
 
+namespace {
+
+// "stage[1].material[0]" -> "stage.material": the schema section a table path follows.
+std::string section_name(const std::string& path) {
+  std::string out;
+  bool in_index = false;
+  for (char c : path) {
+    if (c == '[') in_index = true;
+    else if (c == ']') in_index = false;
+    else if (!in_index) out += c;
+  }
+  return out;
+}
+
+const schema::Section* find_section(const std::string& name) {
+  for (const schema::Section& s : schema::sections())
+    if (s.name == name) return &s;
+  return nullptr;
+}
+
+}  // namespace
+
 TableReader::TableReader(const toml::table& table, std::string path, const std::string& source,
                          Location fallback)
     : table_(table), path_(std::move(path)), source_(source),
-      where_(location_of(table.source(), fallback)) {}
+      where_(location_of(table.source(), fallback)), section_(find_section(section_name(path_))) {}
+
+TableReader TableReader::follows(std::string_view section) const {
+  TableReader t = *this;
+  t.section_ = &schema::section(section);
+  return t;
+}
+
+const schema::Key& TableReader::spec(std::string_view name) const {
+  if (!section_)
+    throw std::logic_error("table '" + path_ + "' follows no schema section (key '" +
+                           std::string(name) + "')");
+  return section_->at(name);
+}
+
+void TableReader::allow_declared(const schema::Section* also) const {
+  std::vector<std::string_view> keys;
+  for (const auto* s : {section_, also})
+    if (s)
+      for (const schema::Key& k : s->keys) keys.push_back(k.name);
+  allow_only(keys);
+}
+
+double TableReader::number(std::string_view name) const {
+  const schema::Key& k = spec(name);
+  if (!has(name) && k.def.kind == schema::DefaultKind::Value) return k.def.value;
+  return number(name, k.range);
+}
+
+double TableReader::number_or(std::string_view name, double def) const {
+  return number(name, spec(name).range, def);
+}
+
+std::int64_t TableReader::integer(std::string_view name) const {
+  const schema::Key& k = spec(name);
+  std::optional<std::int64_t> def;
+  if (k.def.kind == schema::DefaultKind::Value) def = static_cast<std::int64_t>(k.def.value);
+  return integer(name, static_cast<std::int64_t>(k.range.lo), static_cast<std::int64_t>(k.range.hi),
+                 def);
+}
+
+template <int D> Vec<D> TableReader::vec(std::string_view name) const {
+  Vec<D> v;
+  if constexpr (D == 2) v = vec2(name);
+  else v = vec3(name);
+  const Range r = spec(name).range;
+  for (int d = 0; d < D; ++d)
+    if (!r.contains(v[d]))
+      fail_at(name, fmt::format("component {} must be {}, got {}", "xyz"[d], r.describe(), v[d]));
+  return v;
+}
+
+template <int D> Vec<D> TableReader::vec_or(std::string_view name, const Vec<D>& def) const {
+  return has(name) ? vec<D>(name) : def;
+}
+
+template Vec<2> TableReader::vec<2>(std::string_view) const;
+template Vec<3> TableReader::vec<3>(std::string_view) const;
+template Vec<2> TableReader::vec_or<2>(std::string_view, const Vec<2>&) const;
+template Vec<3> TableReader::vec_or<3>(std::string_view, const Vec<3>&) const;
+
+bool TableReader::boolean_or(std::string_view name, bool def) const {
+  spec(name);
+  if (!has(name)) return def;
+  const auto v = find(name)->value<bool>();
+  if (!v || !find(name)->is_boolean()) fail_type(name, "a boolean (true or false)");
+  return *v;
+}
+
+void TableReader::check_choice(std::string_view name, const std::string& value) const {
+  const schema::Key* k = section_ ? section_->find(name) : nullptr;
+  if (!k || !*k->choices) return;
+  const auto allowed = schema::choices_of(*k);
+  if (std::find(allowed.begin(), allowed.end(), value) == allowed.end())
+    fail_at(name, unknown_choice_message(value, allowed));
+}
 
 std::string TableReader::key(std::string_view name) const {
   if (path_.empty()) return std::string(name);
@@ -102,6 +190,10 @@ Location TableReader::where(std::string_view name) const {
 }
 
 void TableReader::allow_only(std::initializer_list<std::string_view> allowed) const {
+  allow_only(std::vector<std::string_view>(allowed));
+}
+
+void TableReader::allow_only(const std::vector<std::string_view>& allowed) const {
   const toml::key* first = nullptr;
   Location first_at{};
   for (const auto& [k, node] : table_) {

@@ -16,6 +16,7 @@
 
 #include "core/types.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/schema.hpp"
 
 namespace skred::scenario_detail {
 
@@ -30,23 +31,8 @@ Location location_of(const toml::source_region& r, Location fallback);
 [[noreturn]] void fail(const std::string& source, Location at, const std::string& key,
                        const std::string& message);
 
-// An allowed interval for a number; open ends exclude the bound.
-struct Range {
-  double lo = -std::numeric_limits<double>::infinity();
-  double hi = std::numeric_limits<double>::infinity();
-  bool lo_open = false;
-  bool hi_open = false;
-
-  bool contains(double v) const {
-    return (lo_open ? v > lo : v >= lo) && (hi_open ? v < hi : v <= hi);
-  }
-  std::string describe() const;  // e.g. "> 0", ">= 0 and < 0.5"
-
-  static Range any() { return {}; }
-  static Range positive() { return {0.0, std::numeric_limits<double>::infinity(), true, false}; }
-  static Range non_negative() { return {0.0, std::numeric_limits<double>::infinity(), false, false}; }
-  static Range closed(double lo, double hi) { return {lo, hi, false, false}; }
-};
+// An allowed interval for a number (declared in the schema).
+using Range = schema::Range;
 
 // Human name of a node's type, for "expected X, got Y" messages.
 const char* type_name(const toml::node& n);
@@ -57,9 +43,15 @@ template <class E> using Choices = std::initializer_list<std::pair<const char*, 
 class TableReader {
  public:
   // `path` is the dotted key path of this table ("" for the document root, "grid",
-  // "material[0]", "boundary.x_min"); `fallback` is used when the table has no source.
+  // "material[0]", "boundary.x_min"); `fallback` is used when the table has no source. The
+  // table follows the schema section named like its path without indices ("material[0]" ->
+  // "material", "stage[1].material[0]" -> "stage.material"), if there is one.
   TableReader(const toml::table& table, std::string path, const std::string& source,
               Location fallback = {1, 1});
+
+  // The same table read against another schema section (a body's shape, a boundary side).
+  TableReader follows(std::string_view section) const;
+  const schema::Section* section() const { return section_; }
 
   const toml::table& table() const { return table_; }
   const std::string& source() const { return source_; }
@@ -70,6 +62,9 @@ class TableReader {
 
   // Rejects every key not in `allowed`, reporting the first one in file order.
   void allow_only(std::initializer_list<std::string_view> allowed) const;
+  void allow_only(const std::vector<std::string_view>& allowed) const;
+  // Rejects every key its schema section (and `also`, e.g. a body's shape) does not declare.
+  void allow_declared(const schema::Section* also = nullptr) const;
 
   const toml::node* find(std::string_view name) const { return table_.get(name); }
   bool has(std::string_view name) const { return find(name) != nullptr; }
@@ -79,8 +74,20 @@ class TableReader {
   [[noreturn]] void fail_missing(std::string_view name) const;
   [[noreturn]] void fail_type(std::string_view name, const char* expected) const;
 
-  // Typed getters. Without a default the key is required. Numbers must be finite; integers
-  // are accepted where a float is expected, but not the other way round.
+  // Typed getters reading the key's range and default from the schema: a key the schema
+  // marks required must be present; one with a default value gets it; for one whose default
+  // is derived from other keys (or "none") the caller passes the default (`*_or`). Numbers
+  // must be finite; integers are accepted where a float is expected, not the other way round.
+  double number(std::string_view name) const;
+  double number_or(std::string_view name, double def) const;
+  std::int64_t integer(std::string_view name) const;
+  template <int D> Vec<D> vec(std::string_view name) const;
+  template <int D> Vec<D> vec_or(std::string_view name, const Vec<D>& def) const;
+  bool boolean_or(std::string_view name, bool def) const;
+  // The key as declared in this table's schema section (std::logic_error if undeclared).
+  const schema::Key& spec(std::string_view name) const;
+
+  // Getters with the range given here, for checks that depend on other keys.
   double number(std::string_view name, Range range, std::optional<double> def = {}) const;
   std::int64_t integer(std::string_view name, std::int64_t lo, std::int64_t hi,
                        std::optional<std::int64_t> def = {}) const;
@@ -89,24 +96,24 @@ class TableReader {
   Vec<2> vec2(std::string_view name, std::optional<Vec<2>> def = {}) const;
   // An array of exactly three numbers (3D scenarios).
   Vec<3> vec3(std::string_view name, std::optional<Vec<3>> def = {}) const;
-  // vec2 or vec3 by dimension.
-  template <int D> Vec<D> vec(std::string_view name, std::optional<Vec<D>> def = {}) const {
-    if constexpr (D == 2) return vec2(name, def);
-    else return vec3(name, def);
-  }
   // A sub-table (standard or inline); nullopt when absent and not required.
   std::optional<TableReader> table(std::string_view name, bool required) const;
   // An array whose elements must all be tables ([[name]]); empty when absent.
   std::vector<TableReader> array_of_tables(std::string_view name) const;
 
+  // A choice: the spelling must be one the schema declares (the message lists them); it maps
+  // to the enum value of `choices`. Without `def` the key is required.
   template <class E>
   E choice(std::string_view name, Choices<E> choices, std::optional<E> def = {}) const {
     if (!has(name) && def) return *def;
     const std::string s = string(name);
+    check_choice(name, s);
     for (const auto& [spelling, value] : choices)
       if (s == spelling) return value;
     fail_at(name, unknown_choice_message(s, names_of(choices)));
   }
+  // Fails unless `value` is a spelling the schema declares for `name` (when declared there).
+  void check_choice(std::string_view name, const std::string& value) const;
 
   template <class E> static std::vector<std::string> names_of(Choices<E> choices) {
     std::vector<std::string> names;
@@ -121,6 +128,7 @@ class TableReader {
   std::string path_;
   const std::string& source_;
   Location where_;
+  const schema::Section* section_ = nullptr;
 };
 
 // Reads a number from an arbitrary node (array element etc.); `key` names it in messages.

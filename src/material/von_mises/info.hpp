@@ -8,11 +8,11 @@
 namespace skred {
 
 inline constexpr ParamSpec kVonMisesParamSpecs[] = {
-    {"cohesion", "Pa", kNoDefault, 0.0, kInf, true, true, true, 10000.0,
+    {"cohesion", "Pa", kNoDefault, 0.0, kMaxStress, true, false, true, 10000.0,
      "peak cohesion c_p: f = sqrt(J2) - c(kappa) (Acosta §3.2)"},
-    {"residual_cohesion", "Pa", kNoDefault, 0.0, kInf, false, true, false, 3000.0,
+    {"residual_cohesion", "Pa", kNoDefault, 0.0, kMaxStress, false, false, false, 3000.0,
      "residual cohesion c_r, 0 <= c_r <= c_p; defaults to c_p (no softening)"},
-    {"softening_modulus", "Pa", 0.0, -kInf, 0.0, true, false, false, -30000.0,
+    {"softening_modulus", "Pa", 0.0, -kMaxStress, 0.0, false, false, false, -30000.0,
      "H_s <= 0 in c(kappa) = max(c_r, c_p + H_s kappa), kappa = plastic shear strain"},
 };
 

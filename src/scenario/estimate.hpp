@@ -1,0 +1,32 @@
+// What a scenario will cost before anything is allocated: its time step and number of steps,
+// material points, grid nodes, memory and output size, from the shapes' areas (volumes) and
+// the grid alone, in microseconds, so `skred check` can refuse a run that cannot fit the
+// machine before it hangs or runs out of memory.
+#pragma once
+#include <cstdint>
+
+#include "scenario/scenario.hpp"
+
+namespace skred {
+
+// The time step of a scenario: the fixed one, or cfl * h / (fastest P-wave speed + fastest
+// initial particle speed).
+template <int D> double scenario_time_step(const ScenarioOf<D>& s);
+// The largest stable explicit step, h / (c + v0): the CFL limit (cfl = 1) of every kernel.
+template <int D> double stable_time_step(const ScenarioOf<D>& s);
+
+struct ScenarioSize {
+  double points = 0;        // material points (shape area or volume times points per unit)
+  double nodes = 0;         // grid nodes
+  double steps = 0;         // time steps to the end time
+  double memory_bytes = 0;  // particles, their stored weights and the grid fields
+  double frame_bytes = 0;   // one particle frame (VTU)
+  double frames = 0;        // particle frames written
+  double output_bytes() const { return frame_bytes * frames; }
+};
+template <int D> ScenarioSize estimate_size(const ScenarioOf<D>& s);
+
+// Memory this machine offers a process: physical memory, or the cgroup limit when lower.
+double available_memory_bytes();
+
+}  // namespace skred
