@@ -12,6 +12,15 @@ namespace {
 // the shape, cells in row-major order (x fastest, then y, then z), then the sub-cells of a
 // cell in the same order. Stops early when f returns false.
 template <int D, class F> void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
+  // With body_overlap = "later-wins" a point a later body claims is that body's only.
+  std::size_t later = s.bodies.size();
+  if (s.later_body_wins && &body >= s.bodies.data() && &body < s.bodies.data() + s.bodies.size())
+    later = static_cast<std::size_t>(&body - s.bodies.data()) + 1;
+  const auto claimed_later = [&](const Vec<D>& x) {
+    for (std::size_t k = later; k < s.bodies.size(); ++k)
+      if (shape_contains(s.bodies[k].shape, x)) return true;
+    return false;
+  };
   const double h = s.cell_size;
   const int n = body.particles_per_cell;
   if (!(h > 0.0) || n < 1) return;
@@ -41,7 +50,7 @@ template <int D, class F> void for_each_point(const ScenarioOf<D>& s, const Body
               x[0] = s.origin[0] + i * h + (a + 0.5) * sub;
               x[1] = s.origin[1] + j * h + (b + 0.5) * sub;
               if constexpr (D == 3) x[2] = s.origin[2] + k * h + (c + 0.5) * sub;
-              if (shape_contains(body.shape, x) && !f(x)) return;
+              if (shape_contains(body.shape, x) && !claimed_later(x) && !f(x)) return;
             }
 }
 

@@ -36,6 +36,9 @@ ShapeBox<3> bounding_box(const Shape3& shape);
 
 // Signed area of a polygon (positive when counter-clockwise).
 double polygon_area(const Polygon& p);
+// Area of a layer: the integral of max(0, min(top, surface) - bottom) over its x range
+// (exact: the integrand is linear between the profiles' points and their crossings).
+double layer_area(const Layer& l);
 
 // Short multi-line human summary (grid, materials, bodies, gravity, boundaries, solver and
 // output settings), as printed by `skred check`. Ends with a newline.

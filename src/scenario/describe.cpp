@@ -60,6 +60,10 @@ std::string shape_summary(const Shape& shape) {
           return fmt::format("rectangle {} to {}", vec(sh.min), vec(sh.max));
         } else if constexpr (std::is_same_v<T, Disc>) {
           return fmt::format("disc centre {} radius {} m", vec(sh.center), sh.radius);
+        } else if constexpr (std::is_same_v<T, Layer>) {
+          return fmt::format("layer between profiles of {} and {} points{}, area {:.6g} m^2",
+                             sh.bottom.points.size(), sh.top.points.size(),
+                             sh.surface ? " below the ground surface" : "", layer_area(sh));
         } else {
           return fmt::format("polygon with {} vertices, area {} m^2", sh.vertices.size(),
                              std::abs(polygon_area(sh)));

@@ -22,6 +22,7 @@ double measure(const Shape& shape) {
         using T = std::decay_t<decltype(sh)>;
         if constexpr (std::is_same_v<T, Rectangle>) return (sh.max - sh.min).prod();
         else if constexpr (std::is_same_v<T, Disc>) return M_PI * sh.radius * sh.radius;
+        else if constexpr (std::is_same_v<T, Layer>) return layer_area(sh);
         else return std::abs(polygon_area(sh));
       },
       shape);

@@ -377,7 +377,11 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   s.title = root.string("title", std::string());
   scenario_detail::parse_grid<D>(root, s);
   parse_materials(root, s);
+  if constexpr (D == 2) scenario_detail::parse_ground(root, s);
+  else if (root.has("ground")) root.fail_at("ground", "layered ground is 2D only for now");
+  s.later_body_wins = root.choice<bool>("body_overlap", {{"error", false}, {"later-wins", true}}, false);
   scenario_detail::parse_bodies<D>(root, s);
+  scenario_detail::check_overlaps<D>(root, s);
   scenario_detail::parse_gravity<D>(root, s);
   scenario_detail::parse_boundary<D>(root, s);
   parse_initial_stress(root, s);

@@ -56,6 +56,12 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
 
+// Layered ground (parser_ground.cpp): the [ground] surface, a "layer" body's profiles, and
+// the check that no two bodies claim the same points (unless the later one wins).
+void parse_ground(const TableReader& root, Scenario& s);
+Layer parse_layer(const TableReader& b, const Scenario& s);
+template <int D> void check_overlaps(const TableReader& root, const ScenarioOf<D>& s);
+
 // A 3D body's shape (box, extruded polygon, cylinder, sphere) from its [[body]] table.
 Shape3 parse_shape3(const TableReader& b, const Scenario3& s);
 // The [x, y] vertices of a polygon (2D body or the section of an extruded one), each checked

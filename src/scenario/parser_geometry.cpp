@@ -39,17 +39,21 @@ Shape parse_disc(const TableReader& b, const Scenario& s) {
 // The body's keys and those of its shape are allowed; the shape's are read against its
 // schema section.
 Shape parse_shape2(const TableReader& t, const Scenario& s) {
-  enum class Kind { Rectangle, Polygon, Disc };
-  const Kind kind = t.choice<Kind>(
-      "shape", {{"rectangle", Kind::Rectangle}, {"polygon", Kind::Polygon}, {"disc", Kind::Disc}});
+  enum class Kind { Rectangle, Polygon, Disc, Layer };
+  const Kind kind = t.choice<Kind>("shape", {{"rectangle", Kind::Rectangle},
+                                             {"polygon", Kind::Polygon},
+                                             {"disc", Kind::Disc},
+                                             {"layer", Kind::Layer}});
   const char* section = kind == Kind::Rectangle ? "body (rectangle)"
                         : kind == Kind::Polygon ? "body (polygon)"
+                        : kind == Kind::Layer   ? "body (layer)"
                                                 : "body (disc)";
   t.allow_declared(&schema::section(section));
   const TableReader shape = t.follows(section);
   switch (kind) {
     case Kind::Rectangle: return parse_rectangle(shape, s);
     case Kind::Polygon: return parse_polygon(shape, s);
+    case Kind::Layer: return parse_layer(shape, s);
     case Kind::Disc: break;
   }
   return parse_disc(shape, s);

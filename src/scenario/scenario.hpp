@@ -22,7 +22,19 @@ namespace skred {
 struct Rectangle { Vec<2> min, max; };
 struct Polygon { std::vector<Vec<2>> vertices; };
 struct Disc { Vec<2> center; double radius = 0.0; };
-using Shape = std::variant<Rectangle, Polygon, Disc>;
+// A profile y(x): a polyline with strictly increasing x (a surveyed cross-section, a line
+// taken from a DEM), linear between its points.
+struct Profile {
+  std::vector<Vec<2>> points;
+  double at(double x) const;  // y at x, for x within [front x, back x]
+};
+// The ground between two profiles, and below the ground surface if there is one:
+// bottom(x) <= y < top(x) and y < surface(x), for front x <= x < back x of every profile.
+struct Layer {
+  Profile top, bottom;
+  std::optional<Profile> surface;
+};
+using Shape = std::variant<Rectangle, Polygon, Disc, Layer>;
 
 // 3D shapes (y vertical, x and z horizontal).
 struct Box { Vec<3> min, max; };
@@ -121,6 +133,10 @@ struct ScenarioCommon {
   double cfl = 0.3;
   bool allow_unstable_time_step = false;  // a time_step above the stable step only warns
   double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
+  // Where bodies overlap: an error (false) or the later body's points only (true).
+  bool later_body_wins = false;
+  // The ground surface of a 2D scenario ([ground]); layers lie below it.
+  std::optional<Profile> ground_surface;
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

@@ -52,6 +52,11 @@ std::vector<Section> make_sections() {
       {.name = "grid", .type = Type::Table, .doc = "the background grid"},
       {.name = "material", .type = Type::Tables, .doc = "at least one material"},
       {.name = "body", .type = Type::Tables, .doc = "at least one body"},
+      {.name = "body_overlap", .type = Type::Choice, .def = derived("\"error\""),
+       .choices = "error|later-wins",
+       .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
+              "later body (in file order) keeps the points there"},
+      {.name = "ground", .type = Type::Table, .def = none(), .doc = "the ground surface profile (2D)"},
       {.name = "initial_stress", .type = Type::Table, .def = none(), .doc = "K0 initial stress"},
       {.name = "gravity", .type = Type::Table, .def = none(), .doc = "no gravity without it"},
       {.name = "boundary", .type = Type::Table, .def = none(), .doc = "all sides free without it"},
@@ -88,8 +93,8 @@ std::vector<Section> make_sections() {
       {.name = "velocity_sine", .type = Type::Table, .def = none(),
        .doc = "adds a sine mode to the initial velocity (body.velocity_sine, below)"},
       {.name = "shape", .type = Type::Choice,
-       .choices = "rectangle|polygon|disc|box|cylinder|sphere",
-       .doc = "2D: rectangle, polygon, disc; 3D: box, polygon (extruded), cylinder, sphere; "
+       .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",
+       .doc = "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere; "
               "each adds its own keys, below"},
   }});
   s.push_back({"body.velocity_sine", "body-velocity-sine", {
@@ -112,6 +117,17 @@ std::vector<Section> make_sections() {
   s.push_back({"body (disc)", "body-disc", {
       {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
       {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+  }});
+  s.push_back({"ground", "ground", {
+      {.name = "surface", .type = Type::Profile, .unit = "m",
+       .doc = "the ground surface y(x); every layer lies below it"},
+  }});
+  s.push_back({"body (layer)", "body-layer", {
+      {.name = "top", .type = Type::Profile, .unit = "m", .def = derived("the ground surface"),
+       .doc = "the layer's upper boundary y(x), clipped to the ground surface"},
+      {.name = "bottom", .type = Type::Profile, .unit = "m", .def = derived("the grid's bottom"),
+       .doc = "its lower boundary y(x); the layer is bottom(x) <= y < top(x) where every "
+              "profile is defined (it pinches out where bottom >= top)"},
   }});
   s.push_back({"body (box)", "body-box", {
       {.name = "min", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the low corner"},
@@ -238,6 +254,7 @@ const char* to_string(Type t) {
     case Type::Tables: return "tables";
     case Type::K0: return "string or number";
     case Type::Side: return "string or table";
+    case Type::Profile: return "CSV file or [[x, y], ...]";
   }
   return "?";
 }

@@ -50,6 +50,7 @@ enum class Type {
   Tables,      // an array of tables ([[name]]), each a section
   K0,          // initial_stress.k0: a number or a rule name
   Side,        // a boundary side: a string or an inline table (boundary.side)
+  Profile,     // a profile y(x): a CSV file name or inline [[x, y], ...] with x increasing
 };
 const char* to_string(Type t);
 

@@ -52,6 +52,7 @@ std::string allowed_text(const Key& k) {
     case Type::K0: return quoted_choices(k) + " or a number " + k.range.describe();
     case Type::Boolean: return "`true`, `false`";
     case Type::Side: return "see below";
+    case Type::Profile: return "x strictly increasing; inside the grid";
     case Type::String:
     case Type::Table:
     case Type::Tables: break;

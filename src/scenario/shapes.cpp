@@ -1,5 +1,7 @@
 // Point-in-shape tests and bounding boxes of the body shapes (2D and 3D).
+#include <algorithm>
 #include <cmath>
+#include <utility>
 #include <type_traits>
 
 #include "scenario/build.hpp"
@@ -34,12 +36,49 @@ ShapeBox<2> polygon_box(const Polygon& p) {
   return b;
 }
 
+// The x range where every profile of the layer is defined: [lo, hi).
+std::pair<double, double> layer_span(const Layer& l) {
+  double lo = std::max(l.top.points.front()[0], l.bottom.points.front()[0]);
+  double hi = std::min(l.top.points.back()[0], l.bottom.points.back()[0]);
+  if (l.surface) {
+    lo = std::max(lo, l.surface->points.front()[0]);
+    hi = std::min(hi, l.surface->points.back()[0]);
+  }
+  return {lo, hi};
+}
+
+bool layer_contains(const Layer& l, const Vec<2>& x) {
+  const auto [lo, hi] = layer_span(l);
+  if (!(x[0] >= lo && x[0] < hi)) return false;
+  return x[1] >= l.bottom.at(x[0]) && x[1] < l.top.at(x[0]) &&
+         (!l.surface || x[1] < l.surface->at(x[0]));
+}
+
+ShapeBox<2> layer_box(const Layer& l) {
+  const auto [lo, hi] = layer_span(l);
+  double y_lo = INFINITY, y_hi = -INFINITY;
+  for (const auto& p : l.bottom.points) y_lo = std::min(y_lo, p[1]);
+  for (const auto& p : l.top.points) y_hi = std::max(y_hi, p[1]);
+  return {Vec<2>(lo, y_lo), Vec<2>(std::max(lo, hi), std::max(y_lo, y_hi))};
+}
+
 }  // namespace
+
+double Profile::at(double x) const {
+  const auto it = std::upper_bound(points.begin(), points.end(), x,
+                                   [](double v, const Vec<2>& p) { return v < p[0]; });
+  if (it == points.begin()) return points.front()[1];
+  if (it == points.end()) return points.back()[1];
+  const Vec<2>& a = *(it - 1);
+  const Vec<2>& b = *it;
+  return a[1] + (x - a[0]) * (b[1] - a[1]) / (b[0] - a[0]);
+}
 
 bool shape_contains(const Shape& shape, const Vec<2>& x) {
   if (const auto* r = std::get_if<Rectangle>(&shape))
     return x[0] >= r->min[0] && x[0] < r->max[0] && x[1] >= r->min[1] && x[1] < r->max[1];
   if (const auto* c = std::get_if<Disc>(&shape)) return (x - c->center).squaredNorm() < c->radius * c->radius;
+  if (const auto* l = std::get_if<Layer>(&shape)) return layer_contains(*l, x);
   return polygon_contains(std::get<Polygon>(shape), x);
 }
 
@@ -63,6 +102,7 @@ ShapeBox<2> bounding_box(const Shape& shape) {
     const Vec<2> r = Vec<2>::Constant(c->radius);
     return {c->center - r, c->center + r};
   }
+  if (const auto* l = std::get_if<Layer>(&shape)) return layer_box(*l);
   return polygon_box(std::get<Polygon>(shape));
 }
 
@@ -93,6 +133,44 @@ double polygon_area(const Polygon& p) {
     a += u[0] * w[1] - w[0] * u[1];
   }
   return 0.5 * a;
+}
+
+double layer_area(const Layer& l) {
+  const auto [lo, hi] = layer_span(l);
+  if (!(hi > lo)) return 0.0;
+  // Between two consecutive profile points every profile is linear; min(top, surface) kinks
+  // where they cross and max(0, thickness) where the thickness changes sign: split there
+  // and integrate the linear pieces exactly.
+  std::vector<double> xs = {lo, hi};
+  const auto add = [&](const Profile& p) {
+    for (const auto& q : p.points)
+      if (q[0] > lo && q[0] < hi) xs.push_back(q[0]);
+  };
+  add(l.top), add(l.bottom);
+  if (l.surface) add(*l.surface);
+  std::sort(xs.begin(), xs.end());
+  const auto upper = [&](double x) {
+    return l.surface ? std::min(l.top.at(x), l.surface->at(x)) : l.top.at(x);
+  };
+  double area = 0.0;
+  for (std::size_t k = 0; k + 1 < xs.size(); ++k) {
+    std::vector<double> cut = {xs[k], xs[k + 1]};
+    // Where top and surface cross, min() kinks; where the thickness changes sign, max() does.
+    if (l.surface) {
+      const double da = l.top.at(xs[k]) - l.surface->at(xs[k]);
+      const double db = l.top.at(xs[k + 1]) - l.surface->at(xs[k + 1]);
+      if (da * db < 0) cut.push_back(xs[k] + (xs[k + 1] - xs[k]) * da / (da - db));
+    }
+    std::sort(cut.begin(), cut.end());
+    for (std::size_t j = 0; j + 1 < cut.size(); ++j) {
+      const double a = cut[j], b = cut[j + 1];
+      const double ta = upper(a) - l.bottom.at(a), tb = upper(b) - l.bottom.at(b);
+      if (ta >= 0 && tb >= 0) area += 0.5 * (ta + tb) * (b - a);
+      else if (ta > 0) area += 0.5 * ta * (b - a) * ta / (ta - tb);
+      else if (tb > 0) area += 0.5 * tb * (b - a) * tb / (tb - ta);
+    }
+  }
+  return area;
 }
 
 }  // namespace skred
