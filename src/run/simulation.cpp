@@ -18,6 +18,7 @@
 #include "post/elastic_plastic_split.hpp"
 #include "post/material_strength.hpp"
 #include "run/checkpointing.hpp"
+#include "run/density_trigger.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
@@ -182,11 +183,13 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     const long first_step = at.stage_first_step;
     const double stage_start = at.stage_start;
     StageTracker<D>& tracker = at.tracker;
+    DensityTrigger density(s, k);  // Paper III §C.3 trigger
     auto sample = [&]() {
       const ParticleTotals<D> t = solver.totals();
       series.add(series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
                             tracker.runout(particles)));
-      const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time;
+      const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
+                           solver.time() - stage_start < density.ramp_end();
       return tracker.observe(solver.time(), t.mean_speed) && !ramping;
     };
     if (begins) sample();
@@ -203,6 +206,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         solver.particles_changed();
       if constexpr (D == 2)  // the test hook that adds and removes points (2D runs)
         if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
+      if (!density.empty() && density.apply(particles, solver.time() - stage_start))
+        solver.particles_changed();
       const auto t0 = Clock::now();
       status = solver.step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();

@@ -59,8 +59,13 @@ template <int D> constexpr double kFrameBytesPerPoint = D == 2 ? 840.0 : 1100.0;
 }  // namespace
 
 template <int D> double stable_time_step(const ScenarioOf<D>& s) {
-  double c = 0.0;
-  for (const Material& m : s.materials) c = std::max(c, m.wave_speed());
+  double c = 0.0;  // the fastest P-wave speed of every density a stage gives a material
+  for (std::size_t k = 0; k <= s.stages.size(); ++k)
+    for (std::size_t m = 0; m < s.materials.size(); ++m) {
+      Material mat = s.materials[m];
+      mat.density = density_at_stage_start(s, k, static_cast<int>(m));
+      c = std::max(c, mat.wave_speed());
+    }
   double v = 0.0;
   for (const BodyOf<D>& b : s.bodies)
     v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());

@@ -74,8 +74,20 @@ void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P) {
 template void apply_initial_stress<2>(const Scenario&, Particles<2>&);
 template void apply_initial_stress<3>(const Scenario3&, Particles<3>&);
 
+double density_at_stage_start(const ScenarioCommon& s, std::size_t k, int m) {
+  double rho = s.materials.at(static_cast<std::size_t>(m)).density;
+  for (std::size_t j = 0; j < k && j < s.stages.size(); ++j)
+    for (const MaterialOverride& o : s.stages[j].overrides)
+      if (o.material == m && o.density) rho = *o.density;
+  return rho;
+}
+
 std::vector<Material> stage_materials(const ScenarioCommon& s, const Stage& stage) {
   std::vector<Material> mats = s.materials;
+  for (std::size_t k = 0; k < s.stages.size(); ++k)  // the density the stage reaches
+    if (&s.stages[k] == &stage)
+      for (std::size_t m = 0; m < mats.size(); ++m)
+        mats[m].density = density_at_stage_start(s, k + 1, static_cast<int>(m));
   for (const MaterialOverride& o : stage.overrides) {
     Material& m = mats[static_cast<std::size_t>(o.material)];
     if (o.friction) m.mohr_coulomb.friction = *o.friction;

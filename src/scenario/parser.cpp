@@ -184,7 +184,7 @@ void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
   is.rule = t->choice<K0Rule>("k0", {{"poisson", K0Rule::Poisson}, {"jaky", K0Rule::Jaky}});
 }
 
-MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s) {
+MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s, double duration) {
   t.allow_declared();
   MaterialOverride o;
   o.material = material_index(t, "name", s);
@@ -203,6 +203,13 @@ MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s) {
       t.fail_at("cohesion", fmt::format("must be > 0 for {}, got 0", to_string(m.model)));
   }
   if (t.has("dilation")) o.dilation = t.number("dilation") * kDeg;
+  if (t.has("density")) o.density = t.number("density");
+  if (t.has("density_ramp_time") && !o.density)
+    t.fail_at("density_ramp_time", "only allowed together with density");
+  o.density_ramp_time = t.number("density_ramp_time");
+  if (o.density_ramp_time > duration)
+    t.fail_at("density_ramp_time", fmt::format("the ramp ({} s) is longer than the stage ({} s)",
+                                               o.density_ramp_time, duration));
   const double phi = o.friction.value_or(m.mohr_coulomb.friction);
   if (o.dilation.value_or(m.mohr_coulomb.dilation) > phi + 1e-12)
     t.fail_at(o.dilation ? "dilation" : "friction",
@@ -238,7 +245,8 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
                                                  st.gravity_ramp_time, st.duration));
     st.elastic = t.boolean_or("elastic", false);
     st.strength_reduction = t.number("strength_reduction");
-    for (const auto& m : t.array_of_tables("material")) st.overrides.push_back(parse_override(m, s));
+    for (const auto& m : t.array_of_tables("material"))
+      st.overrides.push_back(parse_override(m, s, st.duration));
     st.rest_speed = t.number("rest_speed");
     if (t.has("rest_time") && st.rest_speed == 0.0)
       t.fail_at("rest_time", "only allowed together with rest_speed > 0");

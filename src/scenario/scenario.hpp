@@ -94,7 +94,13 @@ struct InitialStress {
 struct MaterialOverride {
   int material = 0;
   std::optional<double> friction, cohesion, dilation;  // [rad], [Pa], [rad]
+  // A trigger (Paper III §C.3: rainfall makes the clay heavier): the density the material's
+  // points reach, over density_ramp_time from the stage start. Unlike the strength changes
+  // it stays for the later stages.
+  std::optional<double> density;  // [kg/m^3]
+  double density_ramp_time = 0.0;  // [s]; 0: at once
 };
+
 
 // One stage of a staged analysis, run on the particles the previous stage left behind.
 // Displacements, gravity work, strain energy and dissipation are measured from its start.
@@ -190,6 +196,10 @@ AnyScenario parse_any_scenario(const std::string& text, const std::string& sourc
                                const std::vector<std::pair<std::string, double>>& overrides = {});
 // The text of a scenario file. Throws ScenarioError if it cannot be read.
 std::string read_scenario_text(const std::string& path);
+
+// The density of material m at the start of stage k: the last density change of an earlier
+// stage, else the material's.
+double density_at_stage_start(const ScenarioCommon& s, std::size_t k, int m);
 
 const char* to_string(BoundaryKind);
 const char* to_string(Model);

@@ -227,6 +227,12 @@ std::vector<Section> make_sections() {
        .doc = "c (> 0 for tresca and von-mises, whose residual cohesion it scales too)"},
       {.name = "dilation", .unit = "deg", .def = none("the material's"), .range = Range{0.0, 90.0, false, true},
        .doc = "psi <= phi; mohr-coulomb only"},
+      {.name = "density", .unit = "kg/m^3", .def = none("unchanged"), .range = Range::closed(1e-3, 1e6),
+       .doc = "a trigger (Paper III §C.3, rainfall): the points' density becomes this, over "
+              "`density_ramp_time`, and stays so in later stages"},
+      {.name = "density_ramp_time", .unit = "s", .def = value(0), .range = Range::non_negative(kMaxTime),
+       .doc = "<= the stage duration; the density follows (1 - cos(pi t / T)) / 2 from the "
+              "stage start; 0: at once"},
   }});
   s.push_back({"output", "output", {
       {.name = "interval", .unit = "s", .def = derived("end_time / 20"),
