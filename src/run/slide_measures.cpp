@@ -5,14 +5,25 @@
 
 namespace skred {
 
+namespace {
+
+// A point's current half-size l0 det(F)^(1/d), as GIMP sizes its domain (Thesis eq. 3.23):
+// the material a point stands for, not the corners of its voxel, so a voxel sheared into a
+// needle does not reach metres beyond the material.
+template <int D> Vec<D> half_size(const Particles<D>& P, std::size_t p) {
+  const double J = P.F[p].determinant();
+  return P.half0[p] * std::pow(std::max(J, 0.0), 1.0 / D);
+}
+
+}  // namespace
+
 template <int D> MaterialExtent material_extent(const Particles<D>& P) {
   double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
   double z_min = D == 3 ? INFINITY : 0.0, z_max = D == 3 ? -INFINITY : 0.0;
   const long n = static_cast<long>(P.size());
 #pragma omp parallel for reduction(min : x_min, y_min, z_min) reduction(max : x_max, y_max, z_max)
   for (long p = 0; p < n; ++p) {
-    // Corners x_p + F (+-l0) (Thesis eq. 3.6-3.12); the extreme corner along each axis.
-    const Vec<D> r = P.F[p].cwiseAbs() * P.half0[p];
+    const Vec<D> r = half_size(P, static_cast<std::size_t>(p));
     x_min = std::min(x_min, P.x[p][0] - r[0]);
     x_max = std::max(x_max, P.x[p][0] + r[0]);
     y_min = std::min(y_min, P.x[p][1] - r[1]);
@@ -63,7 +74,7 @@ std::vector<double> surface_profile(const Particles<D>& P, double x0, double wid
   std::vector<double> top(static_cast<std::size_t>(bins), -INFINITY);
   const int a = axis;
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<D> r = P.F[p].cwiseAbs() * P.half0[p];  // half extent of the deformed voxel
+    const Vec<D> r = half_size(P, p);
     const int lo = std::max(0, static_cast<int>(std::floor((P.x[p][a] - r[a] - x0) / width)));
     const int hi = std::min(bins - 1, static_cast<int>(std::floor((P.x[p][a] + r[a] - x0) / width)));
     for (int b = lo; b <= hi; ++b)
@@ -76,7 +87,17 @@ Runout runout_of(const std::vector<double>& before, const std::vector<double>& a
                  double width, double threshold) {
   Runout r;
   const int n = static_cast<int>(before.size());
-  const auto raised = [&](int b) { return after[b] > before[b] + threshold; };
+  // The connected deposit: the run of columns holding material around the highest one (the
+  // main mass). A point that has left it, across an empty column, moves no front.
+  int peak = 0;
+  for (int b = 1; b < n; ++b)
+    if (after[b] > after[peak]) peak = b;
+  int first = peak, last = peak;
+  while (first > 0 && std::isfinite(after[first - 1])) --first;
+  while (last < n - 1 && std::isfinite(after[last + 1])) ++last;
+  const auto raised = [&](int b) {
+    return b >= first && b <= last && after[b] > before[b] + threshold;
+  };
   for (int dir : {+1, -1}) {
     // Tip: the outermost column the deposit has raised; toe: the outermost column, inward of
     // the tip, whose original surface stood above the original surface at the tip.

@@ -12,22 +12,24 @@
 
 namespace skred {
 
-// Extent of the material: the deformed voxels' corners x_p + F_p (+-l0) (Thesis eq. 3.6-3.12).
-// In 2D z_min = z_max = 0.
+// Extent of the material: the points x_p +- their current half-size l0 det(F_p)^(1/d) (the
+// GIMP domain, Thesis eq. 3.23). In 2D z_min = z_max = 0.
 struct MaterialExtent {
   double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0, z_min = 0.0, z_max = 0.0;
 };
 template <int D> MaterialExtent material_extent(const Particles<D>& P);
 
-// Top of the material in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D), the
-// highest deformed-voxel corner in each column (-inf where there is none). In 3D a column
+// Top of the material in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D): the
+// highest x_p[1] + l_p over the points whose domain x_p +- l_p reaches the column, l_p =
+// l0 det(F_p)^(1/d) (-inf where there is none). In 3D a column
 // is a slice across the whole domain (for axis 0, every z; for axis 2, every x).
 template <int D>
 std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins,
                                     int axis = 0);
 
 // Runout from the surface profiles before and after, towards +x and -x: the tip is the
-// outermost column the deposit has raised by more than `threshold`; the toe is the outermost
+// outermost column of the connected deposit (the run of non-empty columns around the highest
+// one) that the deposit has raised by more than `threshold`; the toe is the outermost
 // column inward of the tip whose original surface stood higher than the original surface at
 // the tip (for a slope: the original toe; for a column: its edge). Runout = |tip - toe|.
 struct Runout {
