@@ -61,6 +61,11 @@ template <int D> struct Particles {
   // Plastic shear strain at the start of the stage (like x_ref; set by the StageTracker),
   // for the plastified volume of a stage.
   std::vector<double> plastic_ref;
+  // Material-point splitting (Thesis §3.4), present once enable_splitting() was called:
+  // the gauge G with F_split = F G (both follow eq. 3.2 with the same increment, so G only
+  // changes when a split resets a mode) and the number of splits behind each point.
+  std::vector<Mat<D>> split_gauge;
+  std::vector<std::int16_t> splits;
 
   // The field list: every per-point array, once, with the value of a new point.
   static constexpr auto fields() {
@@ -83,6 +88,9 @@ template <int D> struct Particles {
                                           +[] { return PointStress<D>(PointStress<D>::Zero()); },
                                           true},
         ParticleField<Pt, double>{"plastic_ref", &Pt::plastic_ref, +[] { return 0.0; }},
+        ParticleField<Pt, Mat<D>>{"split_gauge", &Pt::split_gauge,
+                                  +[] { return Mat<D>(Mat<D>::Identity()); }, true},
+        ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
     };
   }
 
@@ -264,6 +272,13 @@ template <int D> struct Particles {
   }
   // Makes the current stresses the reference state of Fe (after an initial stress is set).
   void set_reference_stress() { stress_ref = stress; }
+  // Starts tracking F_split = F G for every point, from F_split = I now (G = F^-1).
+  void enable_splitting() {
+    if (!split_gauge.empty()) return;
+    split_gauge.resize(size());
+    for (std::size_t p = 0; p < size(); ++p) split_gauge[p] = F[p].inverse();
+    splits.assign(size(), 0);
+  }
 
   // Current volume V_p = det(F_p) V_p^0.
   double volume(std::size_t p) const { return F[p].determinant() * volume0[p]; }

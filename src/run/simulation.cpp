@@ -208,6 +208,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
       if (!density.empty() && density.apply(particles, solver.time() - stage_start))
         solver.particles_changed();
+      if (!s.splitting.body_splits.empty() && split_points(particles, s.splitting) > 0)
+        solver.particles_changed();  // Thesis §3.4
       const auto t0 = Clock::now();
       status = solver.step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();

@@ -348,6 +348,28 @@ int dimension_of(const toml::table& doc) {
   return size && size->size() == 3 ? 3 : 2;
 }
 
+// [splitting] and the bodies' `split` keys (Thesis §3.4).
+template <int D> void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
+  bool any = false;
+  for (const auto& b : s.bodies) any = any || b.split;
+  const auto t = root.table("splitting", false);
+  if (t && !any) t->fail_at("alpha", "no body has split = true");
+  if (!any) return;
+  static const toml::table empty;
+  const TableReader r = t.value_or(TableReader(empty, "splitting", s.source));
+  r.allow_declared();
+  SplitSettings& sp = s.splitting;
+  sp.alpha = r.number("alpha");
+  sp.beta = r.number("beta");
+  sp.gamma = r.number("gamma");
+  sp.reference_after = static_cast<int>(r.integer("reference_after"));
+  double points = 0;
+  for (const auto& b : s.bodies) points += static_cast<double>(count_points(s, b));
+  sp.max_points = r.has("max_points") ? static_cast<long>(r.integer("max_points"))
+                                      : static_cast<long>(10 * points);
+  for (const auto& b : s.bodies) sp.body_splits.push_back(b.split ? 1 : 0);
+}
+
 // Steps a run may take at most: more is a typo (a 1e-300 s step), not an analysis.
 constexpr double kMaxSteps = 1e9;
 
@@ -390,6 +412,7 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   s.later_body_wins = root.choice<bool>("body_overlap", {{"error", false}, {"later-wins", true}}, false);
   scenario_detail::parse_bodies<D>(root, s);
   scenario_detail::check_overlaps<D>(root, s);
+  parse_splitting(root, s);
   scenario_detail::parse_gravity<D>(root, s);
   scenario_detail::parse_boundary<D>(root, s);
   parse_initial_stress(root, s);

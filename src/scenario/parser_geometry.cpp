@@ -121,6 +121,7 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell"));
     b.velocity = t.vec_or<D>("velocity", Vec<D>::Zero());
+    b.split = t.boolean_or("split", false);
     if (const auto vs = t.table("velocity_sine", false)) {
       vs->allow_declared();
       b.velocity_sine.amplitude = vs->vec<D>("amplitude");

@@ -15,6 +15,7 @@
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/scheme.hpp"
+#include "solver/splitting.hpp"
 
 namespace skred {
 
@@ -72,6 +73,7 @@ template <int D> struct BodyOf {
   int particles_per_cell = 2;    // n: n^D material points per grid cell
   Vec<D> velocity = Vec<D>::Zero();  // initial velocity
   SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
+  bool split = false;  // its points split when they deform too much (Thesis §3.4)
 };
 using Body = BodyOf<2>;
 using Body3 = BodyOf<3>;
@@ -141,6 +143,9 @@ struct ScenarioCommon {
   double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
   // Where bodies overlap: an error (false) or the later body's points only (true).
   bool later_body_wins = false;
+  // Material-point splitting (Thesis §3.4; [splitting] and the bodies' `split` key);
+  // splitting.body_splits is empty when no body splits.
+  SplitSettings splitting;
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
 

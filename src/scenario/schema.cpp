@@ -57,6 +57,8 @@ std::vector<Section> make_sections() {
        .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
               "later body (in file order) keeps the points there"},
       {.name = "ground", .type = Type::Table, .def = none(), .doc = "the ground surface profile (2D)"},
+      {.name = "splitting", .type = Type::Table, .def = none(),
+       .doc = "constants of material-point splitting (Thesis §3.4) for the bodies with `split`"},
       {.name = "initial_stress", .type = Type::Table, .def = none(), .doc = "K0 initial stress"},
       {.name = "gravity", .type = Type::Table, .def = none(), .doc = "no gravity without it"},
       {.name = "boundary", .type = Type::Table, .def = none(), .doc = "all sides free without it"},
@@ -92,6 +94,8 @@ std::vector<Section> make_sections() {
        .range = kVelocity, .doc = "initial velocity of every point"},
       {.name = "velocity_sine", .type = Type::Table, .def = none(),
        .doc = "adds a sine mode to the initial velocity (body.velocity_sine, below)"},
+      {.name = "split", .type = Type::Boolean, .def = derived("false"),
+       .doc = "true: the body's points split when they deform too much (Thesis §3.4; [splitting])"},
       {.name = "shape", .type = Type::Choice,
        .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",
        .doc = "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere; "
@@ -152,6 +156,18 @@ std::vector<Section> make_sections() {
   s.push_back({"body (sphere)", "body-sphere", {
       {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
       {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+  }});
+  s.push_back({"splitting", "splitting", {
+      {.name = "alpha", .unit = "-", .def = value(2.0), .range = Range::closed(1.1, 100.0),
+       .doc = "split when a diagonal component of F_split exceeds alpha (Thesis eq. 3.25)"},
+      {.name = "beta", .unit = "-", .def = value(0.5), .range = Range::closed(0.01, 0.9),
+       .doc = "... or falls below beta"},
+      {.name = "gamma", .unit = "-", .def = value(1.0), .range = Range::closed(0.1, 100.0),
+       .doc = "... or an off-diagonal component exceeds gamma in magnitude"},
+      {.name = "reference_after", .type = Type::Integer, .def = value(4), .range = Range::closed(1, 20),
+       .doc = "a point split this many times gets the reference split of Thesis §3.4.2"},
+      {.name = "max_points", .type = Type::Integer, .def = derived("10 x the initial points"),
+       .range = Range::closed(1, 1e9), .doc = "no point splits once the run holds this many"},
   }});
   s.push_back({"initial_stress", "initial-stress", {
       {.name = "k0", .type = Type::K0, .range = Range::closed(0.0, 10.0), .choices = "poisson|jaky",
