@@ -10,19 +10,24 @@
 
 namespace skred::test {
 
+// A new, empty, uniquely named folder skred_<suite>.<test>_<tag>_XXXXXX under the system's
+// temporary folder; the caller removes it.
+inline std::filesystem::path fresh_temp_dir(const std::string& tag = "") {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  std::string name = "skred_";
+  name += info ? std::string(info->test_suite_name()) + "." + info->name() : "test";
+  if (!tag.empty()) name += "_" + tag;
+  for (char& c : name)
+    if (c == '/') c = '_';
+  std::string pattern = (std::filesystem::temp_directory_path() / (name + "_XXXXXX")).string();
+  if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed for " + pattern);
+  return pattern;
+}
+
+// fresh_temp_dir() removed at scope exit.
 class TempDir {
  public:
-  explicit TempDir(const std::string& tag = "") {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    std::string name = "skred_";
-    name += info ? std::string(info->test_suite_name()) + "." + info->name() : "test";
-    if (!tag.empty()) name += "_" + tag;
-    for (char& c : name)
-      if (c == '/') c = '_';
-    std::string pattern = (std::filesystem::temp_directory_path() / (name + "_XXXXXX")).string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("mkdtemp failed for " + pattern);
-    path_ = pattern;
-  }
+  explicit TempDir(const std::string& tag = "") : path_(fresh_temp_dir(tag)) {}
   ~TempDir() {
     std::error_code ec;
     std::filesystem::permissions(path_, std::filesystem::perms::owner_all, ec);

@@ -6,6 +6,7 @@
 #include <sys/wait.h>
 
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -89,8 +90,8 @@ TEST(CliRun, UsageErrorsExitWithCode4) {
 TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {
   TempDir d;
   write(d / "bad.toml", discs("density = 1000.0", "density = \"heavy\""));
-  for (const char* cmd : {" check ", " run "}) {
-    const Outcome r = sh(kSkred + cmd + q(d / "bad.toml") + " -o " + q(d / "out"));
+  for (const std::string& args : {" check " + q(d / "bad.toml"), " run " + q(d / "bad.toml") + " -o " + q(d / "out")}) {
+    const Outcome r = sh(kSkred + args);
     EXPECT_EQ(r.code, 5) << r.output;
     EXPECT_NE(r.output.find("bad.toml:13:11: key 'material[0].density'"), std::string::npos) << r.output;
   }
@@ -129,7 +130,9 @@ TEST(CliRun, AnOutputFolderHoldingARunIsRefusedUnlessOverwrite) {
 
 TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   TempDir d;
-  write(d / "discs.toml", discs("cell_size = 0.05", "cell_size = 0.02"));  // ~3,000 steps, seconds
+  std::string text = discs("cell_size = 0.05", "cell_size = 0.02");  // 30,000 steps: several seconds
+  text.replace(text.find("end_time = 3.0"), 14, "end_time = 30.0");
+  write(d / "discs.toml", text);
   const std::string run = kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
   const Outcome killed = sh("timeout -s KILL 1 " + run);
   ASSERT_EQ(killed.code, 137) << "the run must take longer than 1 s: " << killed.output;  // timeout's report
@@ -138,7 +141,8 @@ TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   const std::string pvd = read(d / "out" / "particles.pvd");
   ASSERT_NE(pvd.find("</VTKFile>"), std::string::npos);
   int frames = 0;
-  for (std::sregex_iterator m(pvd.begin(), pvd.end(), std::regex(R"(file="([^"]+)\")")), e; m != e; ++m, ++frames) {
+  const std::regex file_re(R"(file="([^"]+)\")");
+  for (std::sregex_iterator m(pvd.begin(), pvd.end(), file_re), e; m != e; ++m, ++frames) {
     const std::string vtu = read(d / "out" / (*m)[1].str());
     EXPECT_NE(vtu.rfind("</VTKFile>\n"), std::string::npos) << (*m)[1].str();
   }
@@ -184,7 +188,8 @@ TEST(CliRun, SummaryNamesTheVersionAndCommit) {
 TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
   const auto last_spin = [](const std::string& out) {
     std::string last;
-    for (std::sregex_iterator m(out.begin(), out.end(), std::regex(R"(GOMP_SPINCOUNT = '(\d+)')")), e; m != e; ++m)
+    const std::regex spin_re(R"(GOMP_SPINCOUNT = '(\d+)')");
+    for (std::sregex_iterator m(out.begin(), out.end(), spin_re), e; m != e; ++m)
       last = (*m)[1].str();
     return last;
   };

@@ -88,7 +88,7 @@ TEST_F(IoTest, PostFieldsInParticleVtu) {
   for (const auto& [name, k] : components) {
     ASSERT_TRUE(info.arrays.count(name)) << name;
     EXPECT_EQ(info.arrays.at(name).components, k) << name;
-    EXPECT_EQ(info.arrays.at(name).vtk_class, "vtkDoubleArray") << name;
+    EXPECT_EQ(info.arrays.at(name).vtk_class, "float64") << name;
   }
   EXPECT_EQ(info.arrays.size(), 14u + 14u);  // the 14 of test_io plus these
   EXPECT_EQ(info.arrays.at("hencky_strain").component_names.at(3), "xy");
@@ -180,7 +180,7 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
         (key == "xcoord" ? xs : ys).push_back(to_double(v));
       } else if (key == "array") {
         std::string name, cls; in >> name; in >> comps[name] >> cls;
-        EXPECT_EQ(cls, "vtkDoubleArray");
+        EXPECT_EQ(cls, "float64");
       } else if (key == "value") {
         std::string name, v; int i, k; in >> name >> i >> k >> v;
         values[name][{i, k}] = to_double(v);

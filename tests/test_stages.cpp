@@ -12,6 +12,7 @@
 #include "run/sweep.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -49,9 +50,7 @@ cfl = 0.3
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("skred_stages_" + name);
-  fs::remove_all(d);
-  return d;
+  return skred::test::fresh_temp_dir(name);
 }
 
 std::string read(const fs::path& f) {
