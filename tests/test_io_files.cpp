@@ -177,6 +177,8 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
             1234, 0.5, 2.0, 4000, 1600, std::numeric_limits<double>::quiet_NaN(),
             std::numeric_limits<double>::infinity(), 8, "slope \"A\".toml", "gimp", "usl", 1e-5};
   s.phase_seconds = {{"stress_update_force", 0.25}, {"grid_update", 1.5}};
+  s.version = "0.1.0";
+  s.git_commit = "unknown";
   const fs::path file = dir / "summary.json";
   write_summary_json(file, s);
   const auto [status, out] = run_python("read_json.py", {file.string()});
@@ -202,7 +204,9 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"scheme", "\"usl\""},
       {"time_step", "1e-05"},
       {"phase_seconds", R"({"stress_update_force": 0.25, "grid_update": 1.5})"},
-      {"stages", "[]"}};
+      {"stages", "[]"},
+      {"version", "\"0.1.0\""},
+      {"git_commit", "\"unknown\""}};
   EXPECT_EQ(got, expected);
   EXPECT_EQ(json_string("\x7f"), "\"\x7f\"");
   EXPECT_EQ(json_string("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // a surrogate
