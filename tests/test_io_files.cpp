@@ -1,5 +1,6 @@
 // Result files besides the VTU: atomic writing, the PVD index, series.csv and summary.json.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -134,6 +135,7 @@ TEST_F(IoTest, PvdListsEveryDataSetWithItsTime) {
 TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
   const fs::path file = dir / "series.csv";
   std::vector<SeriesRow> rows;
+  struct stat first {};
   {
     SeriesWriter series(file);
     for (long i = 0; i < 5; ++i) {
@@ -144,10 +146,14 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
       if (i == 2) {
         series.flush();
         EXPECT_EQ(split(read_text(file), '\n').size(), 4u);  // header + 3 rows
+        ASSERT_EQ(::stat(file.c_str(), &first), 0);
       }
     }
     EXPECT_EQ(series.rows().size(), 5u);
   }  // the destructor flushes the last two rows
+  struct stat last {};
+  ASSERT_EQ(::stat(file.c_str(), &last), 0);
+  EXPECT_EQ(last.st_ino, first.st_ino) << "rows appended, not the file rewritten";
   const std::vector<std::string> lines = split(read_text(file), '\n');
   ASSERT_EQ(lines.size(), 6u);
   EXPECT_EQ(lines[0],
