@@ -128,6 +128,20 @@ TEST(CliRun, AnOutputFolderHoldingARunIsRefusedUnlessOverwrite) {
   EXPECT_EQ(read(d / "out" / "scenario.toml"), short_discs());
 }
 
+TEST(CliRun, ASweepFolderIsRefusedUnlessOverwrite) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.05"));
+  const std::string sweep = kSkred + " sweep " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
+  ASSERT_EQ(sh(sweep + " --set 'material[elastic].young=1000,2000'").code, 0);
+  const Outcome again = sh(sweep + " --set 'material[elastic].young=1000'");
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
+  const Outcome over = sh(sweep + " --set 'material[elastic].young=1000' --overwrite");
+  EXPECT_EQ(over.code, 0) << over.output;
+  EXPECT_TRUE(fs::exists(d / "out" / "run_000" / "summary.json"));
+  EXPECT_FALSE(fs::exists(d / "out" / "run_001"));  // the earlier sweep's second run is gone
+}
+
 TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   TempDir d;
   std::string text = discs("cell_size = 0.05", "cell_size = 0.02");  // 30,000 steps: several seconds

@@ -64,7 +64,7 @@ void prepare_output_folder(const fs::path& dir, bool overwrite, const fs::path& 
     throw std::runtime_error(fmt::format(
         "'{}' holds an earlier run ({} of skred's files, e.g. {}); add --overwrite to replace it "
         "or choose another folder",
-        dir.string(), files.size(), files.front().filename().string()));
+        dir.string(), files.size(), files.front().lexically_relative(dir).string()));
   for (const fs::path& f : files)
     if (!fs::remove(f, ec) && ec)
       throw std::runtime_error(fmt::format("cannot remove '{}': {}", f.string(), ec.message()));
