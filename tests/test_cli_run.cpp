@@ -210,10 +210,10 @@ TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
   const std::string base = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose ";
   const Outcome def = sh(base + kSkred + " --version");
   EXPECT_EQ(def.code, 0);
-  EXPECT_EQ(last_spin(def.output), "10000") << def.output;
+  EXPECT_EQ(last_spin(def.output), "1000") << def.output;
   const Outcome user = sh(base + "GOMP_SPINCOUNT=300000 " + kSkred + " --version");
   EXPECT_EQ(last_spin(user.output), "300000") << user.output;
   const Outcome active = sh(base + "OMP_WAIT_POLICY=active " + kSkred + " --version");
   EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
-  EXPECT_NE(last_spin(active.output), "10000") << active.output;
+  EXPECT_NE(last_spin(active.output), "1000") << active.output;
 }

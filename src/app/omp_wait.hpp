@@ -8,7 +8,7 @@ namespace skred {
 
 // The spin count skred sets (GOMP_SPINCOUNT) when the user has set neither OMP_WAIT_POLICY
 // nor GOMP_SPINCOUNT (scripts/bench.sh --busy measures both sides).
-inline constexpr const char* kDefaultSpinCount = "10000";
+inline constexpr const char* kDefaultSpinCount = "1000";
 
 // libgomp reads its environment once, when it is loaded, before main: so when neither
 // variable is set this sets GOMP_SPINCOUNT and re-executes the program (/proc/self/exe) with
