@@ -134,3 +134,30 @@ TEST(Stability, LeavingTheGridIsNotInstability) {
   EXPECT_EQ(first_non_finite_point(P), 1);
   EXPECT_EQ(offending_point(P), 1);
 }
+
+// Initial speeds of 1e154 m/s (the kinetic energy overflows) and 1e200 m/s (the speed itself
+// does) with a CFL time step: the run stops unstable at step 0 naming a point instead of
+// completing with inf in its outputs.
+TEST(Stability, NonFiniteEnergiesStopTheRunAtOnce) {
+  test::TempDir d;
+  for (double v : {1e154, 1e200}) {
+    SCOPED_TRACE(v);
+    Scenario s = bar(d, 0.01);
+    s.bodies.front().velocity = Vec<2>(v, 0.0);
+    s.time_step = 0.0;
+    s.cfl = 0.5;
+    RunOptions opt;
+    opt.progress = false;
+    const fs::path out = d / ("out" + std::to_string(v > 1e160));
+    const RunResult r = run_simulation(s, out, opt);
+    EXPECT_FALSE(r.completed);
+    EXPECT_EQ(r.steps, 0) << r.message;
+    EXPECT_NE(r.message.find("unstable at step 0 (t = 0 s): particle "), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find(v < 1e160 ? "non-finite speed or energy" : "is not usable"), std::string::npos)
+        << r.message;
+    std::ifstream in(out / "summary.json");
+    std::ostringstream summary;
+    summary << in.rdbuf();
+    EXPECT_NE(summary.str().find("\"status\": \"unstable\""), std::string::npos);
+  }
+}

@@ -24,6 +24,9 @@ StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double tota
 
 template <int D> std::string StabilityWatch<D>::step_check() const {
   const double courant = (c_ + v0_) * dt_ / h_;
+  if (!std::isfinite(courant) || !(dt_ > 0.0))
+    return fmt::format("time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
+                       "not finite)", dt_, c_, v0_);
   if (courant <= kStableCourant * (1.0 + 1e-9)) return {};
   return fmt::format(
       "time step {:.6g} s is above the stable limit: (c + v0) dt / h = {:.3g} > {:g} (c = {:.6g} m/s, "

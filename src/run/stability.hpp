@@ -2,6 +2,7 @@
 // with status "unstable" naming the step, the time and a point, never "completed". Checked
 // at every row of series.csv from the sums computed for it, and at every frame.
 #pragma once
+#include <cmath>
 #include <string>
 
 #include "scenario/scenario.hpp"
@@ -20,8 +21,10 @@ template <int D> class StabilityWatch {
  public:
   StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass);
 
-  // Empty, or why the time step itself is above the stable limit: (c + v0) dt / h > 1.
+  // Empty, or why the time step itself is above the stable limit, (c + v0) dt / h > 1, or not
+  // usable (zero or non-finite, e.g. from a non-finite initial speed).
   std::string step_check() const;
+  bool initial_speed_finite() const { return std::isfinite(v0_); }
   // Energies are measured from the stage start (EnergyTotals; kinetic energy K0 then).
   void begin_stage(double kinetic_energy);
   // Empty, or why the run is unstable, after a series row with these sums:
