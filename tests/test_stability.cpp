@@ -87,7 +87,8 @@ TEST(Stability, TheCheckNamesEachKindOfDefect) {
   test::TempDir d;
   const Scenario s = bar(d, 0.01);
   StabilityWatch<2> watch(s, 0.01, 1.0);
-  EXPECT_EQ(watch.step_check(), "");
+  EXPECT_EQ(watch.unusable_step(), "");
+  EXPECT_EQ(watch.step_above_limit(), "");
   EXPECT_NEAR(watch.speed_bound(), 10.0 + 0.1, 1e-9);  // c + v0 (sine amplitude), no gravity
   watch.begin_stage(0.0625);
   ParticleTotals<2> t;
@@ -107,7 +108,10 @@ TEST(Stability, TheCheckNamesEachKindOfDefect) {
   e.gravity_work = NAN;
   EXPECT_EQ(watch.check(t, e), "non-finite speed or energy");
   StabilityWatch<2> big(s, 0.12, 1.0);  // (c + v0) dt / h = 1.21
-  EXPECT_NE(big.step_check().find("above the stable limit"), std::string::npos);
+  EXPECT_NE(big.step_above_limit().find("above the stable limit"), std::string::npos);
+  EXPECT_EQ(big.unusable_step(), "");
+  StabilityWatch<2> zero(s, 0.0, 1.0);
+  EXPECT_NE(zero.unusable_step().find("not usable"), std::string::npos);
 }
 
 TEST(Stability, LeavingTheGridIsNotInstability) {

@@ -172,8 +172,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     unstable = {false, p, std::move(reason)};
     unstable_step = solver.steps();
   };
-  if (std::string why = watch.step_check(); !why.empty())  // name a point if one is the cause
+  if (std::string why = watch.unusable_step(); !why.empty())  // name a point if one is the cause
     stop_unstable(std::move(why), watch.initial_speed_finite() ? -1 : offending_point(particles));
+  else if (std::string above = watch.step_above_limit(); !above.empty())
+    stop_unstable(std::move(above), -1);
   long total_steps = 0;  // upper bound: every stage to its full duration
   if (unstable.ok)
     for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));

@@ -22,12 +22,15 @@ StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double tota
   floor_ = 1e-9 * total_mass * c_ * c_;
 }
 
-template <int D> std::string StabilityWatch<D>::step_check() const {
+template <int D> std::string StabilityWatch<D>::unusable_step() const {
+  if (std::isfinite((c_ + v0_) * dt_ / h_) && dt_ > 0.0) return {};
+  return fmt::format("time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
+                     "not finite)", dt_, c_, v0_);
+}
+
+template <int D> std::string StabilityWatch<D>::step_above_limit() const {
   const double courant = (c_ + v0_) * dt_ / h_;
-  if (!std::isfinite(courant) || !(dt_ > 0.0))
-    return fmt::format("time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
-                       "not finite)", dt_, c_, v0_);
-  if (courant <= kStableCourant * (1.0 + 1e-9)) return {};
+  if (!(courant > kStableCourant * (1.0 + 1e-9))) return {};
   return fmt::format(
       "time step {:.6g} s is above the stable limit: (c + v0) dt / h = {:.3g} > {:g} (c = {:.6g} m/s, "
       "P-wave speed of material '{}'; v0 = {:.6g} m/s; h = {:.6g} m); the largest stable step is {:.6g} s",
