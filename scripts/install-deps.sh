@@ -4,9 +4,15 @@ set -euo pipefail
 # python3-matplotlib (with python3-numpy, python3-pil): `skred render` / `skred report`;
 # chromium: the test that opens the HTML report headless.
 pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev
-      python3-vtk9 python3-numpy python3-matplotlib python3-pil chromium)
+      python3-numpy python3-matplotlib python3-pil chromium)
+installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
+# VTK for Python: Debian's python3-vtk9, or the VTK of ParaView's python3-paraview, which
+# replaces python3-vtk9 (installing python3-vtk9 would remove ParaView's). Either will do.
+if ! installed python3-paraview && ! /usr/bin/python3 -c 'import vtkmodules.vtkIOXML' >/dev/null 2>&1; then
+  pkgs+=(python3-vtk9)
+fi
 missing=()
-for p in "${pkgs[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+for p in "${pkgs[@]}"; do installed "$p" || missing+=("$p"); done
 if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   apt-get update -q

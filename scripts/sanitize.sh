@@ -13,5 +13,5 @@ cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DSKRED_SANITIZE=ON -DSKRED_NA
 cmake --build build-asan -j2
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=0
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
-filter="${1:-Lifecycle.*:Checkpoint.*:Shape.*:IoTest.*:Scenario.*:BuildParticles.*:Principal.*:MohrCoulomb.*:VonMises.*:PostInvariants.*:PostStrain.*:PostSplit.*-Checkpoint.CommandLine*}"
+filter="${1:-Lifecycle.*:Checkpoint.*:Stability.*:Shape.*:IoTest.*:Scenario.*:BuildParticles.*:Principal.*:MohrCoulomb.*:VonMises.*:PostInvariants.*:PostStrain.*:PostSplit.*-Checkpoint.CommandLine*}"
 ./build-asan/tests/skred_tests --gtest_filter="$filter"

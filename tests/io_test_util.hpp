@@ -14,6 +14,7 @@
 #include <string>
 #include <utility>
 #include <vector>
+#include "temp_dir.hpp"
 
 namespace skred::iotest {
 
@@ -85,11 +86,7 @@ class IoTest : public ::testing::Test {
   std::filesystem::path dir;
 
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir = std::filesystem::temp_directory_path() /
-          ("skred_io_" + std::string(info->name()) + "_" + std::to_string(::getpid()));
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
+    dir = skred::test::fresh_temp_dir();
   }
   void TearDown() override {
     std::error_code ec;

@@ -12,6 +12,7 @@
 #include "run/simulation.hpp"
 #include "scenario/scenario.hpp"
 #include "support.hpp"
+#include "temp_dir.hpp"
 
 using namespace skred;
 using namespace skred::test;
@@ -108,8 +109,7 @@ TEST(VibratingBar, DisplacementConvergesUnderRefinement) {
 // path: the sine initial velocity, the walls and the series output.
 TEST(VibratingBar, ExampleFileMatchesTheExactSolution) {
   const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/vibrating_bar.toml");
-  const std::filesystem::path out = std::filesystem::temp_directory_path() / "skred_bar_example";
-  std::filesystem::remove_all(out);
+  const std::filesystem::path out = test::fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   const RunResult r = run_simulation(s, out, opt);

@@ -13,6 +13,7 @@
 #include "io/checkpoint.hpp"
 #include "run/checkpointing.hpp"
 #include "run/simulation.hpp"
+#include "temp_dir.hpp"
 
 using namespace skred;
 namespace fs = std::filesystem;
@@ -125,10 +126,7 @@ std::pair<int, std::string> shell(const std::string& command) {
 }
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("skred_checkpoint_" + name);
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
+  return skred::test::fresh_temp_dir(name);
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // `skred check FILE` on every malformed scenario in tests/bad_scenarios/: the command must
-// fail and name the offending key. Each file's first line is "# expect: <text>", the text
+// exit with the documented code for an invalid scenario (5; a death by signal is no clean
+// rejection) and name the offending key. Each file's first line is "# expect: <text>", the text
 // that must appear in the command's output (usually the key path).
 #include <gtest/gtest.h>
 #include <sys/wait.h>
@@ -15,7 +16,8 @@
 namespace {
 
 struct RunResult {
-  int exit_code = -1;
+  int exit_code = -1;  // -1 unless the command exited normally
+  int signal = 0;      // the signal that killed it, if one did
   std::string output;
 };
 
@@ -28,6 +30,7 @@ RunResult run(const std::string& command) {
   while ((n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0) r.output.append(buf.data(), n);
   const int status = pclose(pipe);
   r.exit_code = (status != -1 && WIFEXITED(status)) ? WEXITSTATUS(status) : -1;
+  r.signal = (status != -1 && WIFSIGNALED(status)) ? WTERMSIG(status) : 0;
   return r;
 }
 
@@ -62,7 +65,8 @@ TEST(CliErrors, CheckRejectsEveryBadScenarioNamingTheKey) {
     const std::string expect = expected_text(file);
     ASSERT_FALSE(expect.empty()) << "first line must be '# expect: <key>'";
     const RunResult r = run(quote(SKRED_BINARY) + " check " + quote(file.string()) + " 2>&1");
-    EXPECT_NE(r.exit_code, 0) << r.output;
+    EXPECT_EQ(r.signal, 0) << r.output;
+    EXPECT_EQ(r.exit_code, 5) << r.output;  // README, "Exit codes": invalid scenario
     EXPECT_NE(r.output.find(expect), std::string::npos)
         << "expected '" << expect << "' in output:\n" << r.output;
     EXPECT_NE(r.output.find(file.filename().string()), std::string::npos) << r.output;

@@ -135,4 +135,5 @@ TEST(ElasticColumn, GimpStressesBeatLinearWhenPointsCrossCells) {
                 to_string(kinds[k]), 100 * err[k], settle);
   }
   EXPECT_LT(err[1], err[0]);
+  EXPECT_LT(err[1], 0.01);  // GIMP: 0.67 % of rho g H achieved (linear: 17.6 %)
 }

@@ -21,6 +21,7 @@
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 #include "solver/explicit_solver.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -71,8 +72,7 @@ interval = 2.5
 }
 
 template <int D> RunResult run(const ScenarioOf<D>& s, const std::string& name) {
-  const fs::path out = fs::temp_directory_path() / ("skred_column3d_" + name);
-  fs::remove_all(out);
+  const fs::path out = skred::test::fresh_temp_dir(name);
   RunOptions opt;
   opt.progress = false;
   opt.threads = 2;

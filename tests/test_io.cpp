@@ -52,19 +52,19 @@ TEST_F(IoTest, VtuRoundTripsThroughVtkReader) {
   ASSERT_EQ(info.points, 8);
   EXPECT_EQ(info.point_arrays, 0);
   const std::map<std::string, std::pair<int, std::string>> expected = {
-      {"velocity", {3, "vtkDoubleArray"}},        {"displacement", {3, "vtkDoubleArray"}},
-      {"stress", {6, "vtkDoubleArray"}},          {"mean_stress_p", {1, "vtkDoubleArray"}},
-      {"deviatoric_stress_q", {1, "vtkDoubleArray"}}, {"volume", {1, "vtkDoubleArray"}},
-      {"det_F", {1, "vtkDoubleArray"}},           {"plastic_shear_strain", {1, "vtkDoubleArray"}},
-      {"yielding", {1, "vtkUnsignedCharArray"}},  {"material_id", {1, "vtkShortArray"}},
-      {"body_id", {1, "vtkShortArray"}},            {"smoothed_stress", {6, "vtkDoubleArray"}},
-      {"smoothed_p", {1, "vtkDoubleArray"}},      {"smoothed_q", {1, "vtkDoubleArray"}},
+      {"velocity", {3, "float64"}},        {"displacement", {3, "float64"}},
+      {"stress", {6, "float64"}},          {"mean_stress_p", {1, "float64"}},
+      {"deviatoric_stress_q", {1, "float64"}}, {"volume", {1, "float64"}},
+      {"det_F", {1, "float64"}},           {"plastic_shear_strain", {1, "float64"}},
+      {"yielding", {1, "uint8"}},  {"material_id", {1, "int16"}},
+      {"body_id", {1, "int16"}},            {"smoothed_stress", {6, "float64"}},
+      {"smoothed_p", {1, "float64"}},      {"smoothed_q", {1, "float64"}},
       // post-processing fields (test_post_files.cpp checks their values)
-      {"speed", {1, "vtkDoubleArray"}},           {"F", {9, "vtkDoubleArray"}},
-      {"engineering_strain", {6, "vtkDoubleArray"}}, {"green_strain", {6, "vtkDoubleArray"}},
-      {"hencky_strain", {6, "vtkDoubleArray"}},   {"principal_stress", {3, "vtkDoubleArray"}},
-      {"principal_angle", {1, "vtkDoubleArray"}}, {"smoothed_principal_stress", {3, "vtkDoubleArray"}},
-      {"smoothed_principal_angle", {1, "vtkDoubleArray"}}};
+      {"speed", {1, "float64"}},           {"F", {9, "float64"}},
+      {"engineering_strain", {6, "float64"}}, {"green_strain", {6, "float64"}},
+      {"hencky_strain", {6, "float64"}},   {"principal_stress", {3, "float64"}},
+      {"principal_angle", {1, "float64"}}, {"smoothed_principal_stress", {3, "float64"}},
+      {"smoothed_principal_angle", {1, "float64"}}};
   ASSERT_EQ(info.arrays.size(), expected.size());
   for (const auto& [name, spec] : expected) {
     ASSERT_TRUE(info.arrays.count(name)) << "missing cell array " << name;

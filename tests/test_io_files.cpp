@@ -1,5 +1,6 @@
 // Result files besides the VTU: atomic writing, the PVD index, series.csv and summary.json.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cmath>
@@ -134,6 +135,7 @@ TEST_F(IoTest, PvdListsEveryDataSetWithItsTime) {
 TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
   const fs::path file = dir / "series.csv";
   std::vector<SeriesRow> rows;
+  struct stat first {};
   {
     SeriesWriter series(file);
     for (long i = 0; i < 5; ++i) {
@@ -144,10 +146,14 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
       if (i == 2) {
         series.flush();
         EXPECT_EQ(split(read_text(file), '\n').size(), 4u);  // header + 3 rows
+        ASSERT_EQ(::stat(file.c_str(), &first), 0);
       }
     }
     EXPECT_EQ(series.rows().size(), 5u);
   }  // the destructor flushes the last two rows
+  struct stat last {};
+  ASSERT_EQ(::stat(file.c_str(), &last), 0);
+  EXPECT_EQ(last.st_ino, first.st_ino) << "rows appended, not the file rewritten";
   const std::vector<std::string> lines = split(read_text(file), '\n');
   ASSERT_EQ(lines.size(), 6u);
   EXPECT_EQ(lines[0],
@@ -177,6 +183,8 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
             1234, 0.5, 2.0, 4000, 1600, std::numeric_limits<double>::quiet_NaN(),
             std::numeric_limits<double>::infinity(), 8, "slope \"A\".toml", "gimp", "usl", 1e-5};
   s.phase_seconds = {{"stress_update_force", 0.25}, {"grid_update", 1.5}};
+  s.version = "0.1.0";
+  s.git_commit = "unknown";
   const fs::path file = dir / "summary.json";
   write_summary_json(file, s);
   const auto [status, out] = run_python("read_json.py", {file.string()});
@@ -202,7 +210,9 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"scheme", "\"usl\""},
       {"time_step", "1e-05"},
       {"phase_seconds", R"({"stress_update_force": 0.25, "grid_update": 1.5})"},
-      {"stages", "[]"}};
+      {"stages", "[]"},
+      {"version", "\"0.1.0\""},
+      {"git_commit", "\"unknown\""}};
   EXPECT_EQ(got, expected);
   EXPECT_EQ(json_string("\x7f"), "\"\x7f\"");
   EXPECT_EQ(json_string("\xed\xa0\x80"), "\"\\ufffd\\ufffd\\ufffd\"");  // a surrogate

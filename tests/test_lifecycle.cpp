@@ -12,6 +12,7 @@
 
 #include "run/simulation.hpp"
 #include "scenario/scenario.hpp"
+#include "temp_dir.hpp"
 
 using namespace skred;
 namespace fs = std::filesystem;
@@ -200,8 +201,7 @@ TEST(Lifecycle, PointsSplitAndRemovedMidRun) {
   std::string t = text.str();
   t.replace(t.find("end_time = 3.0"), 14, "end_time = 0.4");
   const Scenario s = parse_scenario(t, "lifecycle-discs.toml");
-  const fs::path out = fs::temp_directory_path() / "skred_lifecycle_run";
-  fs::remove_all(out);
+  const fs::path out = skred::test::fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   opt.sort_every = 50;

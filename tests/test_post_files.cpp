@@ -88,7 +88,7 @@ TEST_F(IoTest, PostFieldsInParticleVtu) {
   for (const auto& [name, k] : components) {
     ASSERT_TRUE(info.arrays.count(name)) << name;
     EXPECT_EQ(info.arrays.at(name).components, k) << name;
-    EXPECT_EQ(info.arrays.at(name).vtk_class, "vtkDoubleArray") << name;
+    EXPECT_EQ(info.arrays.at(name).vtk_class, "float64") << name;
   }
   EXPECT_EQ(info.arrays.size(), 14u + 14u);  // the 14 of test_io plus these
   EXPECT_EQ(info.arrays.at("hencky_strain").component_names.at(3), "xy");
@@ -180,7 +180,7 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
         (key == "xcoord" ? xs : ys).push_back(to_double(v));
       } else if (key == "array") {
         std::string name, cls; in >> name; in >> comps[name] >> cls;
-        EXPECT_EQ(cls, "vtkDoubleArray");
+        EXPECT_EQ(cls, name == "has_material" ? "uint8" : "float64") << name;
       } else if (key == "value") {
         std::string name, v; int i, k; in >> name >> i >> k >> v;
         values[name][{i, k}] = to_double(v);
@@ -193,7 +193,8 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
     for (int j = 0; j < g.nodes(0); ++j) EXPECT_EQ(xs[j], g.origin[0] + g.node_coordinate(0, j));
     for (int j = 0; j < g.nodes(1); ++j) EXPECT_EQ(ys[j], g.origin[1] + g.node_coordinate(1, j));
     EXPECT_EQ(comps, (std::map<std::string, int>{{"mass", 1}, {"velocity", 3}, {"stress", 6},
-                                                 {"mean_stress_p", 1}, {"deviatoric_stress_q", 1}}));
+                                                 {"mean_stress_p", 1}, {"deviatoric_stress_q", 1},
+                                                 {"has_material", 1}}));
     auto at = [&values](const std::string& name, std::size_t i, int k) {
       return values[name][std::make_pair(static_cast<int>(i), k)];
     };
@@ -203,6 +204,7 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
       EXPECT_EQ(at("velocity", i, 2), 0.0);
       for (int k = 0; k < 6; ++k) EXPECT_EQ(at("stress", i, k), stress[i][k]);
       EXPECT_EQ(at("mean_stress_p", i, 0), mean_stress(stress[i]));
+      EXPECT_EQ(at("has_material", i, 0), i == 0 ? 0.0 : 1.0);  // node 0 has no mass
     }
     // VTK's point order is x fastest, like GridGeometry's flat index.
     EXPECT_EQ(g.node_position(8)[0], xs[1]);

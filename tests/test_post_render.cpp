@@ -121,19 +121,20 @@ TEST_F(IoTest, RenderAndReportFailClearly) {
   EXPECT_NE(s4, 0) << o4;
   auto [s5, o5] = run_skred("render " + shell_quote((dir / "missing").string()));
   EXPECT_NE(s5, 0) << o5;
-  auto [s6, o6] = run_skred("report " + shell_quote(fs::temp_directory_path().string()));
+  fs::create_directories(dir / "empty");
+  auto [s6, o6] = run_skred("report " + shell_quote((dir / "empty").string()));
   EXPECT_EQ(s6, 1) << o6;
   EXPECT_NE(o6.find("particles.pvd not found"), std::string::npos) << o6;
   // No Python: the message says what to install.
   auto [s7, o7] = run_command("SKRED_PYTHON=/nonexistent/python3 " + kSkred + " render " + d);
-  EXPECT_EQ(s7, 1) << o7;
+  EXPECT_EQ(s7, 6) << o7;  // README, "Exit codes": missing Python
   EXPECT_NE(o7.find("apt-get install python3 python3-matplotlib"), std::string::npos) << o7;
-  // A missing module (matplotlib hidden): exit status 3 naming the Debian package.
+  // A missing module (matplotlib hidden): exit status 6 naming the Debian package.
   const std::string hide = std::string(kPython) +
                            " -E -s -c 'import sys; sys.modules[\"matplotlib\"] = None; sys.path.insert(0, sys.argv[1]); "
                            "from skred_post.deps import require_modules; require_modules()' " +
                            shell_quote(std::string(SKRED_SOURCE_DIR) + "/python");
   auto [s8, o8] = run_command(hide);
-  EXPECT_EQ(s8, 3) << o8;
+  EXPECT_EQ(s8, 6) << o8;
   EXPECT_NE(o8.find("apt-get install python3-matplotlib"), std::string::npos) << o8;
 }

@@ -43,8 +43,12 @@ TEST(Schema, DocsAreGeneratedFromTheSchema) {
   for (const char* doc : {"/docs/scenario.md", "/docs/scenario-3d.md"}) {
     const std::string text = read(kSource + doc);
     ASSERT_FALSE(text.empty()) << doc;
-    EXPECT_EQ(schema::update_generated_blocks(text), text)
-        << doc << " differs from the schema: run `build/skred schema --update " << doc + 1 << "`";
+    const std::string generated = schema::update_generated_blocks(text);
+    std::size_t at = 0;  // the first difference, for the message
+    while (at < generated.size() && at < text.size() && generated[at] == text[at]) ++at;
+    EXPECT_TRUE(generated == text)
+        << doc << " differs from the schema near \"" << text.substr(at < 40 ? 0 : at - 40, 80)
+        << "\": run `build/skred schema --update " << doc + 1 << "`";
     for (const schema::Section& s : schema::sections())
       if (text.find("<!-- schema: " + s.title + " -->") != std::string::npos) used.insert(s.title);
   }

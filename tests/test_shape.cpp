@@ -38,7 +38,7 @@ void check_invariants(const K& kernel, bool bspline, const Mat<D>& F, double mar
     Vec<D> x;
     for (int d = 0; d < D; ++d) x[d] = g.origin[d] + margin + u(rng) * (g.h * g.cells[d] - 2 * margin);
     typename K::StencilT st;
-    ASSERT_TRUE(kernel(g, x, half, F, st)) << "point inside the domain rejected";
+    if (!kernel(g, x, half, F, st)) continue;  // a point inside the domain rejected: counted below
     ++evaluated;
     double sw = 0;
     Vec<D> sg = Vec<D>::Zero(), sx = Vec<D>::Zero();
@@ -56,7 +56,7 @@ void check_invariants(const K& kernel, bool bspline, const Mat<D>& F, double mar
     EXPECT_LT((sx - x).norm(), 1e-13);
     EXPECT_LT((sgx - Mat<D>::Identity()).norm(), 1e-11);
   }
-  EXPECT_EQ(evaluated, 2000);
+  EXPECT_EQ(evaluated, 2000) << "points inside the domain rejected";
 }
 
 template <int D> Mat<D> shear() {

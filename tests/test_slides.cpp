@@ -13,6 +13,7 @@
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 #include "solver/explicit_solver.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -20,8 +21,7 @@ using namespace skred;
 namespace {
 
 RunResult run(const Scenario& s, const std::string& name) {
-  const fs::path out = fs::temp_directory_path() / ("skred_slides_" + name);
-  fs::remove_all(out);
+  const fs::path out = skred::test::fresh_temp_dir(name);
   RunOptions opt;
   opt.progress = false;
   opt.threads = 2;

@@ -3,6 +3,7 @@
 // column under its own weight, U = w rho^2 g^2 H^3 / (6 M).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -12,6 +13,7 @@
 #include "run/sweep.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -49,9 +51,7 @@ cfl = 0.3
 }
 
 fs::path temp_dir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("skred_stages_" + name);
-  fs::remove_all(d);
-  return d;
+  return skred::test::fresh_temp_dir(name);
 }
 
 std::string read(const fs::path& f) {
@@ -351,14 +351,24 @@ interval = 0.1
     const fs::path out = temp_dir("wall");
     RunOptions opt;
     opt.progress = false;
+    double x_max = -1.0;  // the largest point position seen before any step, and at the end
+    opt.edit_points = [&](Particles<2>& P, const ExplicitSolver<2>&) {
+      for (const Vec<2>& x : P.x) x_max = std::max(x_max, x[0]);
+      return false;
+    };
     const RunResult r = run_simulation(s, out, opt);
     if (std::string(side) == "\"roller\"") {
       ASSERT_TRUE(r.completed) << r.message;
       const std::string vtu = read(out / "particles_000001.vtu");
       EXPECT_FALSE(vtu.empty());
+      // Thrown 0.5 m towards the wall at x = 1, the block reached it and no point passed it.
+      EXPECT_LE(x_max, 1.0);
+      EXPECT_GT(x_max, 1.0 - 0.05);
     } else {
       EXPECT_FALSE(r.completed);
-      EXPECT_NE(r.message.find("left the grid"), std::string::npos) << r.message;
+      EXPECT_TRUE(r.left_grid) << r.message;  // a sound point, not an instability
+      EXPECT_NE(r.message.find("left the grid (its state is sound"), std::string::npos) << r.message;
+      EXPECT_NE(read(out / "summary.json").find("\"status\": \"left_grid\""), std::string::npos);
     }
     fs::remove_all(out);
   }

@@ -17,7 +17,7 @@ namespace skred::iotest {
 // What tests/scripts/read_vtu.py reports about a file.
 struct VtuArray {
   int components = 0;
-  std::string vtk_class;
+  std::string vtk_class;  // the values by meaning: float64, uint8, int16, ... (read_vtu.py)
   std::map<int, std::string> component_names;
   std::map<std::pair<int, int>, double> values;  // (cell, component) -> value
 };

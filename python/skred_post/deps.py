@@ -22,7 +22,7 @@ def missing_modules():
 
 
 def require_modules():
-    """Exits with status 3 and a message naming the Debian packages if any module is missing."""
+    """Exits with status 6 and a message naming the Debian packages if any module is missing."""
     missing = missing_modules()
     if not missing:
         return
@@ -31,4 +31,4 @@ def require_modules():
     lines += [f"  {m} ({p}): {e}" for m, p, e in missing]
     lines.append(f"install them with: apt-get install {packages}   (or: bash scripts/install-deps.sh)")
     print("\n".join(lines), file=sys.stderr)
-    sys.exit(3)
+    sys.exit(6)  # skred exit code: missing Python modules (src/app/exit_codes.hpp)

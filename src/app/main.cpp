@@ -8,39 +8,49 @@
 #include <filesystem>
 #include <sstream>
 
+#include "app/exit_codes.hpp"
+#include "app/omp_wait.hpp"
 #include "app/post_cli.hpp"
 #include "app/scenario_cli.hpp"
 #include "io/checkpoint.hpp"
 #include "run/bench.hpp"
 #include "run/checkpointing.hpp"
+#include "run/output_folder.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
+#include "run/version.hpp"
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
 
 namespace {
 
-// Exit codes of `skred run` / `skred resume`: 0 completed, 1 error, 2 unstable, 3 interrupted
-// (SIGINT/SIGTERM; a checkpoint was written, continue with `skred resume OUTDIR`).
-int cmd_run(const std::string& file, const std::string& outdir, int threads, skred::RunOptions opt) {
+namespace code = skred::exit_code;
+
+// A new run (not a continuation) refuses an OUTDIR holding an earlier run unless --overwrite,
+// which removes that run's files first (run/output_folder.hpp).
+// Exits: completed, unstable (or a point left the grid), interrupted (SIGINT/SIGTERM; a
+// checkpoint was written, continue with `skred resume OUTDIR`); see app/exit_codes.hpp.
+int cmd_run(const std::string& file, const std::string& outdir, int threads, skred::RunOptions opt,
+            bool overwrite) {
   skred::watch_stop_signals();
   const skred::AnyScenario s = skred::load_any_scenario(file);
+  if (opt.restart.empty()) skred::prepare_output_folder(outdir, overwrite, file);
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
   opt.handle_signals = true;
   const auto res = skred::run_simulation(s, outdir, opt);
   if (res.interrupted) {
     fmt::print(stderr, "skred: {}\n", res.message);
-    return 3;
+    return code::kInterrupted;
   }
   if (!res.completed) {
     fmt::print(stderr, "skred: {}\n", res.message);
-    return 2;
+    return code::kUnstable;
   }
   fmt::print("completed {} steps ({:.4g} s simulated) with {} particles in {:.2f} s wall, "
              "{:.2f} M particle-updates/s; results in {}\n",
              res.steps, res.simulated_time, res.particles, res.wall_seconds,
              res.particle_updates_per_second / 1e6, outdir);
-  return 0;
+  return code::kSuccess;
 }
 
 // "KEY=V1,V2,..." where each item is a number or a range FROM:TO:STEP (TO included).
@@ -79,8 +89,10 @@ skred::SweepOptions parse_sweep_set(const std::string& set) {
   return o;
 }
 
-int cmd_sweep(const std::string& file, const std::string& outdir, const std::string& set, int threads) {
+int cmd_sweep(const std::string& file, const std::string& outdir, const std::string& set, int threads,
+              bool overwrite) {
   skred::SweepOptions o = parse_sweep_set(set);
+  skred::prepare_output_folder(outdir, overwrite, file);
   o.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto rows = skred::run_sweep(file, outdir, o);
   fmt::print("{:>12} {:>10} {:>10} {:>10} {:>12} {:>10}\n", o.key.substr(0, 12), "status", "runout",
@@ -90,19 +102,22 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::str
                r.runout, r.height_end, r.peak_mean_speed, r.stop_time);
   fmt::print("table: {}\n", (std::filesystem::path(outdir) / "sweep.csv").string());
   for (const auto& r : rows)
-    if (r.status != "completed") return 2;
-  return 0;
+    if (r.status != "completed") return code::kUnstable;
+  return code::kSuccess;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+  skred::apply_default_omp_wait_policy(argv);  // before any OpenMP call (it may re-execute)
   // Large arrays always come from the kernel and go back to it when freed. Left to itself,
   // glibc raises its mmap threshold after the first large free and serves later arrays from
   // the heap, which keeps freed memory resident (the bench's repeats then peak higher).
   mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   CLI::App app{"skred: material point method for large-deformation geomechanics"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("skred {} (commit {})", skred::version(), skred::git_commit()));
+  bool overwrite = false;
 
   std::string scenario, outdir;
   int threads = 0;
@@ -116,6 +131,7 @@ int main(int argc, char** argv) {
                   "Write OUTDIR/checkpoint.skc every N steps and at the end")->check(CLI::Range(1L, 1000000000L));
   run->add_option("--restart", restart, "Continue from this checkpoint (of the same scenario)")
       ->check(CLI::ExistingFile);
+  run->add_flag("--overwrite", overwrite, "Replace an earlier run in OUTDIR (removes its files first)");
 
   auto* resume = app.add_subcommand("resume", "Continue an interrupted run from OUTDIR/checkpoint.skc");
   resume->add_option("outdir", outdir, "Output folder of the run")->required()->check(CLI::ExistingDirectory);
@@ -134,6 +150,7 @@ int main(int argc, char** argv) {
       ->required();
   sweep->add_option("-o,--output", outdir, "Output folder (one sub-folder per run, sweep.csv)")->required();
   sweep->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  sweep->add_flag("--overwrite", overwrite, "Replace an earlier sweep in OUTDIR (removes its files first)");
 
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged";
@@ -156,23 +173,30 @@ int main(int argc, char** argv) {
 
   skred::PostCommands post(app);  // render, report
 
-  CLI11_PARSE(app, argc, argv);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int r = app.exit(e);  // prints help, the version or the error
+    return r == 0 ? code::kSuccess : code::kUsage;
+  }
   if (post.chosen()) return post.run();
   try {
     if (*run) {
       ro.restart = restart;
       if (!force) skred::require_fits_machine(scenario);
-      return cmd_run(scenario, outdir, threads, ro);
+      return cmd_run(scenario, outdir, threads, ro, overwrite);
     }
     if (*resume) {
       ro.restart = std::filesystem::path(outdir) / "checkpoint.skc";
-      return cmd_run((std::filesystem::path(outdir) / "scenario.toml").string(), outdir, threads, ro);
+      return cmd_run((std::filesystem::path(outdir) / "scenario.toml").string(), outdir, threads, ro, false);
     }
     if (scenario_commands.chosen()) return scenario_commands.run();
-    if (*sweep) return cmd_sweep(scenario, outdir, set, threads);
+    if (*sweep) return cmd_sweep(scenario, outdir, set, threads, overwrite);
     if (*bench) {
-      if (bo.dim == 3 && bo.problem != "column")
-        throw std::invalid_argument("--dim 3 is available for --problem column only");
+      if (bo.dim == 3 && bo.problem != "column") {
+        fmt::print(stderr, "skred: --dim 3 is available for --problem column only\n");
+        return code::kUsage;
+      }
       bo.threads = threads > 0 ? threads : omp_get_max_threads();
       bo.interpolation = interp == "linear" ? skred::Interpolation::Linear
                          : interp == "gimp" ? skred::Interpolation::Gimp
@@ -201,13 +225,16 @@ int main(int argc, char** argv) {
     }
   } catch (const skred::CheckpointError& e) {
     fmt::print(stderr, "skred: {}\n", e.what());
-    return 1;
+    return code::kError;
   } catch (const skred::ScenarioError& e) {
     fmt::print(stderr, "skred: {}\n", e.what());
-    return 1;
+    return code::kInvalidScenario;
+  } catch (const CLI::ValidationError& e) {  // e.g. sweep's --set, checked after parsing
+    fmt::print(stderr, "skred: {}\n", e.what());
+    return code::kUsage;
   } catch (const std::exception& e) {
     fmt::print(stderr, "skred: error: {}\n", e.what());
-    return 1;
+    return code::kError;
   }
-  return 0;
+  return code::kSuccess;
 }

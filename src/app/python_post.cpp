@@ -9,6 +9,8 @@
 #include <cstring>
 #include <stdexcept>
 
+#include "app/exit_codes.hpp"
+
 namespace skred {
 
 namespace fs = std::filesystem;
@@ -50,7 +52,7 @@ int exec_post(const std::vector<std::string>& args) {
                "install it with: apt-get install python3 python3-matplotlib python3-pil "
                "python3-vtk9   (or: bash scripts/install-deps.sh)\n",
                python, std::strerror(errno));
-    return 1;
+    return exit_code::kMissingPython;
   }
   std::vector<std::string> all = {python, "-E", "-s", "-B", script.string()};
   all.insert(all.end(), args.begin(), args.end());
@@ -61,7 +63,7 @@ int exec_post(const std::vector<std::string>& args) {
   std::fflush(stderr);
   ::execv(python.c_str(), argv.data());
   fmt::print(stderr, "skred: cannot run {}: {}\n", python, std::strerror(errno));
-  return 1;
+  return exit_code::kMissingPython;
 }
 
 }  // namespace skred

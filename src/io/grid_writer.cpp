@@ -15,12 +15,19 @@ namespace skred {
 
 namespace {
 
-// One appended array: its XML attributes and its values.
+// One appended array: its XML attributes and its values (Float64, or UInt8 in `bytes`).
 struct Array {
   std::string name;
   int components;
   std::vector<std::string> component_names;
   std::vector<double> values;
+  std::vector<std::uint8_t> bytes = {};
+
+  bool is_bytes() const { return values.empty() && !bytes.empty(); }
+  std::size_t size_bytes() const { return is_bytes() ? bytes.size() : values.size() * sizeof(double); }
+  const char* data() const {
+    return is_bytes() ? reinterpret_cast<const char*>(bytes.data()) : reinterpret_cast<const char*>(values.data());
+  }
 };
 
 template <int D>
@@ -41,12 +48,12 @@ std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
   auto arrays = [&](const char* section, const std::vector<Array>& list) {
     fmt::format_to(out, "      <{}>\n", section);
     for (const Array& a : list) {
-      fmt::format_to(out, "        <DataArray type=\"Float64\" Name=\"{}\"", a.name);
+      fmt::format_to(out, "        <DataArray type=\"{}\" Name=\"{}\"", a.is_bytes() ? "UInt8" : "Float64", a.name);
       if (a.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", a.components);
       for (std::size_t c = 0; c < a.component_names.size(); ++c)
         fmt::format_to(out, " ComponentName{}=\"{}\"", c, a.component_names[c]);
       fmt::format_to(out, " format=\"appended\" offset=\"{}\"/>\n", offset);
-      offset += sizeof(std::uint64_t) + a.values.size() * sizeof(double);
+      offset += sizeof(std::uint64_t) + a.size_bytes();
     }
     fmt::format_to(out, "      </{}>\n", section);
   };
@@ -79,6 +86,7 @@ void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid,
                              {"mean_stress_p", 1, {}, {}},
                              {"deviatoric_stress_q", 1, {}, {}}};
   for (Array& a : data) a.values.reserve(n * static_cast<std::size_t>(a.components));
+  Array mask{"has_material", 1, {}, {}, std::vector<std::uint8_t>(n)};  // 0: an empty node
   for (std::size_t i = 0; i < n; ++i) {
     data[0].values.push_back(f.mass[i]);
     data[1].values.insert(data[1].values.end(),
@@ -86,16 +94,18 @@ void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid,
     data[2].values.insert(data[2].values.end(), f.stress[i].data(), f.stress[i].data() + 6);
     data[3].values.push_back(mean_stress(f.stress[i]));        // Post eq. 61
     data[4].values.push_back(deviatoric_stress(f.stress[i]));  // Post eq. 62
+    mask.bytes[i] = f.mass[i] > 0.0;
   }
+  data.push_back(std::move(mask));
 
   const std::string head = header(grid, coords, data);
   write_file_atomically(file, [&](std::ostream& os) {
     os.write(head.data(), static_cast<std::streamsize>(head.size()));
     for (const auto* list : {&data, &coords})
       for (const Array& a : *list) {
-        const std::uint64_t bytes = a.values.size() * sizeof(double);
+        const std::uint64_t bytes = a.size_bytes();
         os.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
-        os.write(reinterpret_cast<const char*>(a.values.data()), static_cast<std::streamsize>(bytes));
+        os.write(a.data(), static_cast<std::streamsize>(bytes));
       }
     os << "\n  </AppendedData>\n</VTKFile>\n";
   });

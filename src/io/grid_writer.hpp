@@ -21,7 +21,9 @@ using GridNodeFields = GridNodeFieldsOf<2>;
 // coordinate array per axis, from GridGeometry::node_coordinate, so the uneven spacing of
 // the cubic B-spline's Greville abscissae is kept; z = 0). Point data (Float64): mass,
 // velocity (3, z = 0), stress (6, Voigt xx,yy,zz,xy,yz,xz), mean_stress_p and
-// deviatoric_stress_q of the nodal stress. Binary appended raw encoding, header_type UInt64,
+// deviatoric_stress_q of the nodal stress, and has_material (UInt8: 1 where mass > 0, 0 at an
+// empty node, whose zero stress is no material's; threshold on it in ParaView to hide empty
+// nodes). Binary appended raw encoding, header_type UInt64,
 // written atomically. Throws std::invalid_argument if an array does not have
 // grid.node_count() entries, std::runtime_error on I/O failure.
 void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,

@@ -1,8 +1,14 @@
 #include "io/series_writer.hpp"
 
+#include <fcntl.h>
 #include <fmt/format.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <cerrno>
+#include <cstring>
 #include <iterator>
+#include <stdexcept>
 
 #include "io/atomic_file.hpp"
 
@@ -29,18 +35,60 @@ SeriesWriter::~SeriesWriter() {
 
 void SeriesWriter::add(const SeriesRow& r) {
   rows_.push_back(r);
-  const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation - r.gravity_work;
-  // "{}" is the shortest representation that reads back to the same double.
-  fmt::format_to(std::back_inserter(text_), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
-                 r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
-                 r.plastic_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
-                 r.momentum_y, r.num_particles, r.stage, r.runout, r.yielding_points);
-  if (momentum_z_) fmt::format_to(std::back_inserter(text_), ",{}", r.momentum_z);
-  text_ += '\n';
+  format_row(r, text_);
   dirty_ = true;
 }
 
+void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
+  const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation - r.gravity_work;
+  // "{}" is the shortest representation that reads back to the same double.
+  fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
+                 r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
+                 r.plastic_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
+                 r.momentum_y, r.num_particles, r.stage, r.runout, r.yielding_points);
+  if (momentum_z_) fmt::format_to(std::back_inserter(out), ",{}", r.momentum_z);
+  out += '\n';
+}
+
+namespace {
+
+// Appends `text` to `file` with O_APPEND; false if the file is gone (it is then rewritten).
+// On a failed or short write the file is cut back to its old length and this throws.
+bool append(const std::filesystem::path& file, const std::string& text) {
+  const int fd = ::open(file.c_str(), O_WRONLY | O_APPEND | O_CLOEXEC);
+  if (fd < 0) return false;
+  struct stat st {};
+  ::fstat(fd, &st);
+  std::size_t done = 0;
+  while (done < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + done, text.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const int err = n < 0 ? errno : ENOSPC;
+      const int cut = ::ftruncate(fd, st.st_size);  // keep whole rows only (best effort)
+      static_cast<void>(cut);
+      ::close(fd);
+      throw std::runtime_error(fmt::format("cannot write '{}': appending failed: {}", file.string(),
+                                           std::strerror(err)));
+    }
+    done += static_cast<std::size_t>(n);
+  }
+  ::close(fd);
+  return true;
+}
+
+}  // namespace
+
 void SeriesWriter::flush() {
+  if (started_ && append(file_, text_)) {
+    text_.clear();
+    dirty_ = false;
+    return;
+  }
+  if (started_) {  // the file went away: write it whole again
+    text_.clear();
+    for (const SeriesRow& r : rows_) format_row(r, text_);
+  }
   write_file_atomically(file_, [&](std::ostream& os) {
     if (momentum_z_) {
       const std::string h = header();
@@ -50,6 +98,8 @@ void SeriesWriter::flush() {
     }
     os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   });
+  started_ = true;
+  text_.clear();
   dirty_ = false;
 }
 

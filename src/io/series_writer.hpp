@@ -24,8 +24,10 @@ struct SeriesRow {
   double momentum_z = 0.0;  // 3D runs only (last column)
 };
 
-// Collects rows in memory; flush() rewrites the whole file atomically, so the file on disk is
-// always complete. Columns:
+// Collects rows in memory (for checkpoints). The first flush() writes the file atomically;
+// later ones append the new rows with one write (a failed write is cut back), so the file on
+// disk always holds the header and whole rows, and a long run's flushes cost only their own
+// rows. Columns:
 //   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,
 //   mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points
 // with total_energy = kinetic_energy + strain_energy + plastic_dissipation - gravity_work
@@ -44,8 +46,8 @@ class SeriesWriter {
   SeriesWriter& operator=(const SeriesWriter&) = delete;
 
   void add(const SeriesRow& row);
-  // Rewrites the file atomically with the header and every row so far. Throws
-  // std::runtime_error on I/O failure.
+  // Writes the rows added since the last flush (the first time: the file with its header,
+  // atomically). Throws std::runtime_error on I/O failure.
   void flush();
 
   const std::vector<SeriesRow>& rows() const { return rows_; }
@@ -57,8 +59,11 @@ class SeriesWriter {
   std::filesystem::path file_;
   std::vector<SeriesRow> rows_;
   bool momentum_z_ = false;
-  std::string text_;  // the formatted rows, kept so a flush does not reformat them
+  std::string text_;  // the formatted rows not yet written
   bool dirty_ = false;
+  bool started_ = false;  // the file was written once: later flushes append
+
+  void format_row(const SeriesRow& r, std::string& out) const;
 };
 
 }  // namespace skred

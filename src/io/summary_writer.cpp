@@ -130,7 +130,9 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"scheme\": {},\n"
       "  \"time_step\": {},\n"
       "  \"phase_seconds\": {{{}}},\n"
-      "  \"stages\": [{}]\n"
+      "  \"stages\": [{}],\n"
+      "  \"version\": {},\n"
+      "  \"git_commit\": {}\n"
       "}}\n",
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
       json_number(s.end_time), s.particles, s.cells,
@@ -138,7 +140,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_number(s.wall_seconds),
       json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
       json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), phases_json(s.phase_seconds),
-      stages_json(s.stages));
+      stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

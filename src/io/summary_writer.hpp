@@ -53,6 +53,7 @@ struct Summary {
   // Wall seconds spent in each phase of the time step over the run, in step order.
   std::vector<std::pair<std::string, double>> phase_seconds = {};
   int dimension = 2;  // written (after cells) only when 3
+  std::string version = {}, git_commit = {};  // of the skred that ran (written last)
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

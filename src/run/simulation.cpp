@@ -20,6 +20,8 @@
 #include "run/checkpointing.hpp"
 #include "run/density_trigger.hpp"
 #include "run/slide_measures.hpp"
+#include "run/stability.hpp"
+#include "run/version.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 
@@ -151,8 +153,23 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   };
 
   const double dt = solver.dt();
+  // The instability detector (run/stability.hpp): a step above the stable limit stops the run
+  // before it starts; afterwards every series row and every frame is checked.
+  StabilityWatch<D> watch(s, dt, solver.totals().mass);
+  StepStatus unstable;  // ok, or the point and reason found by the detector
+  long unstable_step = 0;  // the step after which it was found
+  bool left_grid = false;
+  auto stop_unstable = [&](std::string reason, long p) {
+    unstable = {false, p, std::move(reason)};
+    unstable_step = solver.steps();
+  };
+  if (std::string why = watch.unusable_step(); !why.empty())  // name a point if one is the cause
+    stop_unstable(std::move(why), watch.initial_speed_finite() ? -1 : offending_point(particles));
+  else if (std::string above = watch.step_above_limit(); !above.empty() && !s.allow_unstable_time_step)
+    stop_unstable(std::move(above), -1);
   long total_steps = 0;  // upper bound: every stage to its full duration
-  for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));
+  if (unstable.ok)
+    for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));
   const bool tty = isatty(fileno(stderr));
   RunResult res;
 
@@ -162,7 +179,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   auto last_report = start;
   StepStatus status;
   bool stopped = false;  // by a signal, after a checkpoint
-  for (std::size_t k = at.stage; k < s.stages.size() && status.ok && !stopped; ++k) {
+  for (std::size_t k = at.stage; k < s.stages.size() && status.ok && unstable.ok && !stopped; ++k) {
     const Stage& st = s.stages[k];
     Stage as_plastic = st;
     as_plastic.elastic = false;
@@ -184,22 +201,25 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     const double stage_start = at.stage_start;
     StageTracker<D>& tracker = at.tracker;
     DensityTrigger density(s, k);  // Paper III §C.3 trigger
+    watch.begin_stage(tracker.kinetic_start());
     auto sample = [&]() {
       const ParticleTotals<D> t = solver.totals();
       series.add(series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
                             tracker.runout(particles)));
+      if (std::string why = watch.check(t, solver.energy()); !why.empty())
+        stop_unstable(std::move(why), offending_point(particles));
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
                            solver.time() - stage_start < density.ramp_end();
       return tracker.observe(solver.time(), t.mean_speed) && !ramping;
     };
     if (begins) sample();
-    if (begins && k == 0) {
+    if (begins && k == 0 && unstable.ok) {
       write_frame();
       at.next_output = s.output_interval;
       at.next_series = s.series_interval;
     }
-    std::string ended_by = "duration";
-    while (solver.steps() - first_step < stage_steps) {
+    std::string ended_by = unstable.ok ? "duration" : "unstable";
+    while (unstable.ok && solver.steps() - first_step < stage_steps) {
       // Point order and point changes between steps (docs/method.md, "Point order").
       if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 &&
           particles.sort_by_cell(solver.grid()))
@@ -214,7 +234,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       status = solver.step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       if (!status.ok) {
-        ended_by = "unstable";
+        left_grid = left_the_grid(particles, status.particle, solver.grid(), watch.speed_bound());
+        ended_by = left_grid ? "left_grid" : "unstable";
         break;
       }
       computed_updates += static_cast<long>(particles.size());
@@ -225,7 +246,15 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         at_rest = sample();
         while (at.next_series <= t + 0.5 * dt) at.next_series += s.series_interval;
       }
-      if (t >= at.next_output - 0.5 * dt || last || at_rest) {
+      const bool frame = t >= at.next_output - 0.5 * dt || last || at_rest;
+      if (frame && unstable.ok)  // a frame must not hold a non-finite value
+        if (const long p = first_non_finite_point(particles); p >= 0)
+          stop_unstable("non-finite position, velocity, deformation gradient or stress", p);
+      if (!unstable.ok) {
+        ended_by = "unstable";
+        break;
+      }
+      if (frame) {
         write_frame();
         while (at.next_output <= t + 0.5 * dt) at.next_output += s.output_interval;
       }
@@ -264,15 +293,23 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   res.steps = solver.steps();
   res.simulated_time = solver.time();
   res.particle_updates_per_second = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
+  if (!status.ok) unstable_step = solver.steps() + 1;  // the step that failed
+  if (status.ok) status = unstable;
   res.completed = status.ok && !stopped;
   res.interrupted = stopped;
+  res.left_grid = left_grid;
   if (!status.ok) {
     const long p = status.particle;
-    res.message = fmt::format(
-        "unstable at step {} (t = {:.6g} s): particle {} of body '{}' at ({:.6g}, {:.6g}{}): {}",
-        solver.steps() + 1, solver.time(), p, s.bodies[particles.body[p]].name, particles.x[p][0],
-        particles.x[p][1], D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "",
-        status.reason);
+    const std::string where =
+        p < 0 ? std::string()
+              : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
+                            s.bodies[particles.body[p]].name, particles.x[p][0], particles.x[p][1],
+                            D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "");
+    res.message = left_grid ? fmt::format("stopped at step {} (t = {:.6g} s){} left the grid (its state is "
+                                          "sound: enlarge the grid or close its sides)",
+                                          unstable_step, solver.time(), where)
+                            : fmt::format("unstable at step {} (t = {:.6g} s){}: {}", unstable_step,
+                                          solver.time(), where, status.reason);
     write_frame();  // the last state, for diagnosis
   } else if (stopped) {
     res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",
@@ -284,7 +321,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   series.flush();
 
   Summary sum{};
-  sum.status = stopped ? "interrupted" : status.ok ? "completed" : "unstable";
+  sum.status = stopped ? "interrupted" : status.ok ? "completed" : left_grid ? "left_grid" : "unstable";
   sum.message = res.message;
   sum.steps = res.steps;
   sum.simulated_time = res.simulated_time;
@@ -301,6 +338,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.time_step = dt;
   sum.stages = at.finished;
   sum.phase_seconds = solver.phase_times().report();
+  sum.version = version();
+  sum.git_commit = git_commit();
   write_summary_json(outdir / "summary.json", sum);
   res.stages = std::move(at.finished);
   return res;

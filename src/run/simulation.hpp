@@ -31,6 +31,7 @@ struct RunOptions {
 struct RunResult {
   bool completed = false;
   bool interrupted = false;  // stopped by a signal (or stop_at_step) after a checkpoint
+  bool left_grid = false;    // stopped because a sound point left the grid (not completed)
   std::string message;
   long steps = 0;
   double simulated_time = 0.0;

@@ -67,6 +67,7 @@ template <int D> class StageTracker {
                        const std::string& ended_by) const;
   // Current runout and deposit height, for the series rows.
   double runout(const Particles<D>& P) const;
+  double kinetic_start() const { return kinetic_start_; }  // kinetic energy at the stage start
 
   // Reads or writes the tracker's whole state through `a` (see run/checkpointing.cpp):
   // a(value) for every member.

@@ -51,7 +51,7 @@ std::vector<SweepRow> run_sweep(const std::string& scenario_file, const fs::path
     ro.threads = opt.threads;
     ro.progress = opt.progress;
     const RunResult res = run_simulation(scenarios[i], outdir / row.folder, ro);
-    row.status = res.completed ? "completed" : "unstable";
+    row.status = res.completed ? "completed" : res.left_grid ? "left_grid" : "unstable";
     row.steps = res.steps;
     row.simulated_time = res.simulated_time;
     row.wall_seconds = res.wall_seconds;

@@ -1,19 +1,29 @@
 """read_vtu.py FILE [CELL ...]
 Reads a .vtu with VTK's own XML reader and prints what the C++ tests check, one fact a line:
   cells N / points N / celltype C T / cellpoints C i0 i1 ... / point I x y z
-  array NAME NCOMP VTKCLASS / compname NAME K COMPNAME / value NAME CELL COMP VALUE
+  array NAME NCOMP TYPE (float64, uint8, int16, ...) / compname NAME K COMPNAME / value NAME CELL COMP VALUE
 Floats are printed with repr(), the shortest text that reads back to the same double.
 With CELL arguments, points and values are printed for those cells only (for large files).
 Exits with status 1 (printing "error ...") if VTK reports an error or warning."""
 import sys
 
 try:
+    from vtkmodules.vtkCommonCore import VTK_DOUBLE, VTK_FLOAT
     from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
 except ImportError as exc:  # pragma: no cover
     print(f"error cannot import vtk ({exc}); install python3-vtk9")
     sys.exit(2)
 
 problems = []
+
+
+def value_type(arr):
+    """The array's values by meaning, e.g. float64, uint8, int16 (the class name differs
+    between VTK builds: vtkUnsignedCharArray or vtkTypeUInt8Array hold the same uint8)."""
+    bits = 8 * arr.GetDataTypeSize()
+    if arr.GetDataType() in (VTK_FLOAT, VTK_DOUBLE):
+        return f"float{bits}"
+    return f"{'int' if arr.GetDataTypeMin() < 0 else 'uint'}{bits}"
 
 
 def on_problem(obj, event):
@@ -46,7 +56,7 @@ def main(path, chosen):
     for a in range(data.GetNumberOfArrays()):
         arr = data.GetArray(a)
         name, ncomp = arr.GetName(), arr.GetNumberOfComponents()
-        print(f"array {name} {ncomp} {arr.GetClassName()}")
+        print(f"array {name} {ncomp} {value_type(arr)}")
         for k in range(ncomp):
             if arr.GetComponentName(k) is not None:
                 print(f"compname {name} {k} {arr.GetComponentName(k)}")

@@ -1,0 +1,113 @@
+#include "run/stability.hpp"
+
+#include <Eigen/LU>
+#include <fmt/format.h>
+
+#include <cmath>
+
+#include "scenario/estimate.hpp"
+
+namespace skred {
+
+template <int D>
+StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass)
+    : dt_(dt), h_(s.cell_size) {
+  for (const Material& m : s.materials)
+    if (m.wave_speed() > c_) {
+      c_ = m.wave_speed();
+      fastest_material_ = m.name;
+    }
+  for (const BodyOf<D>& b : s.bodies)
+    v0_ = std::max(v0_, b.velocity.norm() + b.velocity_sine.amplitude.norm());
+  // Also every density a stage gives a material (scenario/estimate.hpp): h / dt_stable = c + v0.
+  c_ = std::max(c_, s.cell_size / stable_time_step(s) - v0_);
+  const double height = s.cells[1] * s.cell_size;
+  speed_bound_ = c_ + v0_ + std::sqrt(2.0 * s.gravity.norm() * height);
+  floor_ = 1e-9 * total_mass * c_ * c_;
+}
+
+template <int D> std::string StabilityWatch<D>::unusable_step() const {
+  if (std::isfinite((c_ + v0_) * dt_ / h_) && dt_ > 0.0) return {};
+  return fmt::format("time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
+                     "not finite)", dt_, c_, v0_);
+}
+
+template <int D> std::string StabilityWatch<D>::step_above_limit() const {
+  const double courant = (c_ + v0_) * dt_ / h_;
+  if (!(courant > kStableCourant * (1.0 + 1e-9))) return {};
+  return fmt::format(
+      "time step {:.6g} s is above the stable limit: (c + v0) dt / h = {:.3g} > {:g} (c = {:.6g} m/s, "
+      "P-wave speed of material '{}'; v0 = {:.6g} m/s; h = {:.6g} m); the largest stable step is {:.6g} s",
+      dt_, courant, kStableCourant, c_, fastest_material_, v0_, h_, kStableCourant * h_ / (c_ + v0_));
+}
+
+template <int D> void StabilityWatch<D>::begin_stage(double kinetic_energy) {
+  k0_ = kinetic_energy;
+  max_gravity_work_ = 0.0;
+  max_released_ = 0.0;
+}
+
+template <int D>
+std::string StabilityWatch<D>::check(const ParticleTotals<D>& t, const EnergyTotals& e) {
+  const double sums[] = {t.kinetic_energy, t.max_speed, t.mean_speed, t.momentum.norm(),
+                         e.strain_energy, e.gravity_work, e.plastic_dissipation};
+  for (double x : sums)
+    if (!std::isfinite(x)) return "non-finite speed or energy";
+  if (t.max_speed > speed_bound_)
+    return fmt::format("speed {:.4g} m/s above the bound {:.4g} m/s (wave speed + initial speed + free fall)",
+                       t.max_speed, speed_bound_);
+  max_gravity_work_ = std::max(max_gravity_work_, std::abs(e.gravity_work));
+  max_released_ = std::max(max_released_, -e.strain_energy);
+  const double gained = t.kinetic_energy - k0_ + e.strain_energy + e.plastic_dissipation - e.gravity_work;
+  const double supplied = k0_ + max_gravity_work_ + max_released_;
+  if (gained <= kEnergyGrowthTolerance * supplied + floor_) return {};
+  return fmt::format("energy grew by {:.4g} J beyond the {:.4g} J supplied since the stage start "
+                     "(kinetic {:.4g} J, stored {:.4g} J, dissipated {:.4g} J, gravity work {:.4g} J)",
+                     gained, supplied, t.kinetic_energy, e.strain_energy, e.plastic_dissipation,
+                     e.gravity_work);
+}
+
+namespace {
+template <class M> bool finite(const M& m) { return m.allFinite(); }
+}  // namespace
+
+template <int D> long first_non_finite_point(const Particles<D>& P) {
+  const long n = static_cast<long>(P.size());
+  long bad = n;
+#pragma omp parallel for reduction(min : bad)
+  for (long p = 0; p < n; ++p)
+    if (!finite(P.x[p]) || !finite(P.v[p]) || !finite(P.F[p]) || !finite(P.stress[p])) bad = std::min(bad, p);
+  return bad < n ? bad : -1;
+}
+
+template <int D> long offending_point(const Particles<D>& P) {
+  const long bad = first_non_finite_point(P);
+  if (bad >= 0 || P.size() == 0) return bad;
+  long fastest = 0;
+  for (long p = 1; p < static_cast<long>(P.size()); ++p)
+    if (P.v[p].squaredNorm() > P.v[fastest].squaredNorm()) fastest = p;
+  return fastest;
+}
+
+template <int D>
+bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound) {
+  if (p < 0 || p >= static_cast<long>(P.size())) return false;
+  if (!finite(P.x[p]) || !finite(P.v[p]) || !finite(P.F[p]) || !finite(P.stress[p])) return false;
+  if (!(P.F[p].determinant() > 0.0) || P.v[p].norm() > speed_bound) return false;
+  for (int d = 0; d < D; ++d) {
+    const double lo = grid.origin[d] + grid.h, hi = grid.origin[d] + (grid.cells[d] - 1) * grid.h;
+    if (P.x[p][d] < lo || P.x[p][d] > hi) return true;
+  }
+  return false;
+}
+
+template class StabilityWatch<2>;
+template class StabilityWatch<3>;
+template long first_non_finite_point<2>(const Particles<2>&);
+template long first_non_finite_point<3>(const Particles<3>&);
+template long offending_point<2>(const Particles<2>&);
+template long offending_point<3>(const Particles<3>&);
+template bool left_the_grid<2>(const Particles<2>&, long, const GridGeometry<2>&, double);
+template bool left_the_grid<3>(const Particles<3>&, long, const GridGeometry<3>&, double);
+
+}  // namespace skred

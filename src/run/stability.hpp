@@ -1,0 +1,59 @@
+// The run-time instability detector (docs/method.md, "Instability"): an unstable run stops
+// with status "unstable" naming the step, the time and a point, never "completed". Checked
+// at every row of series.csv from the sums computed for it, and at every frame.
+#pragma once
+#include <cmath>
+#include <string>
+
+#include "scenario/scenario.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace skred {
+
+// Energy gained beyond what was supplied, as a fraction of the supply, above which a stage
+// is unstable (see StabilityWatch::check). Sound runs stay below 0.02 (shipped examples) and
+// 0.18 (the first steps of a release at c dt/h = 1.5); blow-ups pass 5 within two steps.
+inline constexpr double kEnergyGrowthTolerance = 0.5;
+// The largest stable (c + v0) dt / h, the bound the scenario key solver.cfl has.
+inline constexpr double kStableCourant = 1.0;
+
+template <int D> class StabilityWatch {
+ public:
+  StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass);
+
+  // Empty, or why the time step is not usable: zero or non-finite (e.g. from a non-finite
+  // initial speed).
+  std::string unusable_step() const;
+  // Empty, or why the time step is above the stable limit: (c + v0) dt / h > 1 (a scenario
+  // that insists on such a step skips this check; the run is then watched as any other).
+  std::string step_above_limit() const;
+  bool initial_speed_finite() const { return std::isfinite(v0_); }
+  // Energies are measured from the stage start (EnergyTotals; kinetic energy K0 then).
+  void begin_stage(double kinetic_energy);
+  // Empty, or why the run is unstable, after a series row with these sums:
+  //  - a sum is not finite (a non-finite speed or energy at some point);
+  //  - the largest speed exceeds speed_bound();
+  //  - energy grows beyond the supply: K - K0 + W_stored + D_plastic - W_gravity >
+  //    tolerance * (K0 + max |W_gravity| + max released stored energy) + floor, the floor
+  //    1e-9 M c^2 (the stored energy of all the material at a uniform strain of ~5e-5).
+  std::string check(const ParticleTotals<D>& t, const EnergyTotals& e);
+  // c_max + v0 + sqrt(2 |g| H): wave speed, initial speed and free fall over the grid height.
+  double speed_bound() const { return speed_bound_; }
+
+ private:
+  double c_ = 0.0, v0_ = 0.0, dt_ = 0.0, h_ = 0.0, floor_ = 0.0, speed_bound_ = 0.0;
+  std::string fastest_material_;
+  double k0_ = 0.0, max_gravity_work_ = 0.0, max_released_ = 0.0;
+};
+
+// The first point with a non-finite position, velocity, F or stress, or -1 (a frame of it
+// would hold non-finite output).
+template <int D> long first_non_finite_point(const Particles<D>& P);
+// The point to name for an instability: the first non-finite one, else the fastest.
+template <int D> long offending_point(const Particles<D>& P);
+// Whether point p, sound otherwise (finite state, det F > 0, speed within `speed_bound`),
+// lies outside the grid or within a cell of its edge: it left the grid.
+template <int D>
+bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound);
+
+}  // namespace skred

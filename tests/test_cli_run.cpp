@@ -1,0 +1,219 @@
+// The command line of a run (issue 13): exit codes as README documents them (a death by
+// signal never counts as a clean rejection), --version, refusing an output folder that holds
+// an earlier run unless --overwrite, a killed run, an unstable time step, and the OpenMP wait
+// policy skred sets unless the user set one.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+
+#include "temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using skred::test::TempDir;
+
+namespace {
+
+struct Outcome {
+  int code = -1;       // exit code, or -1 when killed by a signal
+  int signal = 0;      // the signal that ended it, if any
+  std::string output;  // stdout and stderr
+};
+
+Outcome sh(const std::string& command) {
+  Outcome r;
+  FILE* pipe = popen((command + " 2>&1").c_str(), "r");
+  if (!pipe) return r;
+  std::array<char, 4096> buf{};
+  for (std::size_t n; (n = std::fread(buf.data(), 1, buf.size(), pipe)) > 0;) r.output.append(buf.data(), n);
+  const int status = pclose(pipe);
+  if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
+  if (status != -1 && WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+  return r;
+}
+
+std::string q(const fs::path& p) {
+  std::string s = "'";
+  for (char c : p.string()) s += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return s + "'";
+}
+
+const std::string kSkred = q(SKRED_BINARY);
+
+std::string read(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+void write(const fs::path& f, const std::string& text) { std::ofstream(f) << text; }
+
+// The colliding discs example with a replaced line.
+std::string discs(const std::string& from, const std::string& to) {
+  std::string t = read(fs::path(SKRED_SOURCE_DIR) / "examples" / "colliding_discs.toml");
+  const auto at = t.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  return at == std::string::npos ? t : t.replace(at, from.size(), to);
+}
+
+// A short run: the discs until 0.2 s (200 steps, 3 frames).
+std::string short_discs() { return discs("end_time = 3.0", "end_time = 0.2"); }
+
+}  // namespace
+
+TEST(CliRun, VersionNamesTheReleaseAndTheCommit) {
+  const Outcome r = sh(kSkred + " --version");
+  EXPECT_EQ(r.code, 0) << r.output;
+  EXPECT_TRUE(std::regex_search(r.output, std::regex(R"(^skred \d+\.\d+\.\d+ \(commit ([0-9a-f]{40}|unknown)\))")))
+      << r.output;
+}
+
+TEST(CliRun, UsageErrorsExitWithCode4) {
+  for (const char* args : {"", " run", " frobnicate", " run x.toml", " bench --threads 0",
+                           " bench --problem block --dim 3"}) {
+    SCOPED_TRACE(args);
+    const Outcome r = sh(kSkred + args);
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_EQ(r.code, 4) << r.output;
+    EXPECT_FALSE(r.output.empty());
+  }
+}
+
+TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {
+  TempDir d;
+  write(d / "bad.toml", discs("density = 1000.0", "density = \"heavy\""));
+  for (const std::string& args : {" check " + q(d / "bad.toml"), " run " + q(d / "bad.toml") + " -o " + q(d / "out")}) {
+    const Outcome r = sh(kSkred + args);
+    EXPECT_EQ(r.code, 5) << r.output;
+    EXPECT_NE(r.output.find("bad.toml:13:11: key 'material[0].density'"), std::string::npos) << r.output;
+  }
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+}
+
+TEST(CliRun, AnOutputFolderHoldingARunIsRefusedUnlessOverwrite) {
+  TempDir d;
+  write(d / "discs.toml", short_discs());
+  const std::string run = kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
+  ASSERT_EQ(sh(run).code, 0);
+  const std::string summary = read(d / "out" / "summary.json");
+  write(d / "out" / "particles_000099.vtu", "stale frame of an older, longer run");
+  write(d / "out" / "notes.txt", "the user's own file");
+
+  const Outcome again = sh(run);
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
+  EXPECT_NE(again.output.find("--overwrite"), std::string::npos) << again.output;
+  EXPECT_EQ(read(d / "out" / "summary.json"), summary);  // untouched
+  EXPECT_TRUE(fs::exists(d / "out" / "particles_000099.vtu"));
+
+  const Outcome over = sh(run + " --overwrite");
+  EXPECT_EQ(over.code, 0) << over.output;
+  EXPECT_FALSE(fs::exists(d / "out" / "particles_000099.vtu"));  // no stale frame beside the new
+  EXPECT_TRUE(fs::exists(d / "out" / "particles_000002.vtu"));
+  EXPECT_EQ(read(d / "out" / "notes.txt"), "the user's own file");  // only skred's files go
+
+  // The scenario file itself may live in the folder: --overwrite keeps it.
+  fs::copy_file(d / "discs.toml", d / "out" / "scenario.toml", fs::copy_options::overwrite_existing);
+  const Outcome inside = sh(kSkred + " run " + q(d / "out" / "scenario.toml") + " -o " + q(d / "out") +
+                            " --threads 1 --overwrite");
+  EXPECT_EQ(inside.code, 0) << inside.output;
+  EXPECT_EQ(read(d / "out" / "scenario.toml"), short_discs());
+}
+
+TEST(CliRun, ASweepFolderIsRefusedUnlessOverwrite) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.05"));
+  const std::string sweep = kSkred + " sweep " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
+  ASSERT_EQ(sh(sweep + " --set 'material[elastic].young=1000,2000'").code, 0);
+  const Outcome again = sh(sweep + " --set 'material[elastic].young=1000'");
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
+  const Outcome over = sh(sweep + " --set 'material[elastic].young=1000' --overwrite");
+  EXPECT_EQ(over.code, 0) << over.output;
+  EXPECT_TRUE(fs::exists(d / "out" / "run_000" / "summary.json"));
+  EXPECT_FALSE(fs::exists(d / "out" / "run_001"));  // the earlier sweep's second run is gone
+}
+
+TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
+  TempDir d;
+  std::string text = discs("cell_size = 0.05", "cell_size = 0.02");  // 30,000 steps: several seconds
+  text.replace(text.find("end_time = 3.0"), 14, "end_time = 30.0");
+  write(d / "discs.toml", text);
+  const std::string run = kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
+  const Outcome killed = sh("timeout -s KILL 1 " + run);
+  ASSERT_EQ(killed.code, 137) << "the run must take longer than 1 s: " << killed.output;  // timeout's report
+  ASSERT_TRUE(fs::exists(d / "out" / "particles.pvd"));
+  // Every frame the index names is complete (files are renamed into place when written).
+  const std::string pvd = read(d / "out" / "particles.pvd");
+  ASSERT_NE(pvd.find("</VTKFile>"), std::string::npos);
+  int frames = 0;
+  const std::regex file_re(R"(file="([^"]+)\")");
+  for (std::sregex_iterator m(pvd.begin(), pvd.end(), file_re), e; m != e; ++m, ++frames) {
+    const std::string vtu = read(d / "out" / (*m)[1].str());
+    EXPECT_NE(vtu.rfind("</VTKFile>\n"), std::string::npos) << (*m)[1].str();
+  }
+  EXPECT_GE(frames, 1);
+  const Outcome again = sh(run);
+  EXPECT_EQ(again.code, 1) << again.output;
+  EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
+}
+
+// c dt / h = 1.5 and 2.2 (c: P-wave speed): refused as unstable before the first step, naming
+// the stable step; the run ends "unstable", never "completed".
+TEST(CliRun, ATimeStepAboveTheStableLimitEndsUnstable) {
+  TempDir d;
+  const double c = std::sqrt(1000.0 * 0.7 / (1.3 * 0.4) / 1000.0), h = 0.05;
+  for (double courant : {1.5, 2.2}) {
+    SCOPED_TRACE(courant);
+    const fs::path file = d / ("discs_" + std::to_string(courant) + ".toml");
+    write(file, discs("time_step = 0.001", "time_step = " + std::to_string(courant * h / c)));
+    const fs::path out = d / ("out_" + std::to_string(courant));
+    const Outcome r = sh(kSkred + " run " + q(file) + " -o " + q(out) + " --threads 1");
+    EXPECT_EQ(r.code, 2) << r.output;
+    EXPECT_NE(r.output.find("unstable at step 0 (t = 0 s)"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("above the stable limit"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("the largest stable step is"), std::string::npos) << r.output;
+    EXPECT_NE(read(out / "summary.json").find("\"status\": \"unstable\""), std::string::npos);
+  }
+}
+
+TEST(CliRun, SummaryNamesTheVersionAndCommit) {
+  TempDir d;
+  write(d / "discs.toml", short_discs());
+  ASSERT_EQ(sh(kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1").code, 0);
+  const std::string version = sh(kSkred + " --version").output;
+  const std::string summary = read(d / "out" / "summary.json");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(version, m, std::regex(R"(skred (\S+) \(commit (\S+)\))")));
+  EXPECT_NE(summary.find("\"version\": \"" + m[1].str() + "\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"git_commit\": \"" + m[2].str() + "\""), std::string::npos) << summary;
+}
+
+// libgomp reports the settings it took (OMP_DISPLAY_ENV, printed as it loads); the last
+// report is the process that runs.
+TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
+  const auto last_spin = [](const std::string& out) {
+    std::string last;
+    const std::regex spin_re(R"(GOMP_SPINCOUNT = '(\d+)')");
+    for (std::sregex_iterator m(out.begin(), out.end(), spin_re), e; m != e; ++m)
+      last = (*m)[1].str();
+    return last;
+  };
+  const std::string base = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose ";
+  const Outcome def = sh(base + kSkred + " --version");
+  EXPECT_EQ(def.code, 0);
+  EXPECT_EQ(last_spin(def.output), "1000") << def.output;
+  const Outcome user = sh(base + "GOMP_SPINCOUNT=300000 " + kSkred + " --version");
+  EXPECT_EQ(last_spin(user.output), "300000") << user.output;
+  const Outcome active = sh(base + "OMP_WAIT_POLICY=active " + kSkred + " --version");
+  EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
+  EXPECT_NE(last_spin(active.output), "1000") << active.output;
+}
