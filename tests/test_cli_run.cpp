@@ -166,21 +166,28 @@ TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   EXPECT_NE(again.output.find("holds an earlier run"), std::string::npos) << again.output;
 }
 
-// c dt / h = 1.5 and 2.2 (c: P-wave speed): refused as unstable before the first step, naming
-// the stable step; the run ends "unstable", never "completed".
+// c dt / h = 1.5 and 2.2 (c: P-wave speed): refused as an invalid scenario before anything
+// runs, naming the key and the stable step. A user who insists (allow_unstable_time_step)
+// gets a run the detector stops as "unstable", never one that ends "completed".
 TEST(CliRun, ATimeStepAboveTheStableLimitEndsUnstable) {
   TempDir d;
   const double c = std::sqrt(1000.0 * 0.7 / (1.3 * 0.4) / 1000.0), h = 0.05;
   for (double courant : {1.5, 2.2}) {
     SCOPED_TRACE(courant);
+    const std::string step = "time_step = " + std::to_string(courant * h / c);
     const fs::path file = d / ("discs_" + std::to_string(courant) + ".toml");
-    write(file, discs("time_step = 0.001", "time_step = " + std::to_string(courant * h / c)));
+    write(file, discs("time_step = 0.001", step));
     const fs::path out = d / ("out_" + std::to_string(courant));
     const Outcome r = sh(kSkred + " run " + q(file) + " -o " + q(out) + " --threads 1");
-    EXPECT_EQ(r.code, 2) << r.output;
-    EXPECT_NE(r.output.find("unstable at step 0 (t = 0 s)"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("above the stable limit"), std::string::npos) << r.output;
-    EXPECT_NE(r.output.find("the largest stable step is"), std::string::npos) << r.output;
+    EXPECT_EQ(r.code, 5) << r.output;
+    EXPECT_NE(r.output.find("key 'solver.time_step'"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("exceeds the stable time step"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));
+    if (courant < 2) continue;
+    write(file, discs("time_step = 0.001", step + "\nallow_unstable_time_step = true"));
+    const Outcome forced = sh(kSkred + " run " + q(file) + " -o " + q(out) + " --threads 1");
+    EXPECT_EQ(forced.code, 2) << forced.output;
+    EXPECT_NE(forced.output.find("unstable"), std::string::npos) << forced.output;
     EXPECT_NE(read(out / "summary.json").find("\"status\": \"unstable\""), std::string::npos);
   }
 }
