@@ -280,7 +280,7 @@ int dimension_of(const toml::table& doc) {
 template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) {
   const TableReader root(doc, "", source);
   root.allow_only({"title", "grid", "material", "body", "initial_stress", "gravity", "boundary",
-                   "solver", "stage", "output"});
+                   "solver", "stage", "output", "contact"});
   ScenarioOf<D> s;
   s.source = source;
   s.title = root.string("title", std::string());
@@ -289,6 +289,7 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   scenario_detail::parse_bodies<D>(root, s);
   scenario_detail::parse_gravity<D>(root, s);
   scenario_detail::parse_boundary<D>(root, s);
+  scenario_detail::parse_contacts<D>(root, s);
   parse_initial_stress(root, s);
   parse_solver(root, s);
   parse_stages(root, s);

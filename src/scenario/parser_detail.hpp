@@ -55,6 +55,8 @@ template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
+// The [[contact]] tables (parser_contact.cpp), after the bodies.
+template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
 
 // A 3D body's shape (box, extruded polygon, cylinder, sphere) from its [[body]] table.
 Shape3 parse_shape3(const TableReader& b, const Scenario3& s);

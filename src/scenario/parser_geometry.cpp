@@ -13,7 +13,7 @@ constexpr int kMaxCells = 100000;
 constexpr int kMaxParticlesPerCell = 8;
 
 Shape parse_rectangle(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape", "rigid",
                  "min", "max"});
   Rectangle r{b.vec2("min"), b.vec2("max")};
   if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
@@ -25,13 +25,13 @@ Shape parse_rectangle(const TableReader& b, const Scenario& s) {
 }
 
 Shape parse_polygon(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape", "rigid",
                  "vertices"});
   return parse_vertices(b, s.origin, grid_high(s), grid_tolerance(s), grid_bounds(s));
 }
 
 Shape parse_disc(const TableReader& b, const Scenario& s) {
-  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape",
+  b.allow_only({"name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape", "rigid",
                  "center", "radius"});
   Disc c{b.vec2("center"), b.number("radius", Range::positive())};
   check_inside(b, "center", s, c.center, "centre");
@@ -120,6 +120,11 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell", 1, kMaxParticlesPerCell, 2));
     b.velocity = t.vec<D>("velocity", Vec<D>::Zero());
+    if (t.has("rigid")) {  // a contact partner with the constant velocity `velocity`
+      const auto v = t.find("rigid")->value<bool>();
+      if (!v) t.fail_type("rigid", "a boolean (true or false)");
+      b.rigid = *v;
+    }
     if (const auto vs = t.table("velocity_sine", false)) {
       vs->allow_only({"amplitude", "wavelength", "axis", "origin"});
       b.velocity_sine.amplitude = vs->vec<D>("amplitude");

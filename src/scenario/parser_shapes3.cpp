@@ -8,7 +8,7 @@ namespace skred::scenario_detail {
 
 namespace {
 
-#define SKRED_BODY_KEYS "name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape"
+#define SKRED_BODY_KEYS "name", "material", "particles_per_cell", "velocity", "velocity_sine", "shape", "rigid"
 
 Shape3 parse_box(const TableReader& b, const Scenario3& s) {
   b.allow_only({SKRED_BODY_KEYS, "min", "max"});

@@ -60,6 +60,9 @@ template <int D> struct BodyOf {
   int particles_per_cell = 2;    // n: n^D material points per grid cell
   Vec<D> velocity = Vec<D>::Zero();  // initial velocity
   SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
+  // A rigid body moves with the constant `velocity` (zero: fixed), has no stress update and
+  // takes part in contact (Paper III §C.2.7) as a partner of infinite mass.
+  bool rigid = false;
 };
 using Body = BodyOf<2>;
 using Body3 = BodyOf<3>;
@@ -99,6 +102,13 @@ struct Stage {
   double rest_time = 0.0;
 };
 
+// Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies and the
+// Coulomb coefficient mu. Pairs without an entry stay bonded (one velocity field).
+struct ContactPair {
+  int a = 0, b = 0;
+  double friction = 0.0;
+};
+
 // What a scenario says apart from its geometry: the same in 2D and 3D.
 struct ScenarioCommon {
   std::string source;  // path of the scenario file (for messages)
@@ -120,6 +130,9 @@ struct ScenarioCommon {
   double time_step = 0.0;  // fixed time step; 0 means "from the CFL number"
   double cfl = 0.3;
   double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
+
+  // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables.
+  std::vector<ContactPair> contacts;
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv
