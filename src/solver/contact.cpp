@@ -141,18 +141,13 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
   const ContactSettings<D>& c = settings_.contact;
   const GridGeometry<D>& g = grid();
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
-  constexpr double kTail = 1e-3;
   std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
   transfer_.for_box([&](std::size_t i) {
-    // The continua with mass at node i, in hierarchy order. The far tails of a body's
-    // weighting functions (less than kTail of the node's mass) take no part: their velocity
-    // p_i^b / m_i^b is noise.
+    // The continua with mass at node i, in hierarchy order.
     int present[kMaxContactBodies];
     int count = 0;
-    double total = 0.0;
-    for (const BodyFields<D>& f : bodies_) total += f.mass[i];
     for (int b : c.order)
-      if (bodies_[static_cast<std::size_t>(b)].mass[i] > kTail * total) present[count++] = b;
+      if (bodies_[static_cast<std::size_t>(b)].mass[i] > 0.0) present[count++] = b;
     if (count < 2) return;
     Vec<D> v[kMaxContactBodies], grad[kMaxContactBodies];
     double m[kMaxContactBodies];
