@@ -81,13 +81,14 @@ long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, d
   return bad == LONG_MAX ? -1 : bad;
 }
 
-// The same maps restricted to the points of one body (continuum, Paper III §C.2.7), from the
-// weights stored by the last p2g_mass_momentum: m_i^b and p_i^b into zeroed arrays.
+// The same maps restricted to the points of one body (continuum, Paper III §C.2.7): m_i^b and
+// p_i^b into zeroed arrays. The weighting functions are evaluated as p2g_mass_momentum does
+// (not loaded from the stored ones, which can differ in the last bit), so that this map equals
+// the per-body map that ends a step with contact bit for bit.
 template <int D, class K>
 void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, int body,
                             double* m, Vec<D>* p) {
   const long n = static_cast<long>(P.size());
-  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
 #pragma omp parallel num_threads(T.threads())
   {
@@ -99,7 +100,7 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
     for (long q = 0; q < n; ++q) {
       if (P.body[q] != body) continue;
       typename K::Shape sh;
-      kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+      if (!kernel.shape(T.grid(), P.x[q], P.half0[q], P.F[q], sh)) continue;  // reported by the map
       span.add(sh.base);
       scatter(sh, T.strides(), P.mass[q], mass);
       scatter(sh, T.strides(), Vec<D>(P.mass[q] * P.v[q]), mom);
