@@ -4,6 +4,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "solver/contact.hpp"
@@ -168,6 +169,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
         const double mu = c.mu(present[j], present[k]);
         if (mu >= 0.0 && !(len > 0.0)) continue;  // no normal: no contact to resolve
         const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu);
+        assert(loss.normal >= 0.0 && loss.friction >= 0.0);  // contact never creates energy
         sum.normal += loss.normal;
         sum.friction += loss.friction;
       }
