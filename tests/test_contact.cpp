@@ -315,15 +315,11 @@ TEST(ContactIncline, BlockSlidesOnARigidBaseUnderTiltedGravity) {
                 theta, mu, s, exact, 100 * (s - exact) / exact);
     EXPECT_NEAR(s, exact, 0.02 * exact);
   }
-  // Rest for mu >= tan(theta) = 0.36 at 20 deg. Friction acts node by node: close to the
-  // threshold the elastic block's vibration lets nodes slip in turn and the block creeps
-  // (mu = 0.5: a few mm in 0.3 s, printed); with a clear margin it holds.
+  // Rest for mu >= tan(theta) = 0.36 at 20 deg: less than 1 mm against 68 mm at mu = 0.2.
   for (double mu : {0.5, 0.7}) {
     const double rest = block_on_layer(20.0, mu, t, StressScheme::Averaged, true);
     std::printf("block on a rigid base, theta 20, mu %.1f: travel %.3e m\n", mu, rest);
-    if (mu > 0.6) {
-      EXPECT_LT(std::abs(rest), 1e-3);
-    }
+    EXPECT_LT(std::abs(rest), 1e-3);
   }
 }
 
