@@ -208,11 +208,12 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
-    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    const StressArrays<D> S(P, materials_);
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
     for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      const StressArrays<D> S(P, materials_);
       Vec<D>* const forces = f.internal_force.data();
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       const Vec<D>* __restrict vel = f.velocity.data();
@@ -272,12 +273,13 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict v = P.v.data();
-    const double* __restrict pmass = P.mass.data();
     const double alpha = settings_.pic_fraction;
     ScatterBuffers<D>& buffers = transfer_.scatter();
     for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict v = P.v.data();
+      const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
@@ -317,16 +319,17 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict x = P.x.data();
-    const Vec<D>* __restrict v = P.v.data();
-    const Vec<D>* __restrict half0 = P.half0.data();
-    const double* __restrict pmass = P.mass.data();
-    const StressArrays<D> S(P, materials_);
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
     Extent<D> all;  // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict x = P.x.data();
+      const Vec<D>* __restrict v = P.v.data();
+      const Vec<D>* __restrict half0 = P.half0.data();
+      const double* __restrict pmass = P.mass.data();
+      const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
       double work = 0.0, dissipation = 0.0;
@@ -387,17 +390,18 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict x = P.x.data();
-    Vec<D>* __restrict v = P.v.data();
-    const Vec<D>* __restrict half0 = P.half0.data();
-    const double* __restrict pmass = P.mass.data();
-    const Mat<D>* __restrict F = P.F.data();
     const double alpha = settings_.pic_fraction;
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
     Extent<D> all;  // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict x = P.x.data();
+      Vec<D>* __restrict v = P.v.data();
+      const Vec<D>* __restrict half0 = P.half0.data();
+      const double* __restrict pmass = P.mass.data();
+      const Mat<D>* __restrict F = P.F.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
