@@ -82,8 +82,8 @@ DiscRun run_discs(StressScheme scheme, bool contact) {
     EXPECT_TRUE(status.ok) << status.reason;
     if (!status.ok) break;
     const EnergyTotals& e = solver.energy();
-    r.min_step_work = std::min({r.min_step_work, e.contact_work - before.contact_work,
-                                e.friction_work - before.friction_work});
+    r.min_step_work = std::min(
+        {r.min_step_work, e.contact_work - before.contact_work, e.friction_work - before.friction_work});
     r.max_momentum = std::max(r.max_momentum, solver.totals().momentum.norm());
   }
   r.e_end = solver.totals().kinetic_energy + solver.energy().strain_energy;
@@ -103,9 +103,10 @@ DiscRun run_discs(StressScheme scheme, bool contact) {
 static void check_discs(StressScheme scheme) {
   const DiscRun r = run_discs(scheme, true);
   const double change = (r.e_end - r.e0) / r.e0;
-  std::printf("%s: rebound vx %.4f, gap at the end %.3f m, energy change %.3f %%, contact work "
-              "%.3f %% of KE0, momentum %.2e\n", to_string(scheme), r.rebound, r.gap_end,
-              100 * change, 100 * r.contact_work / r.e0, r.max_momentum);
+  std::printf(
+      "%s: rebound vx %.4f, gap at the end %.3f m, energy change %.3f %%, contact work "
+      "%.3f %% of KE0, momentum %.2e\n",
+      to_string(scheme), r.rebound, r.gap_end, 100 * change, 100 * r.contact_work / r.e0, r.max_momentum);
   EXPECT_LT(r.max_momentum, 1e-12 * 125.66 * 0.1);  // momentum to round-off
   EXPECT_LT(r.rebound, -0.05);                      // disc 0 moves back
   EXPECT_GT(r.gap_end, 0.1);                        // the discs have parted
@@ -167,7 +168,8 @@ acceleration = [0.0, -9.81]
 scheme = "{}"
 time_step = 1.5e-4
 end_time = 0.5
-)", pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, scheme);
+)",
+                     pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, scheme);
 }
 
 InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0,
@@ -184,8 +186,8 @@ InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0
     EXPECT_TRUE(status.ok) << status.reason;
     if (!status.ok) break;
     const EnergyTotals& e = solver.energy();
-    r.min_step_work = std::min({r.min_step_work, e.contact_work - before.contact_work,
-                                e.friction_work - before.friction_work});
+    r.min_step_work = std::min(
+        {r.min_step_work, e.contact_work - before.contact_work, e.friction_work - before.friction_work});
   }
   const Vec<2> t(std::cos(theta_deg * kDeg), -std::sin(theta_deg * kDeg));
   double u = 0.0;
@@ -210,7 +212,9 @@ InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0
 // cos(theta) of the exact one (the apparent mu within 0.04 of mu); the measured deviation
 // is printed (about 0.025-0.035, i.e. 4-16 % of the travel). On grid-aligned surfaces
 // (BlockSlidesOnARigidBaseUnderTiltedGravity) the travel is within 2 %.
-struct InclineCase { double theta, mu, offset; };
+struct InclineCase {
+  double theta, mu, offset;
+};
 static void check_incline(const InclineCase& k) {
   {
     const double time = 0.5, c = std::cos(k.theta * kDeg);
@@ -218,9 +222,10 @@ static void check_incline(const InclineCase& k) {
     const double exact = 0.5 * a * time * time;
     const InclineRun r = incline(k.theta, k.mu, time, k.offset);
     const double apparent_dmu = (exact - r.travel) * 2.0 / (time * time) / (g * c);
-    std::printf("incline %.0f deg (offset %.4f m), mu %.1f: travel %.5f m, exact %.5f m (%+.2f %%), "
-                "apparent extra friction %.4f\n", k.theta, k.offset, k.mu, r.travel, exact,
-                100 * (r.travel - exact) / exact, apparent_dmu);
+    std::printf(
+        "incline %.0f deg (offset %.4f m), mu %.1f: travel %.5f m, exact %.5f m (%+.2f %%), "
+        "apparent extra friction %.4f\n",
+        k.theta, k.offset, k.mu, r.travel, exact, 100 * (r.travel - exact) / exact, apparent_dmu);
     EXPECT_LT(std::abs(apparent_dmu), 0.04);
     EXPECT_GE(r.min_step_work, 0.0);
   }
@@ -298,8 +303,8 @@ TEST(ContactLayers, BlockSlidesOnADeformableLayer) {
                                    std::pair{0.4, StressScheme::USL}}) {
     const double exact = 0.5 * g * (std::sin(th) - mu * std::cos(th)) * t * t;
     const double s = block_on_layer(30.0, mu, t, scheme);
-    std::printf("block on a layer, theta 30, mu %.1f, %s: travel %.5f m, exact %.5f m (%+.2f %%)\n",
-                mu, to_string(scheme), s, exact, 100 * (s - exact) / exact);
+    std::printf("block on a layer, theta 30, mu %.1f, %s: travel %.5f m, exact %.5f m (%+.2f %%)\n", mu,
+                to_string(scheme), s, exact, 100 * (s - exact) / exact);
     EXPECT_NEAR(s, exact, 0.02 * exact);
   }
 }
@@ -311,8 +316,8 @@ TEST(ContactIncline, BlockSlidesOnARigidBaseUnderTiltedGravity) {
     const double th = theta * kDeg;
     const double exact = 0.5 * g * (std::sin(th) - mu * std::cos(th)) * t * t;
     const double s = block_on_layer(theta, mu, t, StressScheme::Averaged, true);
-    std::printf("block on a rigid base, theta %.0f, mu %.1f: travel %.5f m, exact %.5f m (%+.2f %%)\n",
-                theta, mu, s, exact, 100 * (s - exact) / exact);
+    std::printf("block on a rigid base, theta %.0f, mu %.1f: travel %.5f m, exact %.5f m (%+.2f %%)\n", theta,
+                mu, s, exact, 100 * (s - exact) / exact);
     EXPECT_NEAR(s, exact, 0.02 * exact);
   }
   // Rest for mu >= tan(theta) = 0.36 at 20 deg: less than 1 mm against 68 mm at mu = 0.2.
@@ -355,10 +360,12 @@ TEST(ContactStack, ThreeBodiesStackedDoNotInterpenetrate) {
         worst_overlap = std::max({worst_overlap, overlap(P, 0, 1, 0.5 * h), overlap(P, 1, 2, 0.5 * h)});
     }
     const double v0 = body_velocity(P, 0)[1], v2 = body_velocity(P, 2)[1];
-    std::printf("three slabs, %s: momentum change %.2e (of %.2e), deepest reach of a lower "
-                "body's point above an upper one's %.4f m (must stay < 0), end velocities y %.3f / %.3f / %.3f, contact work %.4g\n",
-                to_string(scheme), worst_p, scale, worst_overlap, v0, body_velocity(P, 1)[1], v2,
-                solver.energy().contact_work);
+    std::printf(
+        "three slabs, %s: momentum change %.2e (of %.2e), deepest reach of a lower "
+        "body's point above an upper one's %.4f m (must stay < 0), end velocities y %.3f / %.3f / %.3f, "
+        "contact work %.4g\n",
+        to_string(scheme), worst_p, scale, worst_overlap, v0, body_velocity(P, 1)[1], v2,
+        solver.energy().contact_work);
     EXPECT_LT(worst_p, 1e-12 * scale);
     EXPECT_LT(worst_overlap, 0.0);
     EXPECT_GE(min_work, 0.0);
@@ -381,7 +388,7 @@ TEST(ContactRule, StickSlipSeparateBondedRigid) {
     EXPECT_NEAR((vb - va)[1], 0.0, 1e-15);
     EXPECT_NEAR((vb - va)[0], 0.5, 1e-15);
     EXPECT_LT(dp, 1e-15);
-    EXPECT_NEAR(l.normal, 0.25, 1e-15);             // m_r w_n^2 / 2, m_r = 1/2
+    EXPECT_NEAR(l.normal, 0.25, 1e-15);                // m_r w_n^2 / 2, m_r = 1/2
     EXPECT_NEAR(l.friction, 0.5 * 0.5 * 0.75, 1e-15);  // m_r (1 - 0.25) / 2
   }
   {  // mu 2: sticks
@@ -448,7 +455,8 @@ friction = 0.6
 [[contact]]
 bodies = ["ground", "clay"]
 friction = 0.3
-)", "c.toml");
+)",
+                                    "c.toml");
   ASSERT_EQ(s.contacts.size(), 2u);
   EXPECT_EQ(s.contacts[0].a, 1);
   EXPECT_EQ(s.contacts[0].b, 2);
@@ -459,10 +467,10 @@ friction = 0.3
   EXPECT_EQ(st.contact.mu(2, 1), 0.6);
   EXPECT_EQ(st.contact.mu(0, 1), 0.3);
   EXPECT_EQ(st.contact.mu(0, 2), kBonded);  // no entry: bonded
-  EXPECT_EQ(parse_scenario(head + "[[contact]]\nbodies = \"all\"\nfriction = 0.5\n", "c.toml")
-                .contacts.size(), 3u);
+  EXPECT_EQ(
+      parse_scenario(head + "[[contact]]\nbodies = \"all\"\nfriction = 0.5\n", "c.toml").contacts.size(), 3u);
   EXPECT_FALSE(solver_settings(parse_scenario(
-      R"([grid]
+                                   R"([grid]
 size = [1.0, 1.0]
 cell_size = 0.1
 [[material]]
@@ -478,7 +486,9 @@ min = [0.0, 0.0]
 max = [1.0, 0.5]
 [solver]
 end_time = 0.1
-)", "one.toml")).contact.enabled());  // a single body keeps one field
+)",
+                                   "one.toml"))
+                   .contact.enabled());  // a single body keeps one field
   auto error = [&](const std::string& tail) {
     try {
       parse_scenario(head + tail, "c.toml");
@@ -490,8 +500,9 @@ end_time = 0.1
   const std::string unknown = error("[[contact]]\nbodies = [\"clay\", \"gravel\"]\nfriction = 0.5\n");
   EXPECT_NE(unknown.find("no body is called \"gravel\""), std::string::npos) << unknown;
   EXPECT_NE(unknown.find("\"ground\", \"clay\", \"sand\""), std::string::npos) << unknown;
-  const std::string twice = error("[[contact]]\nbodies = [\"clay\", \"sand\"]\nfriction = 0.5\n"
-                                  "[[contact]]\nbodies = [\"sand\", \"clay\"]\nfriction = 0.2\n");
+  const std::string twice = error(
+      "[[contact]]\nbodies = [\"clay\", \"sand\"]\nfriction = 0.5\n"
+      "[[contact]]\nbodies = [\"sand\", \"clay\"]\nfriction = 0.2\n");
   EXPECT_NE(twice.find("has a contact already"), std::string::npos) << twice;
   EXPECT_NE(twice.find("c.toml:"), std::string::npos) << twice;
   const std::string negative = error("[[contact]]\nbodies = [\"clay\", \"sand\"]\nfriction = -0.1\n");

@@ -23,7 +23,8 @@ int body_index(const TableReader& t, const ScenarioOf<D>& s, const std::string& 
 
 }  // namespace
 
-template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_contacts(const TableReader& root, ScenarioOf<D>& s) {
   const auto tables = root.array_of_tables("contact");
   if (tables.empty()) return;
   if (s.bodies.size() > static_cast<std::size_t>(kMaxContactBodies))
@@ -34,8 +35,8 @@ template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s) 
     for (std::size_t j = 0; j < i; ++j)
       if (s.bodies[i].name == s.bodies[j].name)
         fail(s.source, root.where("contact"), "contact",
-             fmt::format("bodies {} and {} are both called \"{}\"; contact needs distinct body names",
-                         j, i, s.bodies[i].name));
+             fmt::format("bodies {} and {} are both called \"{}\"; contact needs distinct body names", j, i,
+                         s.bodies[i].name));
   std::set<std::pair<int, int>> seen;
   for (const TableReader& t : tables) {
     t.allow_only({"bodies", "friction"});
@@ -54,7 +55,8 @@ template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s) 
       const int a = body_index(t, s, *arr->get(0)->value<std::string>());
       const int b = body_index(t, s, *arr->get(1)->value<std::string>());
       if (a == b)
-        t.fail_at("bodies", fmt::format("a body cannot be in contact with itself (\"{}\")", s.bodies[a].name));
+        t.fail_at("bodies",
+                  fmt::format("a body cannot be in contact with itself (\"{}\")", s.bodies[a].name));
       pairs.emplace_back(std::min(a, b), std::max(a, b));
     }
     for (const auto& [a, b] : pairs) {

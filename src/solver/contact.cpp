@@ -53,7 +53,8 @@ Vec<D> mass_gradient(const GridGeometry<D>& g, const double* __restrict mass, st
 
 // v_i^k,b = p_i^b / m_i^b under the velocity boundary conditions (eq. 2.23) for each
 // deformable body; a rigid body's prescribed velocity wherever it has mass.
-template <int D> void ExplicitSolver<D>::body_nodal_velocity() {
+template <int D>
+void ExplicitSolver<D>::body_nodal_velocity() {
   const ContactSettings<D>& c = settings_.contact;
   for (int b = 0; b < c.bodies(); ++b) {
     BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
@@ -69,7 +70,8 @@ template <int D> void ExplicitSolver<D>::body_nodal_velocity() {
 
 // Eq. 2.49, 2.52 for each deformable body on its own: a_i^b = f_i^int,b / m_i^b + g, the
 // walls (eq. 5.8-5.11) on its nodes; a rigid body neither accelerates nor meets the walls.
-template <int D> void ExplicitSolver<D>::body_grid_update() {
+template <int D>
+void ExplicitSolver<D>::body_grid_update() {
   const ContactSettings<D>& c = settings_.contact;
   const Vec<D> g = gravity_now_;
   const double dt = settings_.dt, half_dt = 0.5 * dt;
@@ -102,7 +104,8 @@ template <int D> void ExplicitSolver<D>::body_grid_update() {
 // v~_i^b = p~_i^b / m_i^b under the velocity conditions for each deformable body (a rigid
 // body: its velocity): the remap of its points' velocities, which took the contact
 // correction in g2p; m_i^b, p_i^b and p~_i^b cleared behind for the next step's map.
-template <int D> void ExplicitSolver<D>::body_remap_velocity() {
+template <int D>
+void ExplicitSolver<D>::body_remap_velocity() {
   const ContactSettings<D>& c = settings_.contact;
   for (int b = 0; b < c.bodies(); ++b) {
     BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
@@ -119,7 +122,8 @@ template <int D> void ExplicitSolver<D>::body_remap_velocity() {
   }
 }
 
-template <int D> void ExplicitSolver<D>::clear_body_mass_momentum() {
+template <int D>
+void ExplicitSolver<D>::clear_body_mass_momentum() {
   for (BodyFields<D>& f : bodies_)
     transfer_.for_box([&](std::size_t i) {
       f.mass[i] = 0.0;
@@ -195,7 +199,8 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
 // v_i^k,b + dt a_i^b (after the walls); the coupled velocity v_i^{k+1,b} becomes each body's
 // a_i^b = (v_i^{k+1,b} - v_i^k,b) / dt, v_move and v_next, which its points take in g2p.
 // What it takes out of the kinetic energy is the contact work (>= 0).
-template <int D> void ExplicitSolver<D>::contact() {
+template <int D>
+void ExplicitSolver<D>::contact() {
   if (!contact_on()) return;
   timer_.time(Phase::Contact, [&] {
     const double dt = settings_.dt;
@@ -214,11 +219,11 @@ template <int D> void ExplicitSolver<D>::contact() {
   });
 }
 
-#define SKRED_CONTACT_PHASES(D)                                 \
-  template void ExplicitSolver<D>::body_nodal_velocity();       \
-  template void ExplicitSolver<D>::body_grid_update();          \
-  template void ExplicitSolver<D>::body_remap_velocity();       \
-  template void ExplicitSolver<D>::clear_body_mass_momentum();  \
+#define SKRED_CONTACT_PHASES(D)                                \
+  template void ExplicitSolver<D>::body_nodal_velocity();      \
+  template void ExplicitSolver<D>::body_grid_update();         \
+  template void ExplicitSolver<D>::body_remap_velocity();      \
+  template void ExplicitSolver<D>::clear_body_mass_momentum(); \
   template void ExplicitSolver<D>::contact();
 SKRED_CONTACT_PHASES(2)
 SKRED_CONTACT_PHASES(3)

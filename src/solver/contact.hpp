@@ -18,7 +18,8 @@ inline constexpr int kMaxContactBodies = 32;
 inline constexpr double kBonded = -1.0;
 
 // The contact rules of a run. Empty (no bodies): one centre-of-mass velocity field for all.
-template <int D> struct ContactSettings {
+template <int D>
+struct ContactSettings {
   // Per body id: rigid (prescribed constant velocity `rigid_velocity`, no stress update).
   std::vector<char> rigid;
   std::vector<Vec<D>> rigid_velocity;
@@ -68,7 +69,7 @@ inline ContactLoss resolve_pair(Vec<D>& v_a, double m_a, Vec<D>& v_b, double m_b
   if (std::isinf(m_a) && std::isinf(m_b)) return loss;  // two rigid bodies
   const double m_r = std::isinf(m_a) ? m_b : std::isinf(m_b) ? m_a : m_a * m_b / (m_a + m_b);
   const Vec<D> w = v_b - v_a;
-  Vec<D> dw;  // change of the relative velocity
+  Vec<D> dw;       // change of the relative velocity
   if (mu < 0.0) {  // bonded
     dw = -w;
     loss.normal = 0.5 * m_r * w.squaredNorm();
@@ -77,7 +78,7 @@ inline ContactLoss resolve_pair(Vec<D>& v_a, double m_a, Vec<D>& v_b, double m_b
     if (!(wn > 0.0)) return loss;  // separating, or at rest along n: free
     const Vec<D> wt = w - wn * n;
     const double st = wt.norm();
-    const double stop = mu * wn;  // tangential speed friction can take out in this step
+    const double stop = mu * wn;                    // tangential speed friction can take out in this step
     const double s = st <= stop ? 1.0 : stop / st;  // fraction of the slip removed
     dw = -wn * n - s * wt;
     loss.normal = 0.5 * m_r * wn * wn;
