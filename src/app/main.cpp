@@ -169,6 +169,8 @@ int main(int argc, char** argv) {
   bench->add_option("--quadrature-points", bo.quadrature_points, "1, 2 or 3")->check(CLI::Range(1, 3));
   bench->add_option("--sort-every", bo.sort_every, "Sort the points by cell every N steps (0: never)")
       ->check(CLI::Range(0L, 1000000000L));
+  bench->add_option("--bodies", bo.bodies, "column: 1, or 2 (two halves in frictional contact, mu = tan phi)")
+      ->check(CLI::IsMember({1, 2}));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")->check(CLI::IsMember({"usf", "usl", "averaged"}));
 
   skred::PostCommands post(app);  // render, report
@@ -197,6 +199,10 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "skred: --dim 3 is available for --problem column only\n");
         return code::kUsage;
       }
+      if (bo.bodies == 2 && bo.problem != "column") {
+        fmt::print(stderr, "skred: --bodies 2 is available for --problem column only\n");
+        return code::kUsage;
+      }
       bo.threads = threads > 0 ? threads : omp_get_max_threads();
       bo.interpolation = interp == "linear" ? skred::Interpolation::Linear
                          : interp == "gimp" ? skred::Interpolation::Gimp
@@ -206,8 +212,9 @@ int main(int argc, char** argv) {
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
       const auto r = skred::run_bench(bo);
-      fmt::print("bench {}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
-                 bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "", r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
+      fmt::print("bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
+                 bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
+                 bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
                  bo.problem == "column" ? "usf" : scheme);
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n",

@@ -66,6 +66,16 @@ std::string column_text(const BenchOptions& opt) {
   const double h = 0.05 / opt.refine;
   const bool d3 = opt.dim == 3;
   const std::string z = d3 ? fmt::format(", {}", kSlabCells * h) : "", z0 = d3 ? ", 0.0" : "";
+  // One body, or its lower and upper halves in contact with mu = tan(30 deg) (--bodies 2).
+  auto body = [&](const char* name, double y0, double y1) {
+    return fmt::format("[[body]]\nname = \"{}\"\nmaterial = \"soil\"\nparticles_per_cell = 2\n"
+                       "shape = \"{}\"\nmin = [0.0, {}{}]\nmax = [2.0, {}{}]\n",
+                       name, d3 ? "box" : "rectangle", y0, z0, y1, z);
+  };
+  const std::string bodies =
+      opt.bodies == 2 ? body("lower", 0.0, 2.0) + body("upper", 2.0, 4.0) +
+                            "[[contact]]\nbodies = [\"lower\", \"upper\"]\nfriction = 0.5773502691896258\n"
+                      : body("column", 0.0, 4.0);
   return fmt::format(R"(
 [grid]
 size = [10.0, 4.5{2}]
@@ -78,12 +88,7 @@ young = 10e6
 poisson = 0.3
 friction = 30.0
 cohesion = 500.0
-[[body]]
-material = "soil"
-particles_per_cell = 2
-shape = "{4}"
-min = [0.0, 0.0{3}]
-max = [2.0, 4.0{2}]
+{7}
 [initial_stress]
 k0 = "poisson"
 [gravity]
@@ -100,7 +105,7 @@ scheme = "usf"
 time_step = 1e-4
 end_time = 1.0
 )", h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
-                     d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points);
+                     d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points, bodies);
 }
 
 template <int D> BenchResult run_column(const BenchOptions& opt) {

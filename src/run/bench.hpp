@@ -6,7 +6,9 @@
 //    per cell (12,800 points at refine 1), phi = 30, psi = 0, c = 0.5 kPa, E = 10 MPa,
 //    nu = 0.3, rho = 1800, K0 = nu/(1 - nu), roller sides, fixed base, USF, dt = 0.1 ms.
 //    With dim = 3 the same column as a slab 4 cells thick between roller z walls, 2 x 2 x 2
-//    points per cell (102,400 points at refine 1).
+//    points per cell (102,400 points at refine 1). With bodies = 2 the column is two bodies,
+//    its lower and upper half (y < 2 m, y > 2 m), in frictional contact with mu = tan(phi)
+//    (Paper III §C.2.7): the cost of contact.
 #pragma once
 #include <string>
 #include <utility>
@@ -29,6 +31,7 @@ struct BenchOptions {
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
   long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
+  int bodies = 1;                 // column: 2 for two halves in frictional contact
 };
 
 struct BenchResult {

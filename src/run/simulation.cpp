@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -40,6 +41,17 @@ template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   st.gravity_ramp_time = s.gravity_ramp_time;
   st.boundaries = s.boundaries;
   st.pic_fraction = s.pic_fraction;
+  // Contact (Paper III §C.2.7): every body its own fields when a pair has contact or a body
+  // is rigid; pairs without a [[contact]] entry stay bonded; hierarchy in body order.
+  const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
+  if (!s.contacts.empty() || rigid) {
+    st.contact.resize(static_cast<int>(s.bodies.size()));
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      st.contact.rigid[b] = s.bodies[b].rigid;
+      st.contact.rigid_velocity[b] = s.bodies[b].velocity;
+    }
+    for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
+  }
   return st;
 }
 
@@ -79,6 +91,7 @@ SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t
   r.stage = stage;
   r.runout = runout;
   r.yielding_points = t.yielding;
+  r.contact_work = e.contact_work;
   if constexpr (D == 3) r.momentum_z = t.momentum[2];
   return r;
 }
@@ -123,7 +136,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   std::vector<MaterialStrength> strength = material_strengths(s.materials);
   std::vector<Mat3> elastic_F;
   std::vector<Sym3> stress_from_Fe;
-  SeriesWriter series(outdir / "series.csv", D == 3);  // 3D: with momentum_z
+  SeriesWriter series(outdir / "series.csv", D == 3,  // 3D: with momentum_z
+                      solver.contact_on());            // contact: with contact_work
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);

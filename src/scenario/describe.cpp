@@ -120,10 +120,13 @@ template <int D> std::string describe(const ScenarioOf<D>& s) {
     const std::string mat = b.material >= 0 && static_cast<std::size_t>(b.material) < s.materials.size()
                                 ? s.materials[static_cast<std::size_t>(b.material)].name
                                 : "?";
-    line(fmt::format("  {}: {}, material {}, {} points per cell, velocity {} m/s", b.name,
+    line(fmt::format("  {}: {}, material {}, {} points per cell, velocity {} m/s{}", b.name,
                      shape_summary(b.shape), mat, D == 3 ? fmt::format("{0}x{0}x{0}", b.particles_per_cell) : fmt::format("{0}x{0}", b.particles_per_cell),
-                     vec(b.velocity)));
+                     vec(b.velocity), b.rigid ? ", rigid" : ""));
   }
+  for (const ContactPair& c : s.contacts)  // Paper III §C.2.7
+    line(fmt::format("contact: {} - {}, friction {}", s.bodies[static_cast<std::size_t>(c.a)].name,
+                     s.bodies[static_cast<std::size_t>(c.b)].name, c.friction));
   line(fmt::format("gravity: {} m/s^2", vec(s.gravity)));
   switch (s.initial_stress.rule) {
     case K0Rule::None: break;

@@ -415,6 +415,7 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   parse_splitting(root, s);
   scenario_detail::parse_gravity<D>(root, s);
   scenario_detail::parse_boundary<D>(root, s);
+  scenario_detail::parse_contacts<D>(root, s);
   parse_initial_stress(root, s);
   parse_solver(root, s);
   parse_stages(root, s);

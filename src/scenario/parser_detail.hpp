@@ -55,6 +55,8 @@ template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
 template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
+// The [[contact]] tables (parser_contact.cpp), after the bodies.
+template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
 
 // Layered ground (parser_ground.cpp): the [ground] surface, a "layer" body's profiles, and
 // the check that no two bodies claim the same points (unless the later one wins).

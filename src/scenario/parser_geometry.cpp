@@ -122,6 +122,7 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell"));
     b.velocity = t.vec_or<D>("velocity", Vec<D>::Zero());
     b.split = t.boolean_or("split", false);
+    b.rigid = t.boolean_or("rigid", false);  // a contact partner with the constant `velocity`
     if (const auto vs = t.table("velocity_sine", false)) {
       vs->allow_declared();
       b.velocity_sine.amplitude = vs->vec<D>("amplitude");

@@ -74,6 +74,9 @@ template <int D> struct BodyOf {
   Vec<D> velocity = Vec<D>::Zero();  // initial velocity
   SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
   bool split = false;  // its points split when they deform too much (Thesis §3.4)
+  // A rigid body moves with the constant `velocity` (zero: fixed), has no stress update and
+  // takes part in contact (Paper III §C.2.7) as a partner of infinite mass.
+  bool rigid = false;
 };
 using Body = BodyOf<2>;
 using Body3 = BodyOf<3>;
@@ -119,6 +122,13 @@ struct Stage {
   double rest_time = 0.0;
 };
 
+// Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies and the
+// Coulomb coefficient mu. Pairs without an entry stay bonded (one velocity field).
+struct ContactPair {
+  int a = 0, b = 0;
+  double friction = 0.0;
+};
+
 // What a scenario says apart from its geometry: the same in 2D and 3D.
 struct ScenarioCommon {
   std::string source;  // path of the scenario file (for messages)
@@ -148,6 +158,9 @@ struct ScenarioCommon {
   SplitSettings splitting;
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
+
+  // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables.
+  std::vector<ContactPair> contacts;
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

@@ -52,6 +52,8 @@ std::vector<Section> make_sections() {
       {.name = "grid", .type = Type::Table, .doc = "the background grid"},
       {.name = "material", .type = Type::Tables, .doc = "at least one material"},
       {.name = "body", .type = Type::Tables, .doc = "at least one body"},
+      {.name = "contact", .type = Type::Tables, .def = none("bodies bonded"),
+       .doc = "frictional contact between pairs of bodies (Paper III §C.2.7)"},
       {.name = "body_overlap", .type = Type::Choice, .def = derived("\"error\""),
        .choices = "error|later-wins",
        .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
@@ -94,6 +96,9 @@ std::vector<Section> make_sections() {
        .range = kVelocity, .doc = "initial velocity of every point"},
       {.name = "velocity_sine", .type = Type::Table, .def = none(),
        .doc = "adds a sine mode to the initial velocity (body.velocity_sine, below)"},
+      {.name = "rigid", .type = Type::Boolean, .def = derived("false"),
+       .doc = "a rigid body: moves with its constant `velocity` (0: fixed), no stress update, a "
+              "contact partner of infinite mass"},
       {.name = "split", .type = Type::Boolean, .def = derived("false"),
        .doc = "true: the body's points split when they deform too much (Thesis §3.4; [splitting])"},
       {.name = "shape", .type = Type::Choice,
@@ -156,6 +161,12 @@ std::vector<Section> make_sections() {
   s.push_back({"body (sphere)", "body-sphere", {
       {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
       {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+  }});
+  s.push_back({"contact", "contact", {
+      {.name = "bodies", .type = Type::BodyPair,
+       .doc = "the pair in contact; \"all\": every pair of bodies"},
+      {.name = "friction", .unit = "-", .range = Range::non_negative(10.0),
+       .doc = "the Coulomb coefficient mu of the pair (0: frictionless)"},
   }});
   s.push_back({"splitting", "splitting", {
       {.name = "alpha", .unit = "-", .def = value(2.0), .range = Range::closed(1.1, 100.0),
@@ -277,6 +288,7 @@ const char* to_string(Type t) {
     case Type::K0: return "string or number";
     case Type::Side: return "string or table";
     case Type::Profile: return "CSV file or [[x, y], ...]";
+    case Type::BodyPair: return "[name, name] or \"all\"";
   }
   return "?";
 }

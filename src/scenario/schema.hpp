@@ -51,6 +51,7 @@ enum class Type {
   K0,          // initial_stress.k0: a number or a rule name
   Side,        // a boundary side: a string or an inline table (boundary.side)
   Profile,     // a profile y(x): a CSV file name or inline [[x, y], ...] with x increasing
+  BodyPair,    // [name, name] of two [[body]] tables, or "all"
 };
 const char* to_string(Type t);
 

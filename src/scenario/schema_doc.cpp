@@ -53,6 +53,7 @@ std::string allowed_text(const Key& k) {
     case Type::Boolean: return "`true`, `false`";
     case Type::Side: return "see below";
     case Type::Profile: return "x strictly increasing; inside the grid";
+    case Type::BodyPair: return "two different body names, or `\"all\"`";
     case Type::String:
     case Type::Table:
     case Type::Tables: break;

@@ -96,6 +96,12 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   }
   fields_.resize(g.node_count(), settings_.pic_fraction > 0.0,
                  settings_.scheme != StressScheme::USF);
+  if (contact_on()) {  // every body's fields, from zero pages (only where it reaches)
+    bodies_.resize(static_cast<std::size_t>(settings_.contact.bodies()));
+    for (auto& b : bodies_)
+      b.resize(g.node_count(), settings_.pic_fraction > 0.0, settings_.scheme != StressScheme::USF);
+    contact_sums_.assign(static_cast<std::size_t>(16 * transfer_.threads()), 0.0);
+  }
 }
 
 template <int D> StepStatus ExplicitSolver<D>::step() {
@@ -109,7 +115,7 @@ template <int D> StepStatus ExplicitSolver<D>::step() {
 template <int D> StepStatus ExplicitSolver<D>::map_grid() {
   status_ = StepStatus{};
   dispatch([this](const auto& kernel) {
-    if (map_mass_momentum(kernel) && settings_.body_fields) map_body_fields(kernel);
+    if (map_mass_momentum(kernel) && (settings_.body_fields || contact_on())) map_body_fields(kernel);
   });
   grid_mapped_ = status_.ok;
   mapped_points_ = particles_.size();
@@ -123,9 +129,11 @@ template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
-  if (!grid_mapped_ && !map_mass_momentum(kernel)) return status_;
+  const bool fresh = !grid_mapped_;
+  if (fresh && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
-  if (settings_.body_fields) map_body_fields(kernel);
+  // With contact the last step mapped each body's fields; otherwise they are mapped here.
+  if (contact_on() ? fresh : settings_.body_fields) map_body_fields(kernel);
   if (!Scheme::advance(*this, kernel)) return status_;  // the failing step is steps() + 1
   grid_mapped_ = true;
   mapped_points_ = particles_.size();
@@ -153,7 +161,7 @@ template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(cons
     const auto& P = particles_;
     int count = 0;
     for (std::size_t p = 0; p < P.size(); ++p) count = std::max(count, P.body[p] + 1);
-    if (bodies_.size() < static_cast<std::size_t>(count)) {
+    if (!contact_on() && bodies_.size() < static_cast<std::size_t>(count)) {
       bodies_.resize(static_cast<std::size_t>(count));
       for (auto& b : bodies_)
         if (b.mass.empty()) {
@@ -171,11 +179,27 @@ template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(cons
                              f.momentum.data());
     }
     body_box_ = transfer_.box();
+    if (contact_on()) clear_mass_momentum();  // unused with contact; keep them zero
   });
 }
 
+// fn(fields, points) for each continuum whose points the phase updates: the centre-of-mass
+// fields and every point without contact; with contact each deformable body's own fields
+// and points (Paper III §C.2.7). Rigid bodies have phases of their own (contact.cpp).
+template <int D> template <class Fn> void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
+  if (!contact_on()) {
+    fn(static_cast<GridFields<D>&>(fields_), AllPoints{});
+    return;
+  }
+  for (int b = 0; b < settings_.contact.bodies(); ++b)
+    if (!settings_.contact.rigid[static_cast<std::size_t>(b)])
+      fn(static_cast<GridFields<D>&>(bodies_[static_cast<std::size_t>(b)]),
+         BodyPoints{particles_.body.data(), b});
+}
+
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) from v_i^k,
-// then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51).
+// then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51); with contact,
+// each body from and into its own fields.
 template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
@@ -184,55 +208,64 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
-    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    const StressArrays<D> S(P, materials_);
-    Vec<D>* const forces = fields_.internal_force.data();
-    transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-    const Vec<D>* __restrict vel = fields_.velocity.data();
     ScatterBuffers<D>& buffers = transfer_.scatter();
-    double work = 0.0, dissipation = 0.0;
-    long bad = LONG_MAX;
+    long first_bad = LONG_MAX;
+    for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      const StressArrays<D> S(P, materials_);
+      Vec<D>* const forces = f.internal_force.data();
+      transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
+      const Vec<D>* __restrict vel = f.velocity.data();
+      double work = 0.0, dissipation = 0.0;
+      long bad = LONG_MAX;
 #pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(min : bad)
-    {
-      const int t = omp_get_thread_num();
-      Vec<D>* __restrict force = buffers.vec_target(t, forces);
-      BaseSpan span;
+      {
+        const int t = omp_get_thread_num();
+        Vec<D>* __restrict force = buffers.vec_target(t, forces);
+        BaseSpan span;
 #pragma omp for schedule(static) nowait
-      for (long p = 0; p < n; ++p) {
-        typename K::Shape sh;
-        kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-        const Mat<D> grad_v = gather_gradient(sh, strides, vel);
-        const auto r = S.update(p, grad_v, dt_stress);
-        work += r.strain_energy;
-        dissipation += r.dissipation;
-        if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
-        const Mat<D> sv = -r.volume * sym_block<D>(S.stress[p]);
-        scatter_gradient(sh, strides, sv, force);
-        span.add(sh.base);
+        for (long p = 0; p < n; ++p) {
+          if (!sel(p)) continue;
+          typename K::Shape sh;
+          kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+          const Mat<D> grad_v = gather_gradient(sh, strides, vel);
+          const auto r = S.update(p, grad_v, dt_stress);
+          work += r.strain_energy;
+          dissipation += r.dissipation;
+          if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
+          const Mat<D> sv = -r.volume * sym_block<D>(S.stress[p]);
+          scatter_gradient(sh, strides, sv, force);
+          span.add(sh.base);
+        }
+        buffers.touched(t, span);
       }
-      buffers.touched(t, span);
-    }
-    transfer_.reduce(nullptr, forces);
-    energy_.strain_energy += work;
-    energy_.plastic_dissipation += dissipation;
-    if (bad != LONG_MAX)
-      status_ = {false, bad, "material point became unstable (inverted or non-finite stress)"};
-    return bad == LONG_MAX;
+      transfer_.reduce(nullptr, forces);
+      energy_.strain_energy += work;
+      energy_.plastic_dissipation += dissipation;
+      first_bad = std::min(first_bad, bad);
+    });
+    if (first_bad != LONG_MAX)
+      status_ = {false, first_bad, "material point became unstable (inverted or non-finite stress)"};
+    return first_bad == LONG_MAX;
   });
 }
 
 // f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51) from the stresses as they are (USL).
 template <int D> template <class K> void ExplicitSolver<D>::internal_force(const K& kernel) {
   timer_.time(Phase::InternalForce, [&] {
-    Vec<D>* const forces = fields_.internal_force.data();
-    transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-    p2g_internal_force(transfer_, kernel, particles_, forces);
+    for_each_continuum([&](GridFields<D>& f, auto sel) {
+      Vec<D>* const forces = f.internal_force.data();
+      transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
+      p2g_internal_force(transfer_, kernel, particles_, forces, sel);
+    });
   });
 }
 
 // Thesis eq. 2.56: v_p^{k+1} = v_p + dt sum N_ip a_i (with a PIC share, if set), and the
 // updated particle momenta mapped back to the grid, p~_i = sum N_ip m_p v_p^{k+1} (the double
-// mapping of USL and the averaged scheme, step 6 of §4.4).
+// mapping of USL and the averaged scheme, step 6 of §4.4). With contact, each body from and
+// into its own fields.
 template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
   timer_.time(Phase::VelocityRemap, [&] {
     const GridGeometry<D>& g = grid();
@@ -240,38 +273,43 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict v = P.v.data();
-    const double* __restrict pmass = P.mass.data();
-    const Vec<D>* __restrict acc = fields_.acceleration.data();
-    const Vec<D>* __restrict vnext = fields_.velocity_next.data();
-    Vec<D>* const remap = fields_.momentum_remap.data();  // zero: see remap_velocity
     const double alpha = settings_.pic_fraction;
     ScatterBuffers<D>& buffers = transfer_.scatter();
+    for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict v = P.v.data();
+      const double* __restrict pmass = P.mass.data();
+      const Vec<D>* __restrict acc = f.acceleration.data();
+      const Vec<D>* __restrict vnext = f.velocity_next.data();
+      Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
 #pragma omp parallel num_threads(threads())
-    {
-      const int t = omp_get_thread_num();
-      Vec<D>* __restrict mom = buffers.vec_target(t, remap);
-      BaseSpan span;
+      {
+        const int t = omp_get_thread_num();
+        Vec<D>* __restrict mom = buffers.vec_target(t, remap);
+        BaseSpan span;
 #pragma omp for schedule(static) nowait
-      for (long p = 0; p < n; ++p) {
-        typename K::Shape sh;
-        kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
-        v[p] = vp;
-        scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
-        span.add(sh.base);
+        for (long p = 0; p < n; ++p) {
+          if (!sel(p)) continue;
+          typename K::Shape sh;
+          kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+          v[p] = vp;
+          scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
+          span.add(sh.base);
+        }
+        buffers.touched(t, span);
       }
-      buffers.touched(t, span);
-    }
-    transfer_.reduce(nullptr, remap);
+      transfer_.reduce(nullptr, remap);
+    });
+    if (contact_on()) rigid_velocity();
   });
 }
 
 // Second half of USL / averaged (steps 7-8 of §4.4): strain increment from the remapped
 // velocities v~_i, stress update (with F^{k+1} = dF F, eq. 3.2), then the position update
 // x_p += dt sum N_ip (v_i^k + v_i^{k+1}) / 2 (eq. 2.55, Post eq. 31), and the next step's
-// maps at x^{k+1} (eq. 2.53-2.54).
+// maps at x^{k+1} (eq. 2.53-2.54). With contact, each body from and into its own fields.
 template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_stress) {
@@ -281,106 +319,193 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict x = P.x.data();
-    const Vec<D>* __restrict v = P.v.data();
-    const Vec<D>* __restrict half0 = P.half0.data();
-    const double* __restrict pmass = P.mass.data();
-    const StressArrays<D> S(P, materials_);
-    const Vec<D>* __restrict vel = fields_.velocity_move.data();
-    const Vec<D>* __restrict vnew = fields_.velocity_remap.data();  // v~_i
     ScatterBuffers<D>& buffers = transfer_.scatter();
-    double work = 0.0, dissipation = 0.0;
-    Vec<D> mdx = Vec<D>::Zero();
-    long bad = LONG_MAX;
-    Extent<D> extent;  // of the moved points
+    long first_bad = LONG_MAX;
+    Extent<D> all;  // of every moved point
+    for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict x = P.x.data();
+      const Vec<D>* __restrict v = P.v.data();
+      const Vec<D>* __restrict half0 = P.half0.data();
+      const double* __restrict pmass = P.mass.data();
+      const StressArrays<D> S(P, materials_);
+      const Vec<D>* __restrict vel = f.velocity_move.data();
+      const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
+      double work = 0.0, dissipation = 0.0;
+      Vec<D> mdx = Vec<D>::Zero();
+      long bad = LONG_MAX;
+      Extent<D> extent;  // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(vsum : mdx) \
     reduction(min : bad) reduction(merge : extent)
-    {
-      const int t = omp_get_thread_num();
-      double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
-      Vec<D>* __restrict mom = buffers.vec_target(t, fields_.momentum.data());
-      BaseSpan span;
+      {
+        const int t = omp_get_thread_num();
+        double* __restrict mass = buffers.mass_target(t, f.mass.data());
+        Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
+        BaseSpan span;
 #pragma omp for schedule(static) nowait
-      for (long p = 0; p < n; ++p) {
-        typename K::Shape sh;
-        kernel.load(shape[p], g, x[p], half0[p], sh);
-        const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
-        const Vec<D> vmove = gather(sh, strides, vel);
-        const auto r = S.update(p, grad_v, dt_stress);
-        work += r.strain_energy;
-        dissipation += r.dissipation;
-        mdx += pmass[p] * dt * vmove;
-        if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-            !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
-          bad = std::min(bad, p);
-        extent.add(x[p]);
+        for (long p = 0; p < n; ++p) {
+          if (!sel(p)) continue;
+          typename K::Shape sh;
+          kernel.load(shape[p], g, x[p], half0[p], sh);
+          const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+          const Vec<D> vmove = gather(sh, strides, vel);
+          const auto r = S.update(p, grad_v, dt_stress);
+          work += r.strain_energy;
+          dissipation += r.dissipation;
+          mdx += pmass[p] * dt * vmove;
+          if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
+              !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
+            bad = std::min(bad, p);
+          extent.add(x[p]);
+        }
+        buffers.touched(t, span);
       }
-      buffers.touched(t, span);
-    }
-    transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
-    transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
-    energy_.strain_energy += work;
-    energy_.plastic_dissipation += dissipation;
-    energy_.gravity_work += gravity_now_.dot(mdx);
-    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
-    return bad == LONG_MAX;
+      transfer_.set_box(extent);  // the reduction must cover the moved points' reach
+      transfer_.reduce(f.mass.data(), f.momentum.data());
+      energy_.strain_energy += work;
+      energy_.plastic_dissipation += dissipation;
+      energy_.gravity_work += gravity_now_.dot(mdx);
+      first_bad = std::min(first_bad, bad);
+      all.merge(extent);
+    });
+    if (contact_on()) first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
+    transfer_.set_box(all);  // the next step's box
+    if (contact_on()) body_box_ = transfer_.box();
+    if (first_bad != LONG_MAX) status_ = {false, first_bad, "material point became unstable or left the grid"};
+    return first_bad == LONG_MAX;
   });
 }
 
 // USF's last phase: v_p^{k+1} (eq. 2.56), x_p^{k+1} (eq. 2.55, Post eq. 31) and the next
-// step's maps at x^{k+1} (eq. 2.53-2.54).
+// step's maps at x^{k+1} (eq. 2.53-2.54). With contact, each body from and into its own
+// fields.
 template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   return timer_.time(Phase::VelocityMoveMap, [&] {
-    clear_mass_momentum();  // m_i and p_i of this step are used up: the next step's map
+    // m_i and p_i of this step are used up: the next step's map
+    if (contact_on()) clear_body_mass_momentum();
+    else clear_mass_momentum();
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-    Vec<D>* __restrict x = P.x.data();
-    Vec<D>* __restrict v = P.v.data();
-    const Vec<D>* __restrict half0 = P.half0.data();
-    const double* __restrict pmass = P.mass.data();
-    const Mat<D>* __restrict F = P.F.data();
-    const Vec<D>* __restrict acc = fields_.acceleration.data();
-    const Vec<D>* __restrict vel = fields_.velocity_move.data();
-    const Vec<D>* __restrict vnext = fields_.velocity_next.data();
     const double alpha = settings_.pic_fraction;
     ScatterBuffers<D>& buffers = transfer_.scatter();
-    Vec<D> mdx = Vec<D>::Zero();
-    long bad = LONG_MAX;
-    Extent<D> extent;  // of the moved points
+    long first_bad = LONG_MAX;
+    Extent<D> all;  // of every moved point
+    for_each_continuum([&](GridFields<D>& f, auto sel) {
+      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
+      typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+      Vec<D>* __restrict x = P.x.data();
+      Vec<D>* __restrict v = P.v.data();
+      const Vec<D>* __restrict half0 = P.half0.data();
+      const double* __restrict pmass = P.mass.data();
+      const Mat<D>* __restrict F = P.F.data();
+      const Vec<D>* __restrict acc = f.acceleration.data();
+      const Vec<D>* __restrict vel = f.velocity_move.data();
+      const Vec<D>* __restrict vnext = f.velocity_next.data();
+      Vec<D> mdx = Vec<D>::Zero();
+      long bad = LONG_MAX;
+      Extent<D> extent;  // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
     reduction(merge : extent)
+      {
+        const int t = omp_get_thread_num();
+        double* __restrict mass = buffers.mass_target(t, f.mass.data());
+        Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
+        BaseSpan span;
+#pragma omp for schedule(static) nowait
+        for (long p = 0; p < n; ++p) {
+          if (!sel(p)) continue;
+          typename K::Shape sh;
+          kernel.load(shape[p], g, x[p], half0[p], sh);
+          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+          v[p] = vp;
+          const Vec<D> vmove = gather(sh, strides, vel);
+          mdx += pmass[p] * dt * vmove;
+          if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
+              !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
+            bad = std::min(bad, p);
+          extent.add(x[p]);
+        }
+        buffers.touched(t, span);
+      }
+      transfer_.set_box(extent);  // the reduction must cover the moved points' reach
+      transfer_.reduce(f.mass.data(), f.momentum.data());
+      energy_.gravity_work += gravity_now_.dot(mdx);
+      first_bad = std::min(first_bad, bad);
+      all.merge(extent);
+    });
+    if (contact_on()) {
+      rigid_velocity();
+      first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
+    }
+    transfer_.set_box(all);  // the next step's box
+    if (contact_on()) body_box_ = transfer_.box();
+    if (first_bad != LONG_MAX) status_ = {false, first_bad, "material point became unstable or left the grid"};
+    return first_bad == LONG_MAX;
+  });
+}
+
+// The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.
+template <int D> void ExplicitSolver<D>::rigid_velocity() {
+  const ContactSettings<D>& c = settings_.contact;
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+#pragma omp parallel for num_threads(threads()) schedule(static)
+  for (long p = 0; p < n; ++p) {
+    const auto b = static_cast<std::size_t>(P.body[p]);
+    if (c.rigid[b]) P.v[p] = c.rigid_velocity[b];
+  }
+}
+
+// The rigid bodies' points (contact runs): no stress update; x_p += dt v (only when the body
+// moves), then their mass and momentum mapped into their body's fields for the next step
+// (their mass gives the contact normal). `all` grows by their extent. Returns the first point
+// that left the grid, or LONG_MAX.
+template <int D> template <class K> long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
+  const ContactSettings<D>& c = settings_.contact;
+  const GridGeometry<D>& g = grid();
+  const NodeStrides<D> strides = transfer_.strides();
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  const double dt = settings_.dt;
+  typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+  ScatterBuffers<D>& buffers = transfer_.scatter();
+  long first_bad = LONG_MAX;
+  for (int b = 0; b < c.bodies(); ++b) {
+    if (!c.rigid[static_cast<std::size_t>(b)]) continue;
+    GridFields<D>& f = bodies_[static_cast<std::size_t>(b)];
+    const Vec<D> vr = c.rigid_velocity[static_cast<std::size_t>(b)];
+    const bool moving = vr.squaredNorm() > 0.0;
+    long bad = LONG_MAX;
+    Extent<D> extent;
+#pragma omp parallel num_threads(threads()) reduction(min : bad) reduction(merge : extent)
     {
       const int t = omp_get_thread_num();
-      double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
-      Vec<D>* __restrict mom = buffers.vec_target(t, fields_.momentum.data());
+      double* __restrict mass = buffers.mass_target(t, f.mass.data());
+      Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
       BaseSpan span;
 #pragma omp for schedule(static) nowait
       for (long p = 0; p < n; ++p) {
-        typename K::Shape sh;
-        kernel.load(shape[p], g, x[p], half0[p], sh);
-        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
-        v[p] = vp;
-        const Vec<D> vmove = gather(sh, strides, vel);
-        mdx += pmass[p] * dt * vmove;
-        if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-            !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
+        if (P.body[p] != b) continue;
+        if (moving) P.x[p] += dt * vr;
+        if (!g.inside(P.x[p]) ||
+            !map_point(kernel, g, strides, P.x[p], P.half0[p], P.F[p], P.mass[p], vr, shape[p], mass, mom, span))
           bad = std::min(bad, p);
-        extent.add(x[p]);
+        extent.add(P.x[p]);
       }
       buffers.touched(t, span);
     }
-    transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
-    transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
-    energy_.gravity_work += gravity_now_.dot(mdx);
-    if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
-    return bad == LONG_MAX;
-  });
+    transfer_.set_box(extent);
+    transfer_.reduce(f.mass.data(), f.momentum.data());
+    first_bad = std::min(first_bad, bad);
+    all.merge(extent);
+  }
+  return first_bad;
 }
+
 
 template class ExplicitSolver<2>;
 template class ExplicitSolver<3>;

@@ -16,6 +16,7 @@
 #include "material/material.hpp"
 #include "shape/interpolation.hpp"
 #include "solver/boundary.hpp"
+#include "solver/contact.hpp"
 #include "solver/grid_fields.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
@@ -37,6 +38,10 @@ template <int D> struct SolverSettings {
   double pic_fraction = 0.0;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
+  // Multi-continuum contact (Paper III §C.2.7; contact.hpp): empty, every body shares the
+  // centre-of-mass velocity field; set, each body moves with its own fields and the contact
+  // phase couples them. Rigid bodies need it.
+  ContactSettings<D> contact;
 };
 
 // Running totals kept by the solver (energy bookkeeping, Thesis eq. 4.15-4.17, 5.13).
@@ -44,6 +49,11 @@ struct EnergyTotals {
   double strain_energy = 0.0;        // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
   double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
+  // Kinetic energy the contact phase took out of the nodal velocities (>= 0 every step;
+  // Paper III §C.2.7): friction work (friction impulse times mean slip speed) plus the
+  // inelastic stop of the approach; friction_work is the first part alone.
+  double contact_work = 0.0;
+  double friction_work = 0.0;
 };
 
 // The solver's state between two steps beyond the particles and the scenario, for a
@@ -101,8 +111,10 @@ template <int D> class ExplicitSolver {
   ParticleTotals<D> totals() const;
   const GridGeometry<D>& grid() const { return transfer_.grid(); }
   const GridFields<D>& fields() const { return fields_; }
-  // Per-body mass and momentum of the step's start (settings.body_fields), indexed by body id.
+  // Per-body mass and momentum of the step's start (settings.body_fields, or contact), indexed
+  // by body id; with contact also each body's velocities and forces.
   const std::vector<BodyFields<D>>& body_fields() const { return bodies_; }
+  bool contact_on() const { return settings_.contact.enabled(); }
   const SolverSettings<D>& settings() const { return settings_; }
   int threads() const { return transfer_.threads(); }
   // Seconds spent in each phase since the solver was made.
@@ -161,12 +173,24 @@ template <int D> class ExplicitSolver {
   template <class K> bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K> void internal_force(const K& kernel);             // eq. 2.51
   void grid_update();                                                  // eq. 2.49, 5.8-5.11
-  void contact() {}  // multi-body contact (Paper III §C.2.7): not yet, bodies share v_i
+  void contact();                                                      // Paper III §C.2.7, C.36
   template <class K> void velocity_and_remap(const K& kernel);         // eq. 2.56, §4.4 step 6
   void remap_velocity();                                               // v~_i = p~_i / m_i
   template <class K> bool stress_update_move_and_map(const K& kernel, double dt_stress);
   template <class K> bool velocity_move_and_map(const K& kernel);      // eq. 2.55-2.56
   void clear_mass_momentum();
+  // The grid phases per body in a run with contact (contact.cpp).
+  void body_nodal_velocity();
+  void body_grid_update();
+  void body_remap_velocity();
+  void clear_body_mass_momentum();
+  template <class Get, class Set> ContactLoss couple_nodes(Get&& get, Set&& set);
+  // fn(fields, points, body) for each continuum: the centre-of-mass fields and every point
+  // without contact; each deformable body's fields and points with it.
+  template <class Fn> void for_each_continuum(Fn&& fn);
+  // Rigid bodies' points: velocity set, moved (if their velocity is not zero) and mapped.
+  void rigid_velocity();
+  template <class K> long move_and_map_rigid(const K& kernel, Extent<D>& all);
 
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
 
@@ -179,6 +203,7 @@ template <int D> class ExplicitSolver {
   GridFields<D> fields_;
   std::vector<BodyFields<D>> bodies_;
   NodeBox<D> body_box_;  // where the body fields were last written
+  std::vector<double> contact_sums_;  // per-thread work sums of the contact phase
   PhaseTimer timer_;
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.

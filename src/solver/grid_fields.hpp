@@ -42,11 +42,10 @@ template <int D> struct GridFields {
   std::size_t size() const { return mass.size(); }
 };
 
-// The mass and momentum of one body (continuum) on the grid, beside the centre-of-mass
-// fields above: what multi-continuum contact (Paper III §C.2.7) works on.
-template <int D> struct BodyFields {
-  GridArray<double> mass;      // m_i^b
-  GridArray<Vec<D>> momentum;  // p_i^b
-};
+// The fields of one body (continuum) on the grid, beside the centre-of-mass fields above:
+// what multi-continuum contact (Paper III §C.2.7) works on. Without contact only m_i^b and
+// p_i^b are allocated; with contact every array, each with the meaning above for body b
+// alone (f_i^int,b, a_i^b after contact, ...).
+template <int D> struct BodyFields : GridFields<D> {};
 
 }  // namespace skred

@@ -12,6 +12,7 @@ namespace skred {
 // Thesis eq. 2.23: v_i^k = p_i / m_i, then the velocity boundary conditions.
 template <int D> void ExplicitSolver<D>::nodal_velocity() {
   timer_.time(Phase::NodalVelocity, [&] {
+    if (contact_on()) return body_nodal_velocity();  // each body its own (contact.cpp)
     const double* __restrict mass = fields_.mass.data();
     const Vec<D>* __restrict mom = fields_.momentum.data();
     Vec<D>* __restrict vel = fields_.velocity.data();
@@ -28,6 +29,7 @@ template <int D> void ExplicitSolver<D>::nodal_velocity() {
 // step's map.
 template <int D> void ExplicitSolver<D>::remap_velocity() {
   timer_.time(Phase::RemapVelocity, [&] {
+    if (contact_on()) return body_remap_velocity();  // each body its own (contact.cpp)
     double* __restrict mass = fields_.mass.data();
     Vec<D>* __restrict mom = fields_.momentum.data();
     Vec<D>* __restrict remap = fields_.momentum_remap.data();
@@ -55,6 +57,7 @@ template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
 // 31). Then the boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
 template <int D> void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
+    if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
     const Vec<D> g = gravity_now_;
     const double dt = settings_.dt, half_dt = 0.5 * dt;
     transfer_.for_box([&](std::size_t i) {

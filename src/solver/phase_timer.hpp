@@ -18,7 +18,7 @@ enum class Phase {
   StressUpdateForce,        // stress update, then p2g of f_i^int (USF, averaged first half)
   InternalForce,            // p2g of f_i^int from the current stresses (USL)
   GridUpdate,               // a_i, v_i^{k+1}, boundaries (eq. 2.49, 5.8-5.11)
-  Contact,                  // contact between bodies (a no-op until multi-body contact)
+  Contact,                  // contact between bodies (Paper III §C.2.7; runs with contact only)
   VelocityRemap,            // g2p of v_p, p2g of p~_i (USL, averaged)
   RemapVelocity,            // v~_i = p~_i / m_i (USL, averaged)
   StressUpdateMoveMap,      // stress update, g2p of x_p, next step's p2g (USL, averaged)

@@ -13,6 +13,17 @@
 
 namespace skred {
 
+// Which points a map covers: all of them, or the points of one body (continuum, Paper III
+// §C.2.7) in a run with contact.
+struct AllPoints {
+  [[gnu::always_inline]] bool operator()(long) const { return true; }
+};
+struct BodyPoints {
+  const std::int16_t* __restrict body;
+  int id;
+  [[gnu::always_inline]] bool operator()(long p) const { return body[p] == id; }
+};
+
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
 // rest of the step, and its mass and momentum mapped to the nodes. False if the point's
 // stencil does not fit in the grid.
@@ -70,13 +81,14 @@ long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, d
   return bad == LONG_MAX ? -1 : bad;
 }
 
-// The same maps restricted to the points of one body (continuum, Paper III §C.2.7), from the
-// weights stored by the last p2g_mass_momentum: m_i^b and p_i^b into zeroed arrays.
+// The same maps restricted to the points of one body (continuum, Paper III §C.2.7): m_i^b and
+// p_i^b into zeroed arrays. The weighting functions are evaluated as p2g_mass_momentum does
+// (not loaded from the stored ones, which can differ in the last bit), so that this map equals
+// the per-body map that ends a step with contact bit for bit.
 template <int D, class K>
 void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, int body,
                             double* m, Vec<D>* p) {
   const long n = static_cast<long>(P.size());
-  const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
 #pragma omp parallel num_threads(T.threads())
   {
@@ -88,7 +100,7 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
     for (long q = 0; q < n; ++q) {
       if (P.body[q] != body) continue;
       typename K::Shape sh;
-      kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
+      if (!kernel.shape(T.grid(), P.x[q], P.half0[q], P.F[q], sh)) continue;  // reported by the map
       span.add(sh.base);
       scatter(sh, T.strides(), P.mass[q], mass);
       scatter(sh, T.strides(), Vec<D>(P.mass[q] * P.v[q]), mom);
@@ -98,10 +110,11 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
   T.reduce(m, p);
 }
 
-// f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses, into
-// a zeroed array f.
-template <int D, class K>
-void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f) {
+// f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses (of
+// the points `sel` selects), into a zeroed array f.
+template <int D, class K, class Sel = AllPoints>
+void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f,
+                        Sel sel = {}) {
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
@@ -112,6 +125,7 @@ void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, 
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long q = 0; q < n; ++q) {
+      if (!sel(q)) continue;
       typename K::Shape sh;
       kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
       const Mat<D> sv = -P.volume(static_cast<std::size_t>(q)) * sym_block<D>(P.stress[q]);

@@ -1,0 +1,232 @@
+// Multi-continuum frictional contact (Paper III §C.2.7, eq. C.36): the grid phases of a run
+// with contact, where each body (continuum) has its own nodal fields, and the contact phase
+// that couples the bodies at the nodes they share. docs/method.md, "Contact".
+#include <omp.h>
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "solver/contact.hpp"
+#include "solver/explicit_solver.hpp"
+
+namespace skred {
+
+namespace {
+
+// The direction of grad m_i of a nodal mass field at node i: the density gradient that gives
+// the contact normals (York et al. 1999), as the derivative of the nodal masses smoothed
+// over 5 nodes per axis (binomial weights 1-4-6-4-1, their derivative -1-2-0-2-1 along the
+// axis; nodes beyond the grid's edge left out). The smoothing keeps the normals of a sloped
+// surface, which the points resolve as a staircase, within a few degrees.
+template <int D>
+Vec<D> mass_gradient(const GridGeometry<D>& g, const double* __restrict mass, std::size_t i,
+                     const std::array<int, D>& ij) {
+  constexpr int R = 2, W = 2 * R + 1;
+  constexpr double smooth[W] = {1, 4, 6, 4, 1}, slope[W] = {-1, -2, 0, 2, 1};
+  constexpr int count = D == 2 ? W * W : W * W * W;
+  Vec<D> grad = Vec<D>::Zero();
+  for (int o = 0; o < count; ++o) {
+    int k[D];
+    long j = static_cast<long>(i);
+    bool inside = true;
+    for (int d = 0, r = o; d < D; ++d, r /= W) {
+      k[d] = r % W;
+      const int node = ij[d] + k[d] - R;
+      inside = inside && node >= 0 && node < g.nodes(d);
+      j += (k[d] - R) * static_cast<long>(g.stride(d));
+    }
+    if (!inside) continue;
+    const double m = mass[j];
+    if (m == 0.0) continue;
+    for (int d = 0; d < D; ++d) {
+      double w = slope[k[d]];
+      for (int e = 0; e < D; ++e)
+        if (e != d) w *= smooth[k[e]];
+      grad[d] += w * m;
+    }
+  }
+  return grad;
+}
+
+}  // namespace
+
+// v_i^k,b = p_i^b / m_i^b under the velocity boundary conditions (eq. 2.23) for each
+// deformable body; a rigid body's prescribed velocity wherever it has mass.
+template <int D>
+void ExplicitSolver<D>::body_nodal_velocity() {
+  const ContactSettings<D>& c = settings_.contact;
+  for (int b = 0; b < c.bodies(); ++b) {
+    BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
+    const bool rigid = c.rigid[static_cast<std::size_t>(b)];
+    const Vec<D> vr = c.rigid_velocity[static_cast<std::size_t>(b)];
+    transfer_.for_box([&](std::size_t i) {
+      const double m = f.mass[i];
+      f.velocity[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum[i] / m);
+    });
+    if (!rigid) boundaries_.constrain_velocity(f.velocity);
+  }
+}
+
+// Eq. 2.49, 2.52 for each deformable body on its own: a_i^b = f_i^int,b / m_i^b + g, the
+// walls (eq. 5.8-5.11) on its nodes; a rigid body neither accelerates nor meets the walls.
+template <int D>
+void ExplicitSolver<D>::body_grid_update() {
+  const ContactSettings<D>& c = settings_.contact;
+  const Vec<D> g = gravity_now_;
+  const double dt = settings_.dt, half_dt = 0.5 * dt;
+  const bool pic = settings_.pic_fraction > 0.0;
+  for (int b = 0; b < c.bodies(); ++b) {
+    BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
+    if (c.rigid[static_cast<std::size_t>(b)]) {
+      transfer_.for_box([&](std::size_t i) {
+        f.acceleration[i].setZero();
+        f.velocity_move[i] = f.velocity[i];
+        if (pic) f.velocity_next[i] = f.velocity[i];
+      });
+      continue;
+    }
+    transfer_.for_box([&](std::size_t i) {
+      const double m = f.mass[i];
+      const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
+      f.acceleration[i] = a;
+      f.velocity_move[i] = f.velocity[i] + half_dt * a;
+    });
+    boundaries_.constrain_end_of_step(f, dt);
+    if (pic)
+      transfer_.for_box([&](std::size_t i) {
+        const double m = f.mass[i];
+        f.velocity_next[i] = m > 0.0 ? Vec<D>(f.momentum[i] / m + dt * f.acceleration[i]) : Vec<D>::Zero();
+      });
+  }
+}
+
+// v~_i^b = p~_i^b / m_i^b under the velocity conditions for each deformable body (a rigid
+// body: its velocity): the remap of its points' velocities, which took the contact
+// correction in g2p; m_i^b, p_i^b and p~_i^b cleared behind for the next step's map.
+template <int D>
+void ExplicitSolver<D>::body_remap_velocity() {
+  const ContactSettings<D>& c = settings_.contact;
+  for (int b = 0; b < c.bodies(); ++b) {
+    BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
+    const bool rigid = c.rigid[static_cast<std::size_t>(b)];
+    const Vec<D> vr = c.rigid_velocity[static_cast<std::size_t>(b)];
+    transfer_.for_box([&](std::size_t i) {
+      const double m = f.mass[i];
+      f.velocity_remap[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum_remap[i] / m);
+      f.mass[i] = 0.0;
+      f.momentum[i].setZero();
+      f.momentum_remap[i].setZero();
+    });
+    if (!rigid) boundaries_.constrain_velocity(f.velocity_remap);
+  }
+}
+
+template <int D>
+void ExplicitSolver<D>::clear_body_mass_momentum() {
+  for (BodyFields<D>& f : bodies_)
+    transfer_.for_box([&](std::size_t i) {
+      f.mass[i] = 0.0;
+      f.momentum[i].setZero();
+    });
+}
+
+// Paper III §C.2.7. A node is an interface node when more than one continuum has mass there
+// (where v_i^CM - v_i^c != 0 can hold, eq. C.36). The continua present are taken in the
+// order of the hierarchy: the master's outward normal is minus its mass gradient, the
+// second's is the opposite, n = grad m^1 / |grad m^1|, and continuum k's is the normalised
+// gradient of the combined mass of the k - 1 before it (York et al. 1999; Paper III). Each
+// pair (j, k), j < k, is then resolved with k's normal by the Coulomb rule of resolve_pair
+// (contact.hpp) on the velocities get(f, i) of the bodies' fields f at node i; set(f, i, v)
+// stores the result of each deformable body. Equal and opposite impulses: momentum is
+// conserved to round-off; kinetic energy only decreases. Returns the loss summed over nodes.
+template <int D>
+template <class Get, class Set>
+ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
+  const ContactSettings<D>& c = settings_.contact;
+  const GridGeometry<D>& g = grid();
+  constexpr std::size_t kPad = 16;  // one cache line of sums per thread
+  std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
+  transfer_.for_box([&](std::size_t i) {
+    // The continua with mass at node i, in hierarchy order.
+    int present[kMaxContactBodies];
+    int count = 0;
+    for (int b : c.order)
+      if (bodies_[static_cast<std::size_t>(b)].mass[i] > 0.0) present[count++] = b;
+    if (count < 2) return;
+    Vec<D> v[kMaxContactBodies], grad[kMaxContactBodies];
+    double m[kMaxContactBodies];
+    const auto ij = g.unflatten(i);
+    for (int k = 0; k < count; ++k) {
+      const auto b = static_cast<std::size_t>(present[k]);
+      const BodyFields<D>& f = bodies_[b];
+      m[k] = c.rigid[b] ? INFINITY : f.mass[i];
+      v[k] = c.rigid[b] ? c.rigid_velocity[b] : get(f, i);
+      grad[k] = mass_gradient<D>(g, f.mass.data(), i, ij);
+    }
+    ContactLoss sum;
+    Vec<D> upper = grad[0];  // gradient of the combined mass of the continua above k
+    for (int k = 1; k < count; ++k) {
+      const double len = upper.norm();
+      const Vec<D> n = len > 0.0 ? Vec<D>(upper / len) : Vec<D>::Zero();
+      for (int j = 0; j < k; ++j) {
+        const double mu = c.mu(present[j], present[k]);
+        if (mu >= 0.0 && !(len > 0.0)) continue;  // no normal: no contact to resolve
+        const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu);
+        assert(loss.normal >= 0.0 && loss.friction >= 0.0);  // contact never creates energy
+        sum.normal += loss.normal;
+        sum.friction += loss.friction;
+      }
+      upper += grad[k];
+    }
+    for (int k = 0; k < count; ++k) {
+      const auto b = static_cast<std::size_t>(present[k]);
+      if (!c.rigid[b]) set(bodies_[b], i, v[k]);
+    }
+    double* s = &contact_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())];
+    s[0] += sum.normal;
+    s[1] += sum.friction;
+  });
+  ContactLoss total;
+  for (std::size_t t = 0; t < contact_sums_.size(); t += kPad) {
+    total.normal += contact_sums_[t];
+    total.friction += contact_sums_[t + 1];
+  }
+  return total;
+}
+
+// The contact phase (Paper III §C.2.7): couple_nodes on the trial end-of-step velocities
+// v_i^k,b + dt a_i^b (after the walls); the coupled velocity v_i^{k+1,b} becomes each body's
+// a_i^b = (v_i^{k+1,b} - v_i^k,b) / dt, v_move and v_next, which its points take in g2p.
+// What it takes out of the kinetic energy is the contact work (>= 0).
+template <int D>
+void ExplicitSolver<D>::contact() {
+  if (!contact_on()) return;
+  timer_.time(Phase::Contact, [&] {
+    const double dt = settings_.dt;
+    const bool pic = settings_.pic_fraction > 0.0;
+    const ContactLoss loss = couple_nodes(
+        [dt](const BodyFields<D>& f, std::size_t i) {
+          return Vec<D>(f.momentum[i] / f.mass[i] + dt * f.acceleration[i]);
+        },
+        [dt, pic](BodyFields<D>& f, std::size_t i, const Vec<D>& v) {
+          f.acceleration[i] = (v - f.momentum[i] / f.mass[i]) / dt;
+          f.velocity_move[i] = 0.5 * (f.velocity[i] + v);
+          if (pic) f.velocity_next[i] = v;
+        });
+    energy_.contact_work += loss.normal + loss.friction;
+    energy_.friction_work += loss.friction;
+  });
+}
+
+#define SKRED_CONTACT_PHASES(D)                                \
+  template void ExplicitSolver<D>::body_nodal_velocity();      \
+  template void ExplicitSolver<D>::body_grid_update();         \
+  template void ExplicitSolver<D>::body_remap_velocity();      \
+  template void ExplicitSolver<D>::clear_body_mass_momentum(); \
+  template void ExplicitSolver<D>::contact();
+SKRED_CONTACT_PHASES(2)
+SKRED_CONTACT_PHASES(3)
+#undef SKRED_CONTACT_PHASES
+
+}  // namespace skred
