@@ -61,6 +61,9 @@ template <int D> struct Particles {
   // Plastic shear strain at the start of the stage (like x_ref; set by the StageTracker),
   // for the plastified volume of a stage.
   std::vector<double> plastic_ref;
+  // Affine velocity C_p of the APIC transfer (Jiang et al. 2015), carried to the nodes by the
+  // next map; stored only while that transfer is used (empty: zero).
+  std::vector<Mat<D>> affine;
 
   // The field list: every per-point array, once, with the value of a new point.
   static constexpr auto fields() {
@@ -83,6 +86,8 @@ template <int D> struct Particles {
                                           +[] { return PointStress<D>(PointStress<D>::Zero()); },
                                           true},
         ParticleField<Pt, double>{"plastic_ref", &Pt::plastic_ref, +[] { return 0.0; }},
+        ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); },
+                                  true},
     };
   }
 

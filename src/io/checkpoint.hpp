@@ -20,7 +20,7 @@
 namespace skred {
 
 inline constexpr char kCheckpointMagic[8] = {'S', 'K', 'R', 'E', 'D', 'C', 'K', 'P'};
-inline constexpr std::uint32_t kCheckpointVersion = 1;
+inline constexpr std::uint32_t kCheckpointVersion = 2;
 
 // A checkpoint that cannot be used: truncated, corrupt, foreign, of another format version,
 // dimension or scenario. The message names the file.

@@ -13,6 +13,8 @@ struct SeriesRow {
   double strain_energy;
   double gravity_work;
   double plastic_dissipation;
+  double friction_work;          // energy the walls took (EnergyTotals::friction_work)
+  double transfer_dissipation;   // energy the velocity transfer took (EnergyTotals)
   double mean_speed;
   double max_speed;
   double momentum_x;
@@ -26,11 +28,13 @@ struct SeriesRow {
 
 // Collects rows in memory; flush() rewrites the whole file atomically, so the file on disk is
 // always complete. Columns:
-//   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,
-//   mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points
-// with total_energy = kinetic_energy + strain_energy + plastic_dissipation - gravity_work
-// (the energy balance; constant for a conservative run). Gravity work, strain energy
-// (stored elastic) and plastic dissipation are measured from the start of the row's stage. Every real number is written as the
+//   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,friction_work,
+//   transfer_dissipation,total_energy,mean_speed,max_speed,momentum_x,momentum_y,
+//   num_particles,stage,runout,yielding_points
+// with total_energy = kinetic_energy + strain_energy + plastic_dissipation + friction_work +
+// transfer_dissipation - gravity_work (the energy balance; constant up to the time
+// integration's error). Gravity work, strain energy
+// (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is written as the
 // shortest decimal that reads back to the identical double.
 class SeriesWriter {
  public:

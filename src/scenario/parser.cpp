@@ -12,6 +12,7 @@
 
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/parse_transfer.hpp"
 #include "scenario/parser_detail.hpp"
 #include "scenario/toml_reader.hpp"
 
@@ -137,7 +138,7 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
   const TableReader t = root.table("solver", !root.has("stage"))
                             .value_or(TableReader(empty, "solver", s.source));
   t.allow_only({"interpolation", "quadrature_points", "scheme", "end_time", "time_step", "cfl",
-                "pic_fraction"});
+                "pic_fraction", "velocity_transfer", "xpic_order"});
   const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
   s.interpolation = t.choice<Interpolation>(
       "interpolation", {I(Interpolation::Linear), I(Interpolation::Gimp),
@@ -158,6 +159,7 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
   s.time_step = t.has("time_step") ? t.number("time_step", Range::positive()) : 0.0;
   s.cfl = t.number("cfl", Range{0.0, 1.0, true, false}, 0.3);
   s.pic_fraction = t.number("pic_fraction", Range::closed(0.0, 1.0), 0.0);
+  scenario_detail::parse_velocity_transfer(t, s);
 }
 
 void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {

@@ -15,6 +15,7 @@
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/scheme.hpp"
+#include "solver/velocity_transfer.hpp"
 
 namespace skred {
 
@@ -120,6 +121,8 @@ struct ScenarioCommon {
   double time_step = 0.0;  // fixed time step; 0 means "from the CFL number"
   double cfl = 0.3;
   double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
+  VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
+  int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

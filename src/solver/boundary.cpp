@@ -1,6 +1,9 @@
 #include "solver/boundary.hpp"
 
+#include <cassert>
 #include <cmath>
+
+#include "solver/coulomb_friction.hpp"
 
 namespace skred {
 
@@ -12,17 +15,9 @@ template <int D> Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
     case BoundaryKind::Fixed: return Vec<D>::Zero();
     case BoundaryKind::Roller: vnew[wall.axis] = 0.0; return vnew;
     case BoundaryKind::Friction: {
-      const double vn = vnew[wall.axis] * wall.sign;  // > 0: would move into the wall
-      if (vn <= 0.0) return vnew;                     // separating: no contact, no friction
-      // The wall's normal reaction m vn / dt stops the motion into it; friction is bounded
-      // by mu times that reaction (Thesis eq. 5.8). If it can stop the tangential motion
-      // within the step the node sticks (eq. 5.11), otherwise full friction acts against
-      // the sliding direction (eq. 5.9-5.10). In velocity terms the node's mass cancels.
-      Vec<D> vt = vnew;
-      vt[wall.axis] = 0.0;
-      const double speed = vt.norm();
-      const double stop = wall.side.friction * vn;
-      return (speed <= stop) ? Vec<D>::Zero() : Vec<D>(vt * (1.0 - stop / speed));
+      Vec<D> n = Vec<D>::Zero();  // outward normal of the wall
+      n[wall.axis] = wall.sign;
+      return coulomb_contact<D>(vnew, n, wall.side.friction);  // eq. 5.8-5.11
     }
     case BoundaryKind::Free: return vnew;
   }
@@ -68,22 +63,28 @@ template <int D> void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& veloc
 }
 
 template <int D>
-void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+double Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+  double dissipated = 0.0;
   for (const BoundaryNode& b : nodes_) {
     const std::size_t i = b.node;
     const double m = grid.mass[i];
     if (m <= 0.0) continue;
     const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    Vec<D> vnew = v_free + dt * grid.acceleration[i];  // trial v^{k+1}
+    const Vec<D> trial = v_free + dt * grid.acceleration[i];  // trial v^{k+1} (eq. 5.9)
+    Vec<D> vnew = trial;
     for (int w = 0; w < b.count; ++w) {
       const Wall& wall = b.walls[w];
       vnew = wall_velocity<D>(wall, vnew);
     }
+    // Each wall rule only stops motion, so the node's kinetic energy can only drop.
+    const double loss = 0.5 * m * (trial.squaredNorm() - vnew.squaredNorm());
+    assert(loss >= -1e-12 * m * trial.squaredNorm());
+    dissipated += loss;
     grid.acceleration[i] = (vnew - v_free) / dt;
     grid.velocity_move[i] = 0.5 * (grid.velocity[i] + vnew);
   }
+  return dissipated;
 }
-
 
 template class Boundaries<2>;
 template class Boundaries<3>;

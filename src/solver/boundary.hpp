@@ -38,8 +38,10 @@ template <int D> class Boundaries {
   // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
   // v^{k+1}, then accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the
-  // wall) and velocity_move = (v^k + v^{k+1}) / 2.
-  void constrain_end_of_step(GridFields<D>& grid, double dt) const;
+  // wall) and velocity_move = (v^k + v^{k+1}) / 2. Returns the kinetic energy the walls took,
+  // sum (1/2) m_i (|v_trial|^2 - |v^{k+1}|^2) >= 0 (friction, eq. 5.8-5.11, the no-slip of
+  // fixed walls and the motion stopped at every wall).
+  double constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }
 

@@ -63,13 +63,21 @@ template <int D> struct StressArrays {
   }
 };
 
-// Thesis eq. 2.56: v_p + dt sum N_ip a_i, blended with a PIC share alpha of
-// sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC.
+// The particle velocity update (velocity_transfer.hpp). FLIP, Thesis eq. 2.56: v_p + dt sum
+// N_ip a_i, blended with a PIC share alpha of sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP +
+// alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal velocity in vnext; APIC also
+// takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient form of Jiang et
+// al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel).
 template <class Shape, int D>
 [[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
                                                        const Vec<D>& v, double dt,
                                                        const Vec<D>* __restrict acc,
-                                                       const Vec<D>* __restrict vnext, double alpha) {
+                                                       const Vec<D>* __restrict vnext, double alpha,
+                                                       Mat<D>* affine) {
+  if (alpha >= 1.0) {
+    if (affine) *affine = gather_gradient(sh, strides, vnext);
+    return gather(sh, strides, vnext);
+  }
   Vec<D> vp = v + dt * gather(sh, strides, acc);
   if (alpha > 0.0) vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnext);
   return vp;
@@ -94,8 +102,14 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     walls_.lo[d] = closed_lo ? lo : -INFINITY;
     walls_.hi[d] = closed_hi ? hi : INFINITY;
   }
-  fields_.resize(g.node_count(), settings_.pic_fraction > 0.0,
-                 settings_.scheme != StressScheme::USF);
+  const VelocityTransfer vt = settings_.velocity_transfer;
+  fields_.resize(g.node_count(), settings_.pic_fraction > 0.0 || vt == VelocityTransfer::Apic,
+                 settings_.scheme != StressScheme::USF, vt == VelocityTransfer::Xpic);
+  // APIC's affine velocities start at zero; other transfers carry none.
+  if (vt == VelocityTransfer::Apic)
+    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
+  else
+    particles_.affine.clear();
 }
 
 template <int D> StepStatus ExplicitSolver<D>::step() {
@@ -123,6 +137,8 @@ template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
+  if (settings_.velocity_transfer == VelocityTransfer::Apic && particles_.affine.size() != particles_.size())
+    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   if (!grid_mapped_ && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
   if (settings_.body_fields) map_body_fields(kernel);
@@ -235,6 +251,7 @@ template <int D> template <class K> void ExplicitSolver<D>::internal_force(const
 // mapping of USL and the averaged scheme, step 6 of §4.4).
 template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
   timer_.time(Phase::VelocityRemap, [&] {
+    xpic_grid_velocity(kernel);
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
@@ -245,10 +262,12 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
     const double* __restrict pmass = P.mass.data();
     const Vec<D>* __restrict acc = fields_.acceleration.data();
     const Vec<D>* __restrict vnext = fields_.velocity_next.data();
+    Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
     Vec<D>* const remap = fields_.momentum_remap.data();  // zero: see remap_velocity
-    const double alpha = settings_.pic_fraction;
+    const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
-#pragma omp parallel num_threads(threads())
+    double ke_old = 0.0, ke_new = 0.0;  // 2 x kinetic energy (eq. 4.15) before and after
+#pragma omp parallel num_threads(threads()) reduction(+ : ke_old, ke_new)
     {
       const int t = omp_get_thread_num();
       Vec<D>* __restrict mom = buffers.vec_target(t, remap);
@@ -257,7 +276,10 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
       for (long p = 0; p < n; ++p) {
         typename K::Shape sh;
         kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+                                            affine ? affine + p : nullptr);
+        ke_old += pmass[p] * v[p].squaredNorm();
+        ke_new += pmass[p] * vp.squaredNorm();
         v[p] = vp;
         scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
         span.add(sh.base);
@@ -265,6 +287,7 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
       buffers.touched(t, span);
     }
     transfer_.reduce(nullptr, remap);
+    energy_.transfer_dissipation += 0.5 * (ke_old - ke_new) + grid_kinetic_gain_;
   });
 }
 
@@ -289,6 +312,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
     const StressArrays<D> S(P, materials_);
     const Vec<D>* __restrict vel = fields_.velocity_move.data();
     const Vec<D>* __restrict vnew = fields_.velocity_remap.data();  // v~_i
+    const Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
     ScatterBuffers<D>& buffers = transfer_.scatter();
     double work = 0.0, dissipation = 0.0;
     Vec<D> mdx = Vec<D>::Zero();
@@ -312,7 +336,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
         dissipation += r.dissipation;
         mdx += pmass[p] * dt * vmove;
         if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-            !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
+            !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span,
+                       affine ? affine + p : nullptr))
           bad = std::min(bad, p);
         extent.add(x[p]);
       }
@@ -332,6 +357,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
 // step's maps at x^{k+1} (eq. 2.53-2.54).
 template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   return timer_.time(Phase::VelocityMoveMap, [&] {
+    xpic_grid_velocity(kernel);
     clear_mass_momentum();  // m_i and p_i of this step are used up: the next step's map
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
@@ -347,13 +373,15 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     const Vec<D>* __restrict acc = fields_.acceleration.data();
     const Vec<D>* __restrict vel = fields_.velocity_move.data();
     const Vec<D>* __restrict vnext = fields_.velocity_next.data();
-    const double alpha = settings_.pic_fraction;
+    Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+    const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
     Vec<D> mdx = Vec<D>::Zero();
     long bad = LONG_MAX;
+    double ke_old = 0.0, ke_new = 0.0;  // 2 x kinetic energy (eq. 4.15) before and after
     Extent<D> extent;  // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent)
+    reduction(merge : extent) reduction(+ : ke_old, ke_new)
     {
       const int t = omp_get_thread_num();
       double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
@@ -363,12 +391,16 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
       for (long p = 0; p < n; ++p) {
         typename K::Shape sh;
         kernel.load(shape[p], g, x[p], half0[p], sh);
-        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+        const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+                                            affine ? affine + p : nullptr);
+        ke_old += pmass[p] * v[p].squaredNorm();
+        ke_new += pmass[p] * vp.squaredNorm();
         v[p] = vp;
         const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
         if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-            !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
+            !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span,
+                       affine ? affine + p : nullptr))
           bad = std::min(bad, p);
         extent.add(x[p]);
       }
@@ -377,9 +409,24 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
     transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
     energy_.gravity_work += gravity_now_.dot(mdx);
+    energy_.transfer_dissipation += 0.5 * (ke_old - ke_new) + grid_kinetic_gain_;
     if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
     return bad == LONG_MAX;
   });
+}
+
+// XPIC(m) (Hammerquist & Nairn 2017): the points take sum N_ip (v_i^{k+1} - p_i / m_i + v*_i),
+// i.e. FLIP without the part of v_p^k the grid cannot represent; under the velocity conditions.
+template <int D> template <class K> void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
+  if (settings_.velocity_transfer != VelocityTransfer::Xpic) return;
+  Vec<D>* const star = fields_.xpic_star.data();
+  xpic_velocity(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data(),
+                settings_.xpic_order, star, fields_.xpic_work.data());
+  const double dt = settings_.dt;
+  Vec<D>* __restrict vnext = fields_.velocity_next.data();
+  const Vec<D>* __restrict acc = fields_.acceleration.data();
+  transfer_.for_box([&](std::size_t i) { vnext[i] = star[i] + dt * acc[i]; });
+  boundaries_.constrain_velocity(fields_.velocity_next);
 }
 
 template class ExplicitSolver<2>;

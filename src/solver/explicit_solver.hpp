@@ -19,6 +19,7 @@
 #include "solver/grid_fields.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
+#include "solver/velocity_transfer.hpp"
 #include "transfer/transfer.hpp"
 
 namespace skred {
@@ -35,6 +36,9 @@ template <int D> struct SolverSettings {
   // Thesis eq. 2.56). A small value damps the velocity noise FLIP leaves on points that the
   // grid no longer moves (the null space of the particle-to-grid map).
   double pic_fraction = 0.0;
+  // The particle velocity update (velocity_transfer.hpp); pic_fraction applies to flip only.
+  VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
+  int xpic_order = 2;  // m of XPIC(m), >= 1
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
 };
@@ -44,6 +48,13 @@ struct EnergyTotals {
   double strain_energy = 0.0;        // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
   double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
+  // Kinetic energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed
+  // walls and the motion stopped at every wall, sum (1/2) m_i (|v_trial|^2 - |v^{k+1}|^2) >= 0.
+  double friction_work = 0.0;
+  // Kinetic energy lost between the grid and the points by the velocity transfer: per step
+  // KE_p^k + (grid KE gain, p_i / m_i -> v_i^{k+1}) - KE_p^{k+1} (eq. 4.15). The PIC share,
+  // XPIC and APIC dissipate; pure FLIP loses only sum (1/2) m_i |dv_i|^2 - sum (1/2) m_p |dv_p|^2.
+  double transfer_dissipation = 0.0;
 };
 
 // The solver's state between two steps beyond the particles and the scenario, for a
@@ -166,6 +177,12 @@ template <int D> class ExplicitSolver {
   void remap_velocity();                                               // v~_i = p~_i / m_i
   template <class K> bool stress_update_move_and_map(const K& kernel, double dt_stress);
   template <class K> bool velocity_move_and_map(const K& kernel);      // eq. 2.55-2.56
+  // XPIC(m): the nodal velocity the points take, into velocity_next (before m_i, p_i are cleared).
+  template <class K> void xpic_grid_velocity(const K& kernel);
+  // The PIC share of the particle update: pic_fraction for FLIP, 1 for XPIC and APIC.
+  double pic_share() const {
+    return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
+  }
   void clear_mass_momentum();
 
   template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
@@ -192,6 +209,7 @@ template <int D> class ExplicitSolver {
   long steps_ = 0;
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;
+  double grid_kinetic_gain_ = 0.0;  // of the step's grid update, for transfer_dissipation
   StepStatus status_;
 };
 
