@@ -1,5 +1,6 @@
 #include "solver/boundary.hpp"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 
@@ -63,27 +64,37 @@ template <int D> void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& veloc
 }
 
 template <int D>
-double Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
-  double dissipated = 0.0;
+WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+  WallEnergy e;
   for (const BoundaryNode& b : nodes_) {
     const std::size_t i = b.node;
     const double m = grid.mass[i];
     if (m <= 0.0) continue;
     const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    const Vec<D> trial = v_free + dt * grid.acceleration[i];  // trial v^{k+1} (eq. 5.9)
+    const Vec<D>& v_k = grid.velocity[i];        // v^k: no motion into the walls
+    const Vec<D> a = grid.acceleration[i];       // (f^int + f^ext) / m
+    // The trial end-of-step velocity (eq. 5.9) from the node's momentum: the normal impulse
+    // that stops it at the wall, m (trial . n), is the normal force f_n dt of eq. 5.8 plus
+    // the impulse that stops the points' motion into the wall.
+    const Vec<D> trial = v_free + dt * a;
     Vec<D> vnew = trial;
-    for (int w = 0; w < b.count; ++w) {
-      const Wall& wall = b.walls[w];
-      vnew = wall_velocity<D>(wall, vnew);
-    }
-    // Each wall rule only stops motion, so the node's kinetic energy can only drop.
-    const double loss = 0.5 * m * (trial.squaredNorm() - vnew.squaredNorm());
-    assert(loss >= -1e-12 * m * trial.squaredNorm());
-    dissipated += loss;
+    for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(b.walls[w], vnew);
+    // Each wall rule only stops motion (coulomb_friction.hpp).
+    assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
+    // Energy the walls took: the node's kinetic energy change less the work of the forces
+    // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
+    // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
+    // the motion into the wall stopped; its tangential part the friction impulse over the
+    // mean slip velocity. Where that is negative, a node that leaves the wall and is pushed
+    // back within the step or whose slip reverses within it, O(dt^2), the wall takes nothing.
+    const double taken = 0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) +
+                         0.5 * dt * m * a.dot(v_k + vnew);
+    e.work += std::max(taken, 0.0);
+    e.gain_correction += 0.5 * m * (vnew.squaredNorm() - trial.squaredNorm());
     grid.acceleration[i] = (vnew - v_free) / dt;
-    grid.velocity_move[i] = 0.5 * (grid.velocity[i] + vnew);
+    grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }
-  return dissipated;
+  return e;
 }
 
 template class Boundaries<2>;

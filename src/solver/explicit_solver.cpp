@@ -281,7 +281,10 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
         ke_old += pmass[p] * v[p].squaredNorm();
         ke_new += pmass[p] * vp.squaredNorm();
         v[p] = vp;
-        scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
+        if (affine)  // APIC: the remap carries the affine velocity too
+          scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
+        else
+          scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
         span.add(sh.base);
       }
       buffers.touched(t, span);

@@ -48,8 +48,8 @@ struct EnergyTotals {
   double strain_energy = 0.0;        // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
   double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
-  // Kinetic energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed
-  // walls and the motion stopped at every wall, sum (1/2) m_i (|v_trial|^2 - |v^{k+1}|^2) >= 0.
+  // Energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed walls and
+  // the motion stopped at every wall; >= 0 at every node and step (boundary.hpp, WallEnergy).
   double friction_work = 0.0;
   // Kinetic energy lost between the grid and the points by the velocity transfer: per step
   // KE_p^k + (grid KE gain, p_i / m_i -> v_i^{k+1}) - KE_p^{k+1} (eq. 4.15). The PIC share,

@@ -67,10 +67,10 @@ template <int D> void ExplicitSolver<D>::grid_update() {
       fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
       return dt * fields_.momentum[i].dot(a) + 0.5 * dt * dt * m * a.squaredNorm();
     });
-    const double walls = boundaries_.constrain_end_of_step(fields_, dt);
-    assert(walls >= 0.0);  // the walls never create energy (coulomb_friction.hpp)
-    energy_.friction_work += walls;
-    grid_kinetic_gain_ = gain - walls;
+    const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
+    assert(walls.work >= 0.0);  // friction never creates energy
+    energy_.friction_work += walls.work;
+    grid_kinetic_gain_ = gain + walls.gain_correction;
     if (settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic) {
       // v_i^{k+1} for the PIC share of the particle update, or APIC's
       transfer_.for_box([&](std::size_t i) {
