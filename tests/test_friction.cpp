@@ -130,15 +130,15 @@ TEST(FrictionalBlock, ThrownBlockStopsWithEveryScheme) {
 }
 
 // Pure FLIP (Thesis eq. 2.56) stops the block at the right distance, but the points next to
-// the wall keep velocities the wall nodes do not have (FLIP's null space), so the wall nodes'
-// velocity jumps every step: the block creeps to a stop 5-8 % late, and the time
-// integration's energy error at those nodes (sum f_i . (v^{k+1} - v^k) dt / 2) no longer
-// vanishes with dt: the energy balance misses tens of per cent. Recorded here; XPIC and APIC
-// remove it (ThrownBlockStopsAtTheAnalyticDistanceAndTime).
+// the wall keep velocities the wall nodes do not have (FLIP's null space): the wall nodes'
+// velocity jumps every step, the block creeps to a stop 5-8 % late and part of its kinetic
+// energy goes into lifting it (the balance still closes, within 0.5 %). Recorded here; XPIC
+// and APIC remove it (ThrownBlockStopsAtTheAnalyticDistanceAndTime).
 TEST(FrictionalBlock, FlipChattersAtTheWall) {
   const double v0 = 1.0, mu = 0.466, t_stop = v0 / (mu * g);
   const Throw r = throw_block(0.01, VelocityTransfer::Flip, StressScheme::Averaged, mu, v0, 1.25 * t_stop);
   const Throw x = throw_block(0.01, VelocityTransfer::Xpic, StressScheme::Averaged, mu, v0, 1.25 * t_stop);
-  EXPECT_GT(r.stop_time, x.stop_time);
-  EXPECT_GT(r.transfer, 100 * x.transfer);
+  EXPECT_GT(r.stop_time, 1.02 * t_stop);
+  EXPECT_LT(r.gravity, 100 * x.gravity);  // lifted: negative work of gravity
+  EXPECT_NEAR(r.ke_end + r.friction + r.stored + r.transfer - r.gravity, r.ke0, 0.01 * r.ke0);
 }

@@ -90,7 +90,6 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
     const double taken = 0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) +
                          0.5 * dt * m * a.dot(v_k + vnew);
     e.work += std::max(taken, 0.0);
-    e.gain_correction += 0.5 * m * (vnew.squaredNorm() - trial.squaredNorm());
     grid.acceleration[i] = (vnew - v_free) / dt;
     grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }

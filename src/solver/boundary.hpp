@@ -31,9 +31,6 @@ struct WallEnergy {
   // forces' work over the points' mean velocity (v^k + v^{k+1}) / 2. Coulomb friction (eq.
   // 5.8-5.11), the no-slip of fixed walls and the stopped normal motion.
   double work = 0.0;
-  // sum (1/2) m (|v^{k+1}|^2 - |v* + dt a|^2) over the wall nodes: the grid's kinetic energy
-  // gain with the walls minus the gain without them.
-  double gain_correction = 0.0;
 };
 
 template <int D> class Boundaries {
@@ -50,8 +47,7 @@ template <int D> class Boundaries {
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
   // v^{k+1} from the trial v^k + dt accel (friction: coulomb_friction.hpp), then
   // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
-  // velocity_move = (v^k + v^{k+1}) / 2. Returns the energy the walls took and the change
-  // they made to the grid's kinetic energy gain (WallEnergy).
+  // velocity_move = (v^k + v^{k+1}) / 2. Returns the energy the walls took (WallEnergy).
   WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }

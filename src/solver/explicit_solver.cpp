@@ -68,18 +68,23 @@ template <int D> struct StressArrays {
 // alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal velocity in vnext; APIC also
 // takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient form of Jiang et
 // al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel).
+// `lost` gains (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
 template <class Shape, int D>
 [[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
                                                        const Vec<D>& v, double dt,
                                                        const Vec<D>* __restrict acc,
                                                        const Vec<D>* __restrict vnext, double alpha,
-                                                       Mat<D>* affine) {
+                                                       Mat<D>* affine, double m, double& lost) {
+  const Vec<D> flip = v + dt * gather(sh, strides, acc);
+  if (alpha <= 0.0) return flip;
+  Vec<D> vp;
   if (alpha >= 1.0) {
     if (affine) *affine = gather_gradient(sh, strides, vnext);
-    return gather(sh, strides, vnext);
+    vp = gather(sh, strides, vnext);
+  } else {
+    vp = (1.0 - alpha) * flip + alpha * gather(sh, strides, vnext);
   }
-  Vec<D> vp = v + dt * gather(sh, strides, acc);
-  if (alpha > 0.0) vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnext);
+  lost += 0.5 * m * (flip.squaredNorm() - vp.squaredNorm());
   return vp;
 }
 
@@ -266,8 +271,8 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
     Vec<D>* const remap = fields_.momentum_remap.data();  // zero: see remap_velocity
     const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
-    double ke_old = 0.0, ke_new = 0.0;  // 2 x kinetic energy (eq. 4.15) before and after
-#pragma omp parallel num_threads(threads()) reduction(+ : ke_old, ke_new)
+    double lost = 0.0;  // to the transfer
+#pragma omp parallel num_threads(threads()) reduction(+ : lost)
     {
       const int t = omp_get_thread_num();
       Vec<D>* __restrict mom = buffers.vec_target(t, remap);
@@ -277,9 +282,7 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
         typename K::Shape sh;
         kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
         const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
-                                            affine ? affine + p : nullptr);
-        ke_old += pmass[p] * v[p].squaredNorm();
-        ke_new += pmass[p] * vp.squaredNorm();
+                                            affine ? affine + p : nullptr, pmass[p], lost);
         v[p] = vp;
         if (affine)  // APIC: the remap carries the affine velocity too
           scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
@@ -290,7 +293,7 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
       buffers.touched(t, span);
     }
     transfer_.reduce(nullptr, remap);
-    energy_.transfer_dissipation += 0.5 * (ke_old - ke_new) + grid_kinetic_gain_;
+    energy_.transfer_dissipation += lost;
   });
 }
 
@@ -381,10 +384,10 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     ScatterBuffers<D>& buffers = transfer_.scatter();
     Vec<D> mdx = Vec<D>::Zero();
     long bad = LONG_MAX;
-    double ke_old = 0.0, ke_new = 0.0;  // 2 x kinetic energy (eq. 4.15) before and after
+    double lost = 0.0;  // to the transfer
     Extent<D> extent;  // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent) reduction(+ : ke_old, ke_new)
+    reduction(merge : extent) reduction(+ : lost)
     {
       const int t = omp_get_thread_num();
       double* __restrict mass = buffers.mass_target(t, fields_.mass.data());
@@ -395,9 +398,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
         typename K::Shape sh;
         kernel.load(shape[p], g, x[p], half0[p], sh);
         const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
-                                            affine ? affine + p : nullptr);
-        ke_old += pmass[p] * v[p].squaredNorm();
-        ke_new += pmass[p] * vp.squaredNorm();
+                                            affine ? affine + p : nullptr, pmass[p], lost);
         v[p] = vp;
         const Vec<D> vmove = gather(sh, strides, vel);
         mdx += pmass[p] * dt * vmove;
@@ -412,7 +413,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     transfer_.set_box(extent);  // the next step's box, which the reduction must cover now
     transfer_.reduce(fields_.mass.data(), fields_.momentum.data());
     energy_.gravity_work += gravity_now_.dot(mdx);
-    energy_.transfer_dissipation += 0.5 * (ke_old - ke_new) + grid_kinetic_gain_;
+    energy_.transfer_dissipation += lost;
     if (bad != LONG_MAX) status_ = {false, bad, "material point became unstable or left the grid"};
     return bad == LONG_MAX;
   });

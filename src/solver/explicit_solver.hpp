@@ -51,9 +51,9 @@ struct EnergyTotals {
   // Energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed walls and
   // the motion stopped at every wall; >= 0 at every node and step (boundary.hpp, WallEnergy).
   double friction_work = 0.0;
-  // Kinetic energy lost between the grid and the points by the velocity transfer: per step
-  // KE_p^k + (grid KE gain, p_i / m_i -> v_i^{k+1}) - KE_p^{k+1} (eq. 4.15). The PIC share,
-  // XPIC and APIC dissipate; pure FLIP loses only sum (1/2) m_i |dv_i|^2 - sum (1/2) m_p |dv_p|^2.
+  // Kinetic energy the velocity transfer took from the FLIP update (eq. 2.56), per step
+  // sum (1/2) m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2): the PIC share, XPIC and APIC (whose affine
+  // velocity's own kinetic energy is not counted in eq. 4.15); zero for pure FLIP.
   double transfer_dissipation = 0.0;
 };
 
@@ -209,7 +209,6 @@ template <int D> class ExplicitSolver {
   long steps_ = 0;
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;
-  double grid_kinetic_gain_ = 0.0;  // of the step's grid update, for transfer_dissipation
   StepStatus status_;
 };
 

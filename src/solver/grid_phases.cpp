@@ -54,23 +54,20 @@ template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
 // Thesis eq. 2.49 with lumped mass: a_i = (f_i^int + f_i^ext) / m_i with f_i^ext = m_i g
 // (eq. 2.52, uniform gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq.
 // 31). Then the boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
-// The grid's kinetic energy gain from p_i / m_i to v_i^{k+1}, (1/2) m_i |v|^2 before and
-// after, is kept for the transfer's bookkeeping; what the walls take is friction work.
+// What the walls take is friction work (EnergyTotals).
 template <int D> void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
     const Vec<D> g = gravity_now_;
     const double dt = settings_.dt, half_dt = 0.5 * dt;
-    const double gain = transfer_.sum_box([&](std::size_t i) {
+    transfer_.for_box([&](std::size_t i) {
       const double m = fields_.mass[i];
       const Vec<D> a = m > 0.0 ? Vec<D>(fields_.internal_force[i] / m + g) : Vec<D>::Zero();
       fields_.acceleration[i] = a;
       fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
-      return dt * fields_.momentum[i].dot(a) + 0.5 * dt * dt * m * a.squaredNorm();
     });
     const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
     assert(walls.work >= 0.0);  // friction never creates energy
     energy_.friction_work += walls.work;
-    grid_kinetic_gain_ = gain + walls.gain_correction;
     if (settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic) {
       // v_i^{k+1} for the PIC share of the particle update, or APIC's
       transfer_.for_box([&](std::size_t i) {
