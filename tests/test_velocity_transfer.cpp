@@ -95,3 +95,21 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
     }
   }
 }
+
+TEST(VelocityTransfer, ScenarioKeys) {
+  std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  const auto with = [&](const std::string& keys) {
+    std::string t = base;
+    t.replace(t.find("pic_fraction = 0.02"), 19, keys);
+    return parse_scenario(t, "column.toml");
+  };
+  EXPECT_EQ(with("").velocity_transfer, VelocityTransfer::Flip);
+  const Scenario x = with("velocity_transfer = \"xpic\"\nxpic_order = 3");
+  EXPECT_EQ(x.velocity_transfer, VelocityTransfer::Xpic);
+  EXPECT_EQ(x.xpic_order, 3);
+  EXPECT_EQ(with("velocity_transfer = \"apic\"").velocity_transfer, VelocityTransfer::Apic);
+  EXPECT_EQ(solver_settings(with("velocity_transfer = \"apic\"")).velocity_transfer, VelocityTransfer::Apic);
+  EXPECT_ANY_THROW(with("velocity_transfer = \"pic\""));
+  EXPECT_ANY_THROW(with("xpic_order = 3"));  // flip
+  EXPECT_ANY_THROW(with("velocity_transfer = \"apic\"\npic_fraction = 0.1"));
+}
