@@ -109,27 +109,4 @@ void for_box(const GridGeometry<D>& g, NodeBox<D> b, int threads, Fn&& fn, int l
   }
 }
 
-// The same walk, summing fn(node) (a double) over the box.
-template <int D, class Fn> double sum_box(const GridGeometry<D>& g, NodeBox<D> b, int threads, Fn&& fn) {
-  const long width = b.hi[0] - b.lo[0] + 1;
-  long rows = 1;
-  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
-  if (width <= 0) return 0.0;
-  std::size_t stride[D];
-  for (int d = 0; d < D; ++d) stride[d] = g.stride(d);
-  double sum = 0.0;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(+ : sum)
-  for (long r = 0; r < rows; ++r) {
-    std::size_t row = static_cast<std::size_t>(b.lo[0]);
-    long rest = r;
-    for (int d = 1; d < D; ++d) {
-      const long n = b.hi[d] - b.lo[d] + 1;
-      row += static_cast<std::size_t>(b.lo[d] + rest % n) * stride[d];
-      rest /= n;
-    }
-    for (long i = 0; i < width; ++i) sum += fn(row + static_cast<std::size_t>(i));
-  }
-  return sum;
-}
-
 }  // namespace skred

@@ -31,7 +31,6 @@ template <int D> class Transfer {
   template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX) const {
     skred::for_box(grid_, box_, threads_, fn, last_lo, last_hi);
   }
-  template <class Fn> double sum_box(Fn&& fn) const { return skred::sum_box(grid_, box_, threads_, fn); }
 
   ScatterBuffers<D>& scatter() { return scatter_; }
   // grid += the other threads' scatter buffers over the box (mass may be null).
