@@ -123,7 +123,7 @@ TEST(VibratingBar, ExampleFileMatchesTheExactSolution) {
     std::stringstream ss(line);
     for (std::string x; std::getline(ss, x, ',');) f.push_back(x);
     t.push_back(std::stod(f[1]));
-    vcm.push_back(std::stod(f[9]) / (rho * L));  // momentum_x / bar mass
+    vcm.push_back(std::stod(f[11]) / (rho * L));  // momentum_x / bar mass
   }
   std::filesystem::remove_all(out);
   const double amp = *std::max_element(vcm.begin(), vcm.end());

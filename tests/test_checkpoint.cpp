@@ -227,7 +227,7 @@ TEST(Checkpoint, UnusableFilesAreRejectedNamingTheFile) {
   std::memcpy(v2.data() + 8, &version, 4);
   const std::uint64_t sum = fnv1a64(v2.data(), v2.size() - 8);
   std::memcpy(v2.data() + v2.size() - 8, &sum, 8);
-  rejects(v2, "format version " + std::to_string(version), s);
+  rejects(v2, "format version " + std::to_string(kCheckpointVersion + 1), s);
   write(dir / "other.toml", two_body_text("usl"));
   rejects(good, "another scenario", load_scenario((dir / "other.toml").string()));
   fs::remove_all(dir);

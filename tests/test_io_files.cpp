@@ -141,7 +141,8 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
     for (long i = 0; i < 5; ++i) {
       const double t = 0.1 * i;
       rows.push_back({10 * i, t, 1.0 / (i + 3), 2.5e-7 * i, std::sqrt(2.0) * i, 1e300 / (i + 1),
-                      t / 7, 3 * t, -t, t * 1e-20, 1000 + i, static_cast<int>(i % 2), 0.25 * t, 7 * i});
+                      0.5 * t, t / 3, t / 7, 3 * t, -t, t * 1e-20, 1000 + i,
+                      static_cast<int>(i % 2), 0.25 * t, 7 * i});
       series.add(rows.back());
       if (i == 2) {
         series.flush();
@@ -157,23 +158,24 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
   const std::vector<std::string> lines = split(read_text(file), '\n');
   ASSERT_EQ(lines.size(), 6u);
   EXPECT_EQ(lines[0],
-            "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,"
+            "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,friction_work,"
+            "transfer_dissipation,total_energy,"
             "mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points");
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const std::vector<std::string> f = split(lines[i + 1], ',');
-    ASSERT_EQ(f.size(), 15u) << lines[i + 1];
+    ASSERT_EQ(f.size(), 17u) << lines[i + 1];
     const SeriesRow& r = rows[i];
     EXPECT_EQ(std::stol(f[0]), r.step);
     const double expected[] = {r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
-                               r.plastic_dissipation,
-                               r.kinetic_energy + r.strain_energy + r.plastic_dissipation -
-                                   r.gravity_work,
+                               r.plastic_dissipation, r.friction_work, r.transfer_dissipation,
+                               r.kinetic_energy + r.strain_energy + r.plastic_dissipation +
+                                   r.friction_work + r.transfer_dissipation - r.gravity_work,
                                r.mean_speed, r.max_speed, r.momentum_x, r.momentum_y};
-    for (int k = 0; k < 10; ++k) EXPECT_EQ(to_double(f[k + 1]), expected[k]) << "column " << k + 1;
-    EXPECT_EQ(std::stol(f[11]), r.num_particles);
-    EXPECT_EQ(std::stoi(f[12]), r.stage);
-    EXPECT_EQ(to_double(f[13]), r.runout);
-    EXPECT_EQ(std::stol(f[14]), r.yielding_points);
+    for (int k = 0; k < 12; ++k) EXPECT_EQ(to_double(f[k + 1]), expected[k]) << "column " << k + 1;
+    EXPECT_EQ(std::stol(f[13]), r.num_particles);
+    EXPECT_EQ(std::stoi(f[14]), r.stage);
+    EXPECT_EQ(to_double(f[15]), r.runout);
+    EXPECT_EQ(std::stol(f[16]), r.yielding_points);
   }
   expect_no_tmp_files();
 }

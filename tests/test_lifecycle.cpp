@@ -85,7 +85,7 @@ TEST(Lifecycle, FieldListNamesEveryArrayOnce) {
     }
   });
   EXPECT_EQ(names.size(), std::tuple_size_v<decltype(Particles<2>::fields())>);
-  EXPECT_EQ(names.size(), 16u);
+  EXPECT_EQ(names.size(), 17u);
   EXPECT_TRUE(P.stress_ref.empty());  // optional: stays empty (zero) until set
 }
 
@@ -256,10 +256,10 @@ TEST(Lifecycle, PointsSplitAndRemovedMidRun) {
     std::vector<std::string> c;
     std::stringstream ls(line);
     for (std::string cell; std::getline(ls, cell, ',');) c.push_back(cell);
-    ASSERT_EQ(c.size(), 15u);
-    m = Vec<2>(std::stod(c[9]), std::stod(c[10]));
+    ASSERT_EQ(c.size(), 17u);
+    m = Vec<2>(std::stod(c[11]), std::stod(c[12]));
     worst = std::max(worst, (std::stol(c[0]) <= 200 ? m : Vec<2>(m + mom_removed)).norm());
-    counts.insert(std::stol(c[11]));
+    counts.insert(std::stol(c[13]));
   }
   EXPECT_EQ(counts, (std::set<long>{static_cast<long>(n0), static_cast<long>(n1), static_cast<long>(n2)}));
   EXPECT_LT(worst, 1e-12);  // eq. 2.53-2.56 conserve momentum whatever the points

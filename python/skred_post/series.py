@@ -7,8 +7,9 @@ import matplotlib.pyplot as plt  # noqa: E402
 from .data import read_series  # noqa: E402
 
 ENERGIES = [("kinetic_energy", "kinetic"), ("strain_energy", "strain"),
-            ("plastic_dissipation", "plastic dissipation"), ("gravity_work", "gravity work"),
-            ("total_energy", "total = kinetic + strain + plastic - gravity work")]
+            ("plastic_dissipation", "plastic dissipation"), ("friction_work", "friction work"),
+            ("transfer_dissipation", "transfer dissipation"), ("gravity_work", "gravity work"),
+            ("total_energy", "total = kinetic + strain + dissipated - gravity work")]
 
 
 def plot_series(outdir, width=8.0, height=8.0, dpi=100):

@@ -153,7 +153,7 @@ int main(int argc, char** argv) {
   sweep->add_flag("--overwrite", overwrite, "Replace an earlier sweep in OUTDIR (removes its files first)");
 
   skred::BenchOptions bo;
-  std::string interp = "gimp", scheme = "averaged";
+  std::string interp = "gimp", scheme = "averaged", transfer = "flip";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
   bench->add_option("--problem", bo.problem, "block (elastic, adjustable size) | column (Mohr-Coulomb collapse)")
       ->check(CLI::IsMember({"block", "column"}));
@@ -172,6 +172,8 @@ int main(int argc, char** argv) {
   bench->add_option("--bodies", bo.bodies, "column: 1, or 2 (two halves in frictional contact, mu = tan phi)")
       ->check(CLI::IsMember({1, 2}));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")->check(CLI::IsMember({"usf", "usl", "averaged"}));
+  bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic")
+      ->check(CLI::IsMember({"flip", "xpic", "apic"}));
 
   skred::PostCommands post(app);  // render, report
 
@@ -211,11 +213,14 @@ int main(int argc, char** argv) {
       bo.scheme = scheme == "usf" ? skred::StressScheme::USF
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
+      bo.velocity_transfer = transfer == "xpic"   ? skred::VelocityTransfer::Xpic
+                             : transfer == "apic" ? skred::VelocityTransfer::Apic
+                                                  : skred::VelocityTransfer::Flip;
       const auto r = skred::run_bench(bo);
-      fmt::print("bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {}\n",
+      fmt::print("bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
                  bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
-                 bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
-                 bo.problem == "column" ? "usf" : scheme);
+                 bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats,
+                 bo.threads, interp, bo.problem == "column" ? "usf" : scheme, transfer);
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n",
                    r.status, r.runout, bo.steps * 1e-4, r.yielding, r.particles);

@@ -66,6 +66,9 @@ template <int D> struct Particles {
   // changes when a split resets a mode) and the number of splits behind each point.
   std::vector<Mat<D>> split_gauge;
   std::vector<std::int16_t> splits;
+  // Affine velocity C_p of the APIC transfer (Jiang et al. 2015), carried to the nodes by the
+  // next map; stored only while that transfer is used (empty: zero).
+  std::vector<Mat<D>> affine;
 
   // The field list: every per-point array, once, with the value of a new point.
   static constexpr auto fields() {
@@ -91,6 +94,8 @@ template <int D> struct Particles {
         ParticleField<Pt, Mat<D>>{"split_gauge", &Pt::split_gauge,
                                   +[] { return Mat<D>(Mat<D>::Identity()); }, true},
         ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
+        ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); },
+                                  true},
     };
   }
 

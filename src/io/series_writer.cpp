@@ -15,7 +15,8 @@
 namespace skred {
 
 const char* SeriesWriter::header() {
-  return "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,"
+  return "step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,friction_work,"
+         "transfer_dissipation,total_energy,"
          "mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points\n";
 }
 
@@ -40,12 +41,12 @@ void SeriesWriter::add(const SeriesRow& r) {
 }
 
 void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
-  const double total =
-      r.kinetic_energy + r.strain_energy + r.plastic_dissipation + r.contact_work - r.gravity_work;
+  const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation + r.friction_work +
+                       r.transfer_dissipation + r.contact_work - r.gravity_work;
   // "{}" is the shortest representation that reads back to the same double.
-  fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
-                 r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
-                 r.plastic_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
+  fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
+                 r.time, r.kinetic_energy, r.strain_energy, r.gravity_work, r.plastic_dissipation,
+                 r.friction_work, r.transfer_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
                  r.momentum_y, r.num_particles, r.stage, r.runout, r.yielding_points);
   if (momentum_z_) fmt::format_to(std::back_inserter(out), ",{}", r.momentum_z);
   if (contact_work_) fmt::format_to(std::back_inserter(out), ",{}", r.contact_work);

@@ -13,6 +13,8 @@ struct SeriesRow {
   double strain_energy;
   double gravity_work;
   double plastic_dissipation;
+  double friction_work;          // energy the walls took (EnergyTotals::friction_work)
+  double transfer_dissipation;   // energy the velocity transfer took (EnergyTotals)
   double mean_speed;
   double max_speed;
   double momentum_x;
@@ -29,13 +31,15 @@ struct SeriesRow {
 // later ones append the new rows with one write (a failed write is cut back), so the file on
 // disk always holds the header and whole rows, and a long run's flushes cost only their own
 // rows. Columns:
-//   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,total_energy,
-//   mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points
-// with total_energy = kinetic_energy + strain_energy + plastic_dissipation + contact_work -
-// gravity_work (the energy balance; constant for a conservative run). 3D runs add a column
-// momentum_z, runs with contact a last column contact_work (the energy the contact phase
-// took out: friction work and the inelastic stop of approaching bodies). Gravity work, strain energy
-// (stored elastic) and plastic dissipation are measured from the start of the row's stage. Every real number is written as the
+//   step,time,kinetic_energy,strain_energy,gravity_work,plastic_dissipation,friction_work,
+//   transfer_dissipation,total_energy,mean_speed,max_speed,momentum_x,momentum_y,
+//   num_particles,stage,runout,yielding_points
+// with total_energy = kinetic_energy + strain_energy + plastic_dissipation + friction_work +
+// transfer_dissipation + contact_work - gravity_work (the energy balance; constant up to the
+// time integration's error). 3D runs add a column momentum_z, runs with contact a last column
+// contact_work (the energy the contact phase took out: friction between bodies and the
+// inelastic stop of approaching bodies). Gravity work, strain energy
+// (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is written as the
 // shortest decimal that reads back to the identical double.
 class SeriesWriter {
  public:

@@ -115,7 +115,9 @@ template <int D> BenchResult run_column(const BenchOptions& opt) {
     Particles<D> P = build_particles(s);
     apply_initial_stress(s, P);
     const GridGeometry<D> grid = scenario_grid(s);
-    ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), solver_settings(s), opt.threads);
+    SolverSettings<D> st = solver_settings(s);
+    st.velocity_transfer = opt.velocity_transfer;
+    ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
     const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
@@ -170,6 +172,7 @@ BenchResult run_bench(const BenchOptions& opt) {
     st.interpolation = opt.interpolation;
     st.quadrature_points = opt.quadrature_points;
     st.scheme = opt.scheme;
+    st.velocity_transfer = opt.velocity_transfer;
     st.dt = 0.3 * h / soil.wave_speed();
     st.gravity = Vec<2>(0.0, -9.81);
     st.boundaries = {BoundarySide{BoundaryKind::Roller, 0}, BoundarySide{BoundaryKind::Roller, 0},

@@ -30,6 +30,7 @@ struct BenchOptions {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
+  VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
   long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
   int bodies = 1;                 // column: 2 for two halves in frictional contact
 };

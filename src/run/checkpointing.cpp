@@ -28,7 +28,7 @@ bool g_watching = false;  // watch_stop_signals() was called
 
 template <class A> void archive_row(A& a, SeriesRow& r) {
   a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
-  a(r.plastic_dissipation); a(r.mean_speed); a(r.max_speed); a(r.momentum_x); a(r.momentum_y);
+  a(r.plastic_dissipation); a(r.friction_work); a(r.transfer_dissipation); a(r.mean_speed); a(r.max_speed); a(r.momentum_x); a(r.momentum_y);
   a(r.num_particles); a(r.stage); a(r.runout); a(r.yielding_points); a(r.momentum_z);
   a(r.contact_work);
 }
@@ -37,7 +37,7 @@ template <class A> void archive_row(A& a, SeriesRow& r) {
 template <class A, int D> void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
   a(c.time); a(c.steps); a(c.ramp_start); a(c.gravity_ramp_time);
   a(c.energy.strain_energy); a(c.energy.gravity_work); a(c.energy.plastic_dissipation);
-  a(c.energy.contact_work); a(c.energy.friction_work);
+  a(c.energy.contact_work); a(c.energy.friction_work); a(c.energy.transfer_dissipation);
   a(at.stage); a(at.in_stage); a(at.stage_first_step); a(at.stage_start);
   a(at.next_output); a(at.next_series); a(at.frame_times); a(at.checkpoint_every);
   std::uint64_t n = at.finished.size();

@@ -52,6 +52,8 @@ template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
     }
     for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
   }
+  st.velocity_transfer = s.velocity_transfer;
+  st.xpic_order = s.xpic_order;
   return st;
 }
 
@@ -83,6 +85,8 @@ SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t
   r.strain_energy = e.strain_energy;
   r.gravity_work = e.gravity_work;
   r.plastic_dissipation = e.plastic_dissipation;
+  r.friction_work = e.friction_work;
+  r.transfer_dissipation = e.transfer_dissipation;
   r.mean_speed = t.mean_speed;
   r.max_speed = t.max_speed;
   r.momentum_x = t.momentum[0];

@@ -42,6 +42,8 @@ std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
     if (o.friction) t += fmt::format(" friction {:.4g} deg", *o.friction * 180.0 / M_PI);
     if (o.cohesion) t += fmt::format(" cohesion {} Pa", *o.cohesion);
     if (o.dilation) t += fmt::format(" dilation {:.4g} deg", *o.dilation * 180.0 / M_PI);
+    if (o.density)
+      t += fmt::format(" density {} kg/m^3 (over {} s)", *o.density, o.density_ramp_time);
   }
   if (st.rest_speed > 0)
     t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed,

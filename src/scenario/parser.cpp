@@ -15,6 +15,7 @@
 #include "scenario/build.hpp"
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
+#include "scenario/parse_transfer.hpp"
 #include "scenario/parser_detail.hpp"
 #include "scenario/toml_reader.hpp"
 
@@ -166,6 +167,7 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
   if (s.allow_unstable_time_step && !t.has("time_step"))
     t.fail_at("allow_unstable_time_step", "only meaningful with a fixed solver.time_step");
   s.pic_fraction = t.number("pic_fraction");
+  scenario_detail::parse_velocity_transfer(t, s);
 }
 
 void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
@@ -418,6 +420,10 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   scenario_detail::parse_contacts<D>(root, s);
   parse_initial_stress(root, s);
   parse_solver(root, s);
+  const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
+  if ((!s.contacts.empty() || rigid) && s.velocity_transfer != VelocityTransfer::Flip)
+    fail(s.source, root.table("solver", true)->where("velocity_transfer"), "solver.velocity_transfer",
+         "\"xpic\" and \"apic\" do not work with [[contact]] or rigid bodies yet; use \"flip\"");
   parse_stages(root, s);
   parse_output(root, s);
   check_time_step(root, s);

@@ -16,6 +16,7 @@
 #include "solver/boundary_side.hpp"
 #include "solver/scheme.hpp"
 #include "solver/splitting.hpp"
+#include "solver/velocity_transfer.hpp"
 
 namespace skred {
 
@@ -161,6 +162,8 @@ struct ScenarioCommon {
 
   // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables.
   std::vector<ContactPair> contacts;
+  VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
+  int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

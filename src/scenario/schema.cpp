@@ -224,9 +224,17 @@ std::vector<Section> make_sections() {
        .doc = "dt = cfl h / (c + v0), c the fastest P-wave speed, v0 the fastest initial speed"},
       {.name = "allow_unstable_time_step", .type = Type::Boolean, .def = derived("false"),
        .doc = "true accepts a `time_step` above the stable step with a warning"},
+      {.name = "velocity_transfer", .type = Type::Choice, .def = derived("\"flip\""),
+       .choices = "flip|xpic|apic",
+       .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
+              "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
+              "al. 2015); xpic and apic not with [[contact]] yet"},
+      {.name = "xpic_order", .type = Type::Integer, .def = value(2), .range = Range::closed(1, 20),
+       .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
+              "over the points"},
       {.name = "pic_fraction", .unit = "-", .def = value(0), .range = Range::closed(0.0, 1.0),
        .doc = "PIC share a of the particle velocity update: v_p = (1 - a) v_FLIP + a sum N_ip "
-              "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56"},
+              "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56; \"flip\" only"},
   }});
   s.push_back({"stage", "stage", {
       {.name = "name", .type = Type::String, .def = derived("\"stage-I\""), .doc = "any"},

@@ -1,6 +1,10 @@
 #include "solver/boundary.hpp"
 
+#include <algorithm>
+#include <cassert>
 #include <cmath>
+
+#include "solver/coulomb_friction.hpp"
 
 namespace skred {
 
@@ -12,17 +16,9 @@ template <int D> Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
     case BoundaryKind::Fixed: return Vec<D>::Zero();
     case BoundaryKind::Roller: vnew[wall.axis] = 0.0; return vnew;
     case BoundaryKind::Friction: {
-      const double vn = vnew[wall.axis] * wall.sign;  // > 0: would move into the wall
-      if (vn <= 0.0) return vnew;                     // separating: no contact, no friction
-      // The wall's normal reaction m vn / dt stops the motion into it; friction is bounded
-      // by mu times that reaction (Thesis eq. 5.8). If it can stop the tangential motion
-      // within the step the node sticks (eq. 5.11), otherwise full friction acts against
-      // the sliding direction (eq. 5.9-5.10). In velocity terms the node's mass cancels.
-      Vec<D> vt = vnew;
-      vt[wall.axis] = 0.0;
-      const double speed = vt.norm();
-      const double stop = wall.side.friction * vn;
-      return (speed <= stop) ? Vec<D>::Zero() : Vec<D>(vt * (1.0 - stop / speed));
+      Vec<D> n = Vec<D>::Zero();  // outward normal of the wall
+      n[wall.axis] = wall.sign;
+      return coulomb_contact<D>(vnew, n, wall.side.friction);  // eq. 5.8-5.11
     }
     case BoundaryKind::Free: return vnew;
   }
@@ -68,22 +64,37 @@ template <int D> void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& veloc
 }
 
 template <int D>
-void Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+  WallEnergy e;
   for (const BoundaryNode& b : nodes_) {
     const std::size_t i = b.node;
     const double m = grid.mass[i];
     if (m <= 0.0) continue;
     const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    Vec<D> vnew = v_free + dt * grid.acceleration[i];  // trial v^{k+1}
-    for (int w = 0; w < b.count; ++w) {
-      const Wall& wall = b.walls[w];
-      vnew = wall_velocity<D>(wall, vnew);
-    }
+    const Vec<D>& v_k = grid.velocity[i];        // v^k: no motion into the walls
+    const Vec<D> a = grid.acceleration[i];       // (f^int + f^ext) / m
+    // The trial end-of-step velocity (eq. 5.9) from the node's momentum: the normal impulse
+    // that stops it at the wall, m (trial . n), is the normal force f_n dt of eq. 5.8 plus
+    // the impulse that stops the points' motion into the wall.
+    const Vec<D> trial = v_free + dt * a;
+    Vec<D> vnew = trial;
+    for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(b.walls[w], vnew);
+    // Each wall rule only stops motion (coulomb_friction.hpp).
+    assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
+    // Energy the walls took: the node's kinetic energy change less the work of the forces
+    // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
+    // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
+    // the motion into the wall stopped; its tangential part the friction impulse over the
+    // mean slip velocity. Where that is negative, a node that leaves the wall and is pushed
+    // back within the step or whose slip reverses within it, O(dt^2), the wall takes nothing.
+    const double taken = 0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) +
+                         0.5 * dt * m * a.dot(v_k + vnew);
+    e.work += std::max(taken, 0.0);
     grid.acceleration[i] = (vnew - v_free) / dt;
-    grid.velocity_move[i] = 0.5 * (grid.velocity[i] + vnew);
+    grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }
+  return e;
 }
-
 
 template class Boundaries<2>;
 template class Boundaries<3>;

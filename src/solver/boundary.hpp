@@ -25,6 +25,14 @@ struct BoundaryNode {
   int count = 0;
 };
 
+// What the walls did to the grid's energy in one step.
+struct WallEnergy {
+  // Energy the walls took, >= 0 at every node: the node's kinetic energy change less the
+  // forces' work over the points' mean velocity (v^k + v^{k+1}) / 2. Coulomb friction (eq.
+  // 5.8-5.11), the no-slip of fixed walls and the stopped normal motion.
+  double work = 0.0;
+};
+
 template <int D> class Boundaries {
  public:
   Boundaries() = default;
@@ -37,9 +45,10 @@ template <int D> class Boundaries {
 
   // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
-  // v^{k+1}, then accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the
-  // wall) and velocity_move = (v^k + v^{k+1}) / 2.
-  void constrain_end_of_step(GridFields<D>& grid, double dt) const;
+  // v^{k+1} from the trial v^k + dt accel (friction: coulomb_friction.hpp), then
+  // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
+  // velocity_move = (v^k + v^{k+1}) / 2. Returns the energy the walls took (WallEnergy).
+  WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }
 

@@ -215,7 +215,6 @@ void ExplicitSolver<D>::contact() {
           if (pic) f.velocity_next[i] = v;
         });
     energy_.contact_work += loss.normal + loss.friction;
-    energy_.friction_work += loss.friction;
   });
 }
 

@@ -63,15 +63,28 @@ template <int D> struct StressArrays {
   }
 };
 
-// Thesis eq. 2.56: v_p + dt sum N_ip a_i, blended with a PIC share alpha of
-// sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC.
+// The particle velocity update (velocity_transfer.hpp). FLIP, Thesis eq. 2.56: v_p + dt sum
+// N_ip a_i, blended with a PIC share alpha of sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP +
+// alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal velocity in vnext; APIC also
+// takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient form of Jiang et
+// al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel).
+// `lost` gains (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
 template <class Shape, int D>
 [[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
                                                        const Vec<D>& v, double dt,
                                                        const Vec<D>* __restrict acc,
-                                                       const Vec<D>* __restrict vnext, double alpha) {
-  Vec<D> vp = v + dt * gather(sh, strides, acc);
-  if (alpha > 0.0) vp = (1.0 - alpha) * vp + alpha * gather(sh, strides, vnext);
+                                                       const Vec<D>* __restrict vnext, double alpha,
+                                                       Mat<D>* affine, double m, double& lost) {
+  const Vec<D> flip = v + dt * gather(sh, strides, acc);
+  if (alpha <= 0.0) return flip;
+  Vec<D> vp;
+  if (alpha >= 1.0) {
+    if (affine) *affine = gather_gradient(sh, strides, vnext);
+    vp = gather(sh, strides, vnext);
+  } else {
+    vp = (1.0 - alpha) * flip + alpha * gather(sh, strides, vnext);
+  }
+  lost += 0.5 * m * (flip.squaredNorm() - vp.squaredNorm());
   return vp;
 }
 
@@ -94,12 +107,17 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     walls_.lo[d] = closed_lo ? lo : -INFINITY;
     walls_.hi[d] = closed_hi ? hi : INFINITY;
   }
-  fields_.resize(g.node_count(), settings_.pic_fraction > 0.0,
-                 settings_.scheme != StressScheme::USF);
+  const VelocityTransfer vt = settings_.velocity_transfer;
+  const bool pic = settings_.pic_fraction > 0.0 || vt == VelocityTransfer::Apic;
+  fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, vt == VelocityTransfer::Xpic);
+  // APIC's affine velocities start at zero; other transfers carry none.
+  if (vt == VelocityTransfer::Apic)
+    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
+  else
+    particles_.affine.clear();
   if (contact_on()) {  // every body's fields, from zero pages (only where it reaches)
     bodies_.resize(static_cast<std::size_t>(settings_.contact.bodies()));
-    for (auto& b : bodies_)
-      b.resize(g.node_count(), settings_.pic_fraction > 0.0, settings_.scheme != StressScheme::USF);
+    for (auto& b : bodies_) b.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF);
     contact_sums_.assign(static_cast<std::size_t>(16 * transfer_.threads()), 0.0);
   }
 }
@@ -129,6 +147,8 @@ template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
+  if (settings_.velocity_transfer == VelocityTransfer::Apic && particles_.affine.size() != particles_.size())
+    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   const bool fresh = !grid_mapped_;
   if (fresh && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
@@ -268,13 +288,15 @@ template <int D> template <class K> void ExplicitSolver<D>::internal_force(const
 // into its own fields.
 template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
   timer_.time(Phase::VelocityRemap, [&] {
+    xpic_grid_velocity(kernel);
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const double alpha = settings_.pic_fraction;
+    const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
+    double lost = 0.0;  // to the transfer
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
@@ -282,8 +304,9 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
       const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
+      Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
-#pragma omp parallel num_threads(threads())
+#pragma omp parallel num_threads(threads()) reduction(+ : lost)
       {
         const int t = omp_get_thread_num();
         Vec<D>* __restrict mom = buffers.vec_target(t, remap);
@@ -293,15 +316,20 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
           if (!sel(p)) continue;
           typename K::Shape sh;
           kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+                                              affine ? affine + p : nullptr, pmass[p], lost);
           v[p] = vp;
-          scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
+          if (affine)  // APIC: the remap carries the affine velocity too
+            scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
+          else
+            scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
           span.add(sh.base);
         }
         buffers.touched(t, span);
       }
       transfer_.reduce(nullptr, remap);
     });
+    energy_.transfer_dissipation += lost;
     if (contact_on()) rigid_velocity();
   });
 }
@@ -332,6 +360,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
+      const Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       double work = 0.0, dissipation = 0.0;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
@@ -355,7 +384,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           dissipation += r.dissipation;
           mdx += pmass[p] * dt * vmove;
           if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-              !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span))
+              !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span,
+                         affine ? affine + p : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);
         }
@@ -382,7 +412,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
 // fields.
 template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   return timer_.time(Phase::VelocityMoveMap, [&] {
-    // m_i and p_i of this step are used up: the next step's map
+    // m_i and p_i of this step are used up: the next step's map (XPIC first reads them)
+    xpic_grid_velocity(kernel);
     if (contact_on()) clear_body_mass_momentum();
     else clear_mass_momentum();
     const GridGeometry<D>& g = grid();
@@ -390,9 +421,10 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const double alpha = settings_.pic_fraction;
+    const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
+    double lost = 0.0;  // to the transfer
     Extent<D> all;  // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
@@ -405,11 +437,12 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
+      Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
       Extent<D> extent;  // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent)
+    reduction(merge : extent) reduction(+ : lost)
       {
         const int t = omp_get_thread_num();
         double* __restrict mass = buffers.mass_target(t, f.mass.data());
@@ -420,12 +453,14 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
           if (!sel(p)) continue;
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
-          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha);
+          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+                                              affine ? affine + p : nullptr, pmass[p], lost);
           v[p] = vp;
           const Vec<D> vmove = gather(sh, strides, vel);
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-              !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span))
+              !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span,
+                         affine ? affine + p : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);
         }
@@ -437,6 +472,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
     });
+    energy_.transfer_dissipation += lost;
     if (contact_on()) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
@@ -504,6 +540,20 @@ template <int D> template <class K> long ExplicitSolver<D>::move_and_map_rigid(c
     all.merge(extent);
   }
   return first_bad;
+}
+
+// XPIC(m) (Hammerquist & Nairn 2017): the points take sum N_ip (v_i^{k+1} - p_i / m_i + v*_i),
+// i.e. FLIP without the part of v_p^k the grid cannot represent; under the velocity conditions.
+template <int D> template <class K> void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
+  if (settings_.velocity_transfer != VelocityTransfer::Xpic) return;
+  Vec<D>* const star = fields_.xpic_star.data();
+  xpic_velocity(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data(),
+                settings_.xpic_order, star, fields_.xpic_work.data());
+  const double dt = settings_.dt;
+  Vec<D>* __restrict vnext = fields_.velocity_next.data();
+  const Vec<D>* __restrict acc = fields_.acceleration.data();
+  transfer_.for_box([&](std::size_t i) { vnext[i] = star[i] + dt * acc[i]; });
+  boundaries_.constrain_velocity(fields_.velocity_next);
 }
 
 

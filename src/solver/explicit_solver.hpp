@@ -20,6 +20,7 @@
 #include "solver/grid_fields.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
+#include "solver/velocity_transfer.hpp"
 #include "transfer/transfer.hpp"
 
 namespace skred {
@@ -36,6 +37,9 @@ template <int D> struct SolverSettings {
   // Thesis eq. 2.56). A small value damps the velocity noise FLIP leaves on points that the
   // grid no longer moves (the null space of the particle-to-grid map).
   double pic_fraction = 0.0;
+  // The particle velocity update (velocity_transfer.hpp); pic_fraction applies to flip only.
+  VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
+  int xpic_order = 2;  // m of XPIC(m), >= 1
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
   // Multi-continuum contact (Paper III §C.2.7; contact.hpp): empty, every body shares the
@@ -51,9 +55,16 @@ struct EnergyTotals {
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
   // Kinetic energy the contact phase took out of the nodal velocities (>= 0 every step;
   // Paper III §C.2.7): friction work (friction impulse times mean slip speed) plus the
-  // inelastic stop of the approach; friction_work is the first part alone.
+  // inelastic stop of the approach.
   double contact_work = 0.0;
+  // Energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed walls and
+  // the motion stopped at every wall; >= 0 at every node and step (boundary.hpp, WallEnergy).
+  // (Friction between bodies is in contact_work.)
   double friction_work = 0.0;
+  // Kinetic energy the velocity transfer took from the FLIP update (eq. 2.56), per step
+  // sum (1/2) m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2): the PIC share, XPIC and APIC (whose affine
+  // velocity's own kinetic energy is not counted in eq. 4.15); zero for pure FLIP.
+  double transfer_dissipation = 0.0;
 };
 
 // The solver's state between two steps beyond the particles and the scenario, for a
@@ -178,6 +189,12 @@ template <int D> class ExplicitSolver {
   void remap_velocity();                                               // v~_i = p~_i / m_i
   template <class K> bool stress_update_move_and_map(const K& kernel, double dt_stress);
   template <class K> bool velocity_move_and_map(const K& kernel);      // eq. 2.55-2.56
+  // XPIC(m): the nodal velocity the points take, into velocity_next (before m_i, p_i are cleared).
+  template <class K> void xpic_grid_velocity(const K& kernel);
+  // The PIC share of the particle update: pic_fraction for FLIP, 1 for XPIC and APIC.
+  double pic_share() const {
+    return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
+  }
   void clear_mass_momentum();
   // The grid phases per body in a run with contact (contact.cpp).
   void body_nodal_velocity();

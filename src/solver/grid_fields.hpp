@@ -19,9 +19,11 @@ template <int D> struct GridFields {
   // handed to the particles (eq. 2.56), so that they obey the walls too.
   GridArray<Vec<D>> acceleration;
   GridArray<Vec<D>> velocity_move;   // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
-  // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update
-  // (allocated only when the scheme uses it).
+  // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update and
+  // APIC; for XPIC(m), v_i^{k+1} - p_i / m_i + v*_i (allocated only when the transfer uses it).
   GridArray<Vec<D>> velocity_next;
+  // XPIC(m): v*_i and a scratch array (allocated only for XPIC).
+  GridArray<Vec<D>> xpic_star, xpic_work;
   // The double mapping of USL and the averaged scheme (Thesis §4.4 step 6): the updated
   // particle momenta mapped back, p~_i = sum N_ip m_p v_p^{k+1}, and v~_i = p~_i / m_i, which
   // the second stress update reads (allocated only for those schemes).
@@ -29,11 +31,15 @@ template <int D> struct GridFields {
   GridArray<Vec<D>> velocity_remap;
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
-  void resize(std::size_t n, bool pic, bool remap) {
+  void resize(std::size_t n, bool pic, bool remap, bool xpic = false) {
     for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move})
       f->resize(n);
     mass.resize(n);
-    if (pic) velocity_next.resize(n);
+    if (pic || xpic) velocity_next.resize(n);
+    if (xpic) {
+      xpic_star.resize(n);
+      xpic_work.resize(n);
+    }
     if (remap) {
       momentum_remap.resize(n);
       velocity_remap.resize(n);

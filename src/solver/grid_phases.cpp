@@ -3,6 +3,7 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 
 #include "solver/explicit_solver.hpp"
@@ -55,6 +56,7 @@ template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
 // Thesis eq. 2.49 with lumped mass: a_i = (f_i^int + f_i^ext) / m_i with f_i^ext = m_i g
 // (eq. 2.52, uniform gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq.
 // 31). Then the boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
+// What the walls take is friction work (EnergyTotals).
 template <int D> void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
@@ -66,8 +68,11 @@ template <int D> void ExplicitSolver<D>::grid_update() {
       fields_.acceleration[i] = a;
       fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
     });
-    boundaries_.constrain_end_of_step(fields_, dt);
-    if (settings_.pic_fraction > 0.0) {  // v_i^{k+1} for the PIC part of the particle update
+    const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
+    assert(walls.work >= 0.0);  // friction never creates energy
+    energy_.friction_work += walls.work;
+    if (settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic) {
+      // v_i^{k+1} for the PIC share of the particle update, or APIC's
       transfer_.for_box([&](std::size_t i) {
         const double m = fields_.mass[i];
         fields_.velocity_next[i] =

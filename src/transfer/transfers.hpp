@@ -10,6 +10,7 @@
 
 #include "core/particles.hpp"
 #include "transfer/transfer.hpp"
+#include "transfer/velocity_filters.hpp"
 
 namespace skred {
 
@@ -25,30 +26,35 @@ struct BodyPoints {
 };
 
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
-// rest of the step, and its mass and momentum mapped to the nodes. False if the point's
-// stencil does not fit in the grid.
+// rest of the step, and its mass and momentum mapped to the nodes (with an affine velocity C,
+// if given: APIC). False if the point's stencil does not fit in the grid.
 template <int D, class K>
 [[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
                                              const NodeStrides<D>& strides, const Vec<D>& x,
                                              const Vec<D>& half0, const Mat<D>& F, double m,
                                              const Vec<D>& v, typename K::Packed& store,
                                              double* __restrict mass, Vec<D>* __restrict mom,
-                                             BaseSpan& span) {
+                                             BaseSpan& span, const Mat<D>* C = nullptr) {
   typename K::Shape sh;
   if (!kernel.shape(grid, x, half0, F, sh)) return false;
   kernel.store(store, sh, F);
   span.add(sh.base);
   scatter(sh, strides, m, mass);
-  scatter(sh, strides, Vec<D>(m * v), mom);
+  if (C)
+    scatter_affine(sh, grid, strides, x, m, v, *C, mom);
+  else
+    scatter(sh, strides, Vec<D>(m * v), mom);
   return true;
 }
 
 // m_i = sum_p N_ip m_p and p_i = sum_p N_ip m_p v_p (eq. 2.53-2.54) into zeroed arrays m, p,
 // evaluating and storing every point's weighting functions and setting the box from the
-// points' extent. Returns the first point whose stencil leaves the grid, or -1.
+// points' extent (with the points' affine velocities, if stored: APIC). Returns the first
+// point whose stencil leaves the grid, or -1.
 template <int D, class K>
 long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, double* m,
                        Vec<D>* p) {
+  const Mat<D>* affine = P.affine.size() == P.size() ? P.affine.data() : nullptr;
   const long n = static_cast<long>(P.size());
   const GridGeometry<D>& grid = T.grid();
   const NodeStrides<D> strides = T.strides();
@@ -70,7 +76,7 @@ long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, d
 #pragma omp for schedule(static) nowait
     for (long q = 0; q < n; ++q) {
       if (!map_point(kernel, grid, strides, x[q], half0[q], F[q], pmass[q], v[q], shape[q], mass,
-                     mom, span))
+                     mom, span, affine ? affine + q : nullptr))
         bad = std::min(bad, q);
       extent.add(x[q]);
     }
@@ -103,7 +109,10 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
       if (!kernel.shape(T.grid(), P.x[q], P.half0[q], P.F[q], sh)) continue;  // reported by the map
       span.add(sh.base);
       scatter(sh, T.strides(), P.mass[q], mass);
-      scatter(sh, T.strides(), Vec<D>(P.mass[q] * P.v[q]), mom);
+      if (P.affine.size() == P.size())
+        scatter_affine(sh, T.grid(), T.strides(), P.x[q], P.mass[q], P.v[q], P.affine[q], mom);
+      else
+        scatter(sh, T.strides(), Vec<D>(P.mass[q] * P.v[q]), mom);
     }
     S.touched(t, span);
   }

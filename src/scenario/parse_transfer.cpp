@@ -1,0 +1,19 @@
+// [solver] velocity_transfer and xpic_order (docs/scenario.md): the particle velocity update.
+#include "scenario/parse_transfer.hpp"
+
+namespace skred::scenario_detail {
+
+void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
+  const auto V = [](VelocityTransfer x) { return std::pair{to_string(x), x}; };
+  s.velocity_transfer = t.choice<VelocityTransfer>(
+      "velocity_transfer",
+      {V(VelocityTransfer::Flip), V(VelocityTransfer::Xpic), V(VelocityTransfer::Apic)},
+      VelocityTransfer::Flip);
+  s.xpic_order = static_cast<int>(t.integer("xpic_order"));
+  if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)
+    t.fail_at("xpic_order", "applies to velocity_transfer = \"xpic\" only");
+  if (t.has("pic_fraction") && s.velocity_transfer != VelocityTransfer::Flip)
+    t.fail_at("pic_fraction", "applies to velocity_transfer = \"flip\" only");
+}
+
+}  // namespace skred::scenario_detail

@@ -1,0 +1,144 @@
+// The frictional wall (Thesis eq. 5.8-5.11, src/solver/coulomb_friction.hpp) and its energy
+// bookkeeping. R4's horizontal variant: an elastic block thrown at v0 along a base of
+// friction mu stops after v0^2 / (2 mu g) at t = v0 / (mu g), and its kinetic energy goes
+// into friction work (plus a little stored energy and transfer dissipation), for every
+// velocity transfer and two cell sizes (the 2.5 mm cell is in scripts/friction_block.sh).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+
+#include "solver/coulomb_friction.hpp"
+#include "support.hpp"
+
+using namespace skred;
+using namespace skred::test;
+
+namespace {
+
+constexpr double g = 9.81;
+
+TEST(CoulombFriction, SticksSlipsAndSeparatesWithoutCreatingEnergy) {
+  const Vec<2> n(0.0, -1.0);  // a floor: outward normal points down
+  // Separation: moving away from the floor, nothing changes.
+  EXPECT_EQ(coulomb_contact<2>(Vec<2>(1.0, 0.5), n, 0.5), Vec<2>(1.0, 0.5));
+  // Stick: the friction needed to stop 0.1 is within mu times the normal 1.0.
+  EXPECT_EQ(coulomb_contact<2>(Vec<2>(0.1, -1.0), n, 0.5), Vec<2>(0.0, 0.0));
+  // Slip: full friction 0.5 x 1.0 removed from a slip of 2, against its direction.
+  const Vec<2> v = coulomb_contact<2>(Vec<2>(-2.0, -1.0), n, 0.5);
+  EXPECT_NEAR(v[0], -1.5, 1e-15);
+  EXPECT_EQ(v[1], 0.0);
+  // Never more kinetic energy than the trial: random trials, normals and coefficients.
+  std::srand(1);
+  auto r = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  for (int k = 0; k < 10000; ++k) {
+    const Vec<3> vt(r(), r(), r());
+    const Vec<3> nn = Vec<3>(r(), r(), r()).normalized();
+    const Vec<3> out = coulomb_contact<3>(vt, nn, 2.0 * std::abs(r()));
+    EXPECT_LE(out.squaredNorm(), vt.squaredNorm() * (1 + 1e-15));
+    EXPECT_LE(out.dot(nn), std::max(0.0, vt.dot(nn)) + 1e-15);  // no motion into the wall
+  }
+}
+
+struct Throw {
+  double stop_distance = 0, stop_time = 0, ke0 = 0, ke_end = 0, friction = 0, stored = 0,
+         transfer = 0, gravity = 0, min_step_friction = 0;
+};
+
+// An 80 mm x 40 mm elastic block (2 x 2 points per cell) thrown at v0 along a frictional floor,
+// from its static stress (no elastic wave), for `time` seconds.
+Throw throw_block(double h, VelocityTransfer transfer, StressScheme scheme, double mu, double v0,
+                  double time) {
+  const Material m = elastic(2000.0, 1e7, 0.0);
+  const double H = 0.04, L = 0.08;
+  Particles<2> P;
+  fill_rectangle(P, m, h, 2, h, 0.0, h + L, H, Vec<2>(v0, 0.0));
+  for (std::size_t p = 0; p < P.size(); ++p) P.stress[p][1] = -m.density * g * (H - P.x[p][1]);
+  SolverSettings<2> st;
+  st.interpolation = Interpolation::Gimp;
+  st.scheme = scheme;
+  st.velocity_transfer = transfer;
+  st.dt = 0.2 * h / m.wave_speed();
+  st.gravity = Vec<2>(0.0, -g);
+  st.boundaries = {side(BoundaryKind::Free), side(BoundaryKind::Free),
+                   side(BoundaryKind::Friction, mu), side(BoundaryKind::Free)};
+  const int nx = static_cast<int>(std::lround(0.25 / h)), ny = static_cast<int>(std::lround(0.06 / h));
+  ExplicitSolver<2> solver(grid2(h, nx, ny), P, {m}, st, 1);
+  Throw r;
+  r.ke0 = solver.totals().kinetic_energy;
+  r.min_step_friction = INFINITY;
+  const long steps = std::lround(time / st.dt);
+  double last_v = v0, last_t = 0.0, friction = 0.0;
+  for (long s = 0; s < steps; ++s) {
+    const auto status = solver.step();
+    EXPECT_TRUE(status.ok) << status.reason;
+    if (!status.ok) break;
+    r.min_step_friction = std::min(r.min_step_friction, solver.energy().friction_work - friction);
+    friction = solver.energy().friction_work;
+    const auto t = solver.totals();
+    const double v = t.momentum[0] / t.mass;
+    if (r.stop_time == 0.0 && v <= 1e-3 * v0)  // first time the block is (nearly) at rest
+      r.stop_time = last_t + (solver.time() - last_t) * (last_v - 1e-3 * v0) / (last_v - v);
+    last_v = v;
+    last_t = solver.time();
+  }
+  for (std::size_t p = 0; p < P.size(); ++p) r.stop_distance += P.x[p][0] - P.x_ref[p][0];
+  r.stop_distance /= P.size();
+  const auto& e = solver.energy();
+  r.ke_end = solver.totals().kinetic_energy;
+  r.friction = e.friction_work;
+  r.stored = e.strain_energy;
+  r.transfer = e.transfer_dissipation;
+  r.gravity = e.gravity_work;
+  return r;
+}
+
+void check_throw(double h, VelocityTransfer transfer, StressScheme scheme) {
+  const double v0 = 1.0, mu = 0.466;
+  const double stop = v0 * v0 / (2 * mu * g), t_stop = v0 / (mu * g);  // 0.1094 m, 0.2187 s
+  const Throw r = throw_block(h, transfer, scheme, mu, v0, 1.25 * t_stop);
+  const double balance = r.ke_end + r.friction + r.stored + r.transfer - r.gravity;
+  std::printf("h %.1f mm %s %s: stops after %.5f m (exact %.5f, %+.2f %%) at %.4f s (exact %.4f, "
+              "%+.2f %%); KE0 %.5f J/m = friction %.5f + stored %.2e + transfer %.2e + KE %.1e - "
+              "W_g %.1e (%+.3f %%); friction + stored %+.3f %%; smallest step friction work %.1e\n",
+              1e3 * h, to_string(transfer), to_string(scheme), r.stop_distance, stop,
+              100 * (r.stop_distance - stop) / stop, r.stop_time, t_stop,
+              100 * (r.stop_time - t_stop) / t_stop, r.ke0, r.friction, r.stored, r.transfer,
+              r.ke_end, r.gravity, 100 * (balance - r.ke0) / r.ke0,
+              100 * (r.friction + r.stored - r.ke0) / r.ke0, r.min_step_friction);
+  EXPECT_NEAR(r.stop_distance, stop, 0.02 * stop);
+  EXPECT_GE(r.min_step_friction, 0.0);  // friction dissipates at every step
+  if (transfer == VelocityTransfer::Flip) return;  // see FlipChattersAtTheWall
+  EXPECT_NEAR(r.stop_time, t_stop, 0.02 * t_stop);
+  EXPECT_NEAR(r.friction + r.stored, r.ke0, 0.01 * r.ke0);
+  EXPECT_NEAR(balance, r.ke0, 0.01 * r.ke0);
+}
+
+}  // namespace
+
+TEST(FrictionalBlock, ThrownBlockStopsAtTheAnalyticDistanceAndTime) {
+  const char* cells = std::getenv("SKRED_FRICTION_CELLS");  // scripts/friction_block.sh: 0.0025
+  const std::vector<double> sizes = cells ? std::vector<double>{std::atof(cells)}
+                                          : std::vector<double>{0.01, 0.005};
+  for (double h : sizes)
+    for (VelocityTransfer t : {VelocityTransfer::Flip, VelocityTransfer::Xpic, VelocityTransfer::Apic})
+      check_throw(h, t, StressScheme::Averaged);
+}
+
+TEST(FrictionalBlock, ThrownBlockStopsWithEveryScheme) {
+  for (StressScheme s : {StressScheme::USF, StressScheme::USL})
+    check_throw(0.01, VelocityTransfer::Xpic, s);
+}
+
+// Pure FLIP (Thesis eq. 2.56) stops the block at the right distance, but the points next to
+// the wall keep velocities the wall nodes do not have (FLIP's null space): the wall nodes'
+// velocity jumps every step, the block creeps to a stop 5-8 % late and part of its kinetic
+// energy goes into lifting it (the balance still closes, within 0.5 %). Recorded here; XPIC
+// and APIC remove it (ThrownBlockStopsAtTheAnalyticDistanceAndTime).
+TEST(FrictionalBlock, FlipChattersAtTheWall) {
+  const double v0 = 1.0, mu = 0.466, t_stop = v0 / (mu * g);
+  const Throw r = throw_block(0.01, VelocityTransfer::Flip, StressScheme::Averaged, mu, v0, 1.25 * t_stop);
+  const Throw x = throw_block(0.01, VelocityTransfer::Xpic, StressScheme::Averaged, mu, v0, 1.25 * t_stop);
+  EXPECT_GT(r.stop_time, 1.02 * t_stop);
+  EXPECT_LT(r.gravity, 100 * x.gravity);  // lifted: negative work of gravity
+  EXPECT_NEAR(r.ke_end + r.friction + r.stored + r.transfer - r.gravity, r.ke0, 0.01 * r.ke0);
+}
