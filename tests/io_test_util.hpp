@@ -57,13 +57,13 @@ inline std::pair<int, std::string> run_python(const std::string& script,
 
 // Fails the calling test (never skips it) when the system Python cannot import vtk.
 inline void require_python_vtk() {
-  static const std::pair<int, std::string> probe =
-      run_command(std::string(kPython) + " -c 'import vtk'");
+  static const std::pair<int, std::string> probe = run_command(std::string(kPython) + " -c 'import vtk'");
   if (probe.first != 0)
     throw std::runtime_error(std::string(kPython) +
                              " cannot import vtk, needed to check .vtu files with VTK's own "
                              "reader: install python3-vtk9 (apt-get install python3-vtk9). "
-                             "Output: " + probe.second);
+                             "Output: " +
+                             probe.second);
 }
 
 inline double to_double(const std::string& s) {
@@ -85,9 +85,7 @@ class IoTest : public ::testing::Test {
  protected:
   std::filesystem::path dir;
 
-  void SetUp() override {
-    dir = skred::test::fresh_temp_dir();
-  }
+  void SetUp() override { dir = skred::test::fresh_temp_dir(); }
   void TearDown() override {
     std::error_code ec;
     std::filesystem::permissions(dir, std::filesystem::perms::owner_all, ec);

@@ -18,16 +18,15 @@ inline Material elastic(double rho, double E, double nu) {
 }
 
 // n x n points per cell of size h filling [x0, x1] x [y0, y1] (edges on cell lines).
-inline void fill_rectangle(Particles<2>& P, const Material& m, double h, int n, double x0,
-                           double y0, double x1, double y1, Vec<2> v = Vec<2>::Zero(),
-                           int material = 0, int body = 0) {
+inline void fill_rectangle(Particles<2>& P, const Material& m, double h, int n, double x0, double y0,
+                           double x1, double y1, Vec<2> v = Vec<2>::Zero(), int material = 0, int body = 0) {
   const double q = h / n;
   const int nx = static_cast<int>(std::lround((x1 - x0) / q));
   const int ny = static_cast<int>(std::lround((y1 - y0) / q));
   for (int j = 0; j < ny; ++j)
     for (int i = 0; i < nx; ++i)
-      P.add(Vec<2>(x0 + (i + 0.5) * q, y0 + (j + 0.5) * q), v, m.density * q * q, q * q,
-            Vec<2>(q / 2, q / 2), material, body);
+      P.add(Vec<2>(x0 + (i + 0.5) * q, y0 + (j + 0.5) * q), v, m.density * q * q, q * q, Vec<2>(q / 2, q / 2),
+            material, body);
 }
 
 inline GridGeometry<2> grid2(double h, int nx, int ny) {
@@ -52,8 +51,8 @@ inline std::vector<double> zero_crossings(const std::vector<double>& t, const st
 namespace skred::test {
 
 // n x n points per cell whose centres lie inside the disc.
-inline void fill_disc(Particles<2>& P, const Material& m, double h, int n, Vec<2> c, double r,
-                      double domain, Vec<2> v, int body) {
+inline void fill_disc(Particles<2>& P, const Material& m, double h, int n, Vec<2> c, double r, double domain,
+                      Vec<2> v, int body) {
   const double q = h / n;
   const int k = static_cast<int>(std::lround(domain / q));
   for (int j = 0; j < k; ++j)

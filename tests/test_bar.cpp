@@ -24,8 +24,8 @@ const double beta = std::numbers::pi / (2 * L), omega = beta * std::sqrt(E / rho
 
 struct BarRun {
   std::vector<double> t, vcm;
-  double disp_error = 0.0;   // RMS displacement error at the end, relative to the amplitude
-  double energy_drift = 0.0; // |E(end) - E(0)| / E(0)
+  double disp_error = 0.0;    // RMS displacement error at the end, relative to the amplitude
+  double energy_drift = 0.0;  // |E(end) - E(0)| / E(0)
 };
 
 BarRun run_bar(Interpolation interp, int cells_on_bar, StressScheme scheme, double periods) {
@@ -96,8 +96,8 @@ TEST(VibratingBar, DisplacementConvergesUnderRefinement) {
     const int n[3] = {16, 32, 64};
     for (int k = 0; k < 3; ++k) e[k] = run_bar(interp, n[k], StressScheme::Averaged, 1.25).disp_error;
     const double r1 = std::log2(e[0] / e[1]), r2 = std::log2(e[1] / e[2]);
-    std::printf("%s: relative RMS displacement error %.3e %.3e %.3e, rates %.2f %.2f\n",
-                to_string(interp), e[0], e[1], e[2], r1, r2);
+    std::printf("%s: relative RMS displacement error %.3e %.3e %.3e, rates %.2f %.2f\n", to_string(interp),
+                e[0], e[1], e[2], r1, r2);
     EXPECT_LT(e[1], e[0]);
     EXPECT_LT(e[2], e[1]);
     EXPECT_GT(r1, 1.0);
@@ -131,8 +131,8 @@ TEST(VibratingBar, ExampleFileMatchesTheExactSolution) {
   ASSERT_GE(z.size(), 3u);
   const double period = (z.back() - z.front()) / (z.size() - 1);
   const double exact_amp = v0 / (beta * L), exact_period = 2 * std::numbers::pi / omega;
-  std::printf("example: v_cm amplitude %.6f (exact %.6f), period %.4f (exact %.4f)\n", amp,
-              exact_amp, period, exact_period);
+  std::printf("example: v_cm amplitude %.6f (exact %.6f), period %.4f (exact %.4f)\n", amp, exact_amp, period,
+              exact_period);
   EXPECT_NEAR(amp, exact_amp, 0.01 * exact_amp);
   EXPECT_NEAR(period, exact_period, 0.01 * exact_period);
 }

@@ -34,8 +34,8 @@ double slide(double theta_deg, double mu, double v0, double time, Interpolation 
   st.scheme = StressScheme::USF;
   st.dt = 0.2 * h / m.wave_speed();
   st.gravity = Vec<2>(g * std::sin(th), -g * std::cos(th));
-  st.boundaries = {side(BoundaryKind::Free), side(BoundaryKind::Free),
-                   side(BoundaryKind::Friction, mu), side(BoundaryKind::Free)};
+  st.boundaries = {side(BoundaryKind::Free), side(BoundaryKind::Free), side(BoundaryKind::Friction, mu),
+                   side(BoundaryKind::Free)};
   ExplicitSolver<2> solver(grid2(h, 40, 6), P, {m}, st, 1);
   const long steps = std::lround(time / st.dt);
   for (long s = 0; s < steps; ++s) {
@@ -57,8 +57,8 @@ TEST(FrictionalBlock, SlidesWithTheAnalyticAcceleration) {
     const double exact = 0.5 * g * (std::sin(th) - mu * std::cos(th)) * t * t;
     for (Interpolation interp : {Interpolation::Gimp, Interpolation::Linear}) {
       const double s = slide(30.0, mu, 0.0, t, interp);
-      std::printf("theta 30, mu %.1f, %s: travel %.5f m, exact %.5f m (%.2f %%)\n", mu,
-                  to_string(interp), s, exact, 100 * (s - exact) / exact);
+      std::printf("theta 30, mu %.1f, %s: travel %.5f m, exact %.5f m (%.2f %%)\n", mu, to_string(interp), s,
+                  exact, 100 * (s - exact) / exact);
       EXPECT_NEAR(s, exact, 0.02 * exact);
     }
   }

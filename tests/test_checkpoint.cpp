@@ -62,7 +62,8 @@ x_min = "roller"
 y_min = "fixed"
 [solver]
 cfl = 0.3
-scheme = ")") + scheme + R"("
+scheme = ")") +
+         scheme + R"("
 [[stage]]
 name = "gravity"
 duration = 0.04
@@ -90,7 +91,8 @@ void write(const fs::path& f, const std::string& text) {
 }
 
 // Bitwise equality of two arrays of one field (PointState member by member: no padding).
-template <class T> bool bits_equal(const std::vector<T>& a, const std::vector<T>& b) {
+template <class T>
+bool bits_equal(const std::vector<T>& a, const std::vector<T>& b) {
   if (a.size() != b.size()) return false;
   if constexpr (std::is_same_v<T, PointState>) {
     for (std::size_t i = 0; i < a.size(); ++i)
@@ -125,9 +127,7 @@ std::pair<int, std::string> shell(const std::string& command) {
   return {status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1, out};
 }
 
-fs::path fresh_dir(const std::string& name) {
-  return skred::test::fresh_temp_dir(name);
-}
+fs::path fresh_dir(const std::string& name) { return skred::test::fresh_temp_dir(name); }
 
 }  // namespace
 
@@ -140,7 +140,7 @@ TEST(Checkpoint, RestartReproducesTheUninterruptedRunBitForBit) {
     RunOptions opt;
     opt.progress = false;
     opt.threads = std::string(scheme) == "averaged" ? 2 : 1;  // the same count when restarted
-    opt.checkpoint_every = 1000000;  // only the final one
+    opt.checkpoint_every = 1000000;                           // only the final one
     const RunResult a = run_simulation(s, dir / "a", opt);
     ASSERT_TRUE(a.completed) << a.message;
     ASSERT_EQ(a.stages.size(), 2u);
@@ -240,13 +240,12 @@ TEST(Checkpoint, CommandLineInterruptResumeAndRestart) {
   const fs::path dir = fresh_dir("cli");
   std::string text = read(fs::path(SKRED_SOURCE_DIR) / "examples" / "colliding_discs.toml");
   text.replace(text.find("cell_size = 0.05"), 16, "cell_size = 0.02");  // 3,000 steps, ~2 s
-  for (int k = 0; k < 2; ++k)
-    text.replace(text.find("particles_per_cell = 2"), 22, "particles_per_cell = 3");
+  for (int k = 0; k < 2; ++k) text.replace(text.find("particles_per_cell = 2"), 22, "particles_per_cell = 3");
   write(dir / "discs.toml", text);
   const std::string skred = SKRED_BINARY, scen = (dir / "discs.toml").string();
   const std::string out = (dir / "out").string(), out2 = (dir / "out2").string();
-  const auto [code, msg] = shell("timeout --preserve-status -s INT 0.5 " + skred + " run " + scen + " -o " + out +
-                                 " --threads 1 --checkpoint-every 500");
+  const auto [code, msg] = shell("timeout --preserve-status -s INT 0.5 " + skred + " run " + scen + " -o " +
+                                 out + " --threads 1 --checkpoint-every 500");
   ASSERT_EQ(code, 3) << msg;  // needs the run to take longer than 0.5 s
   EXPECT_NE(msg.find("skred resume " + out), std::string::npos) << msg;
   EXPECT_NE(read(dir / "out" / "summary.json").find("\"status\": \"interrupted\""), std::string::npos);

@@ -67,8 +67,8 @@ TEST(CliErrors, CheckRejectsEveryBadScenarioNamingTheKey) {
     const RunResult r = run(quote(SKRED_BINARY) + " check " + quote(file.string()) + " 2>&1");
     EXPECT_EQ(r.signal, 0) << r.output;
     EXPECT_EQ(r.exit_code, 5) << r.output;  // README, "Exit codes": invalid scenario
-    EXPECT_NE(r.output.find(expect), std::string::npos)
-        << "expected '" << expect << "' in output:\n" << r.output;
+    EXPECT_NE(r.output.find(expect), std::string::npos) << "expected '" << expect << "' in output:\n"
+                                                        << r.output;
     EXPECT_NE(r.output.find(file.filename().string()), std::string::npos) << r.output;
   }
 }

@@ -72,13 +72,14 @@ std::string short_discs() { return discs("end_time = 3.0", "end_time = 0.2"); }
 TEST(CliRun, VersionNamesTheReleaseAndTheCommit) {
   const Outcome r = sh(kSkred + " --version");
   EXPECT_EQ(r.code, 0) << r.output;
-  EXPECT_TRUE(std::regex_search(r.output, std::regex(R"(^skred \d+\.\d+\.\d+ \(commit ([0-9a-f]{40}|unknown)\))")))
+  EXPECT_TRUE(
+      std::regex_search(r.output, std::regex(R"(^skred \d+\.\d+\.\d+ \(commit ([0-9a-f]{40}|unknown)\))")))
       << r.output;
 }
 
 TEST(CliRun, UsageErrorsExitWithCode4) {
-  for (const char* args : {"", " run", " frobnicate", " run x.toml", " bench --threads 0",
-                           " bench --problem block --dim 3"}) {
+  for (const char* args :
+       {"", " run", " frobnicate", " run x.toml", " bench --threads 0", " bench --problem block --dim 3"}) {
     SCOPED_TRACE(args);
     const Outcome r = sh(kSkred + args);
     EXPECT_EQ(r.signal, 0);
@@ -90,7 +91,8 @@ TEST(CliRun, UsageErrorsExitWithCode4) {
 TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {
   TempDir d;
   write(d / "bad.toml", discs("density = 1000.0", "density = \"heavy\""));
-  for (const std::string& args : {" check " + q(d / "bad.toml"), " run " + q(d / "bad.toml") + " -o " + q(d / "out")}) {
+  for (const std::string& args :
+       {" check " + q(d / "bad.toml"), " run " + q(d / "bad.toml") + " -o " + q(d / "out")}) {
     const Outcome r = sh(kSkred + args);
     EXPECT_EQ(r.code, 5) << r.output;
     EXPECT_NE(r.output.find("bad.toml:13:11: key 'material[0].density'"), std::string::npos) << r.output;
@@ -210,8 +212,7 @@ TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
   const auto last_spin = [](const std::string& out) {
     std::string last;
     const std::regex spin_re(R"(GOMP_SPINCOUNT = '(\d+)')");
-    for (std::sregex_iterator m(out.begin(), out.end(), spin_re), e; m != e; ++m)
-      last = (*m)[1].str();
+    for (std::sregex_iterator m(out.begin(), out.end(), spin_re), e; m != e; ++m) last = (*m)[1].str();
     return last;
   };
   const std::string base = "env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT OMP_DISPLAY_ENV=verbose ";

@@ -22,8 +22,8 @@ struct Column {
 };
 
 // A column W x H on a fixed base between roller walls, 2 x 2 points per cell.
-std::unique_ptr<Column> make_column(double W, double H, double h, const Material& m,
-                                    Interpolation interp, double ramp) {
+std::unique_ptr<Column> make_column(double W, double H, double h, const Material& m, Interpolation interp,
+                                    double ramp) {
   auto c = std::make_unique<Column>();
   c->H = H;
   fill_rectangle(c->P, m, h, 2, 0.0, 0.0, W, H);
@@ -36,8 +36,8 @@ std::unique_ptr<Column> make_column(double W, double H, double h, const Material
   st.boundaries = {side(BoundaryKind::Roller), side(BoundaryKind::Roller), side(BoundaryKind::Fixed),
                    side(BoundaryKind::Free)};
   const int ny = static_cast<int>(std::lround(H / h)) + 2;
-  c->solver = std::make_unique<ExplicitSolver<2>>(grid2(h, static_cast<int>(std::lround(W / h)), ny),
-                                                  c->P, std::vector<Material>{m}, st, 1);
+  c->solver = std::make_unique<ExplicitSolver<2>>(grid2(h, static_cast<int>(std::lround(W / h)), ny), c->P,
+                                                  std::vector<Material>{m}, st, 1);
   return c;
 }
 
@@ -82,10 +82,11 @@ TEST(ElasticColumn, IncrementalGravityReachesTheStaticState) {
     if (d < h) continue;
     worst = std::max(worst, std::abs(smooth[p][1] / (-1800.0 * g * d) - 1.0));
   }
-  std::printf("column after incremental gravity: mean speed %.3e m/s (scale %.3e), worst smoothed "
-              "sigma_yy error below the first cell %.3f %%, raw RMS error %.3f %%, smoothed RMS %.3f %%\n",
-              tot.mean_speed, v_static, 100 * worst, 100 * stress_error(*c, c->P.stress, 1800.0, h),
-              100 * stress_error(*c, smooth, 1800.0, h));
+  std::printf(
+      "column after incremental gravity: mean speed %.3e m/s (scale %.3e), worst smoothed "
+      "sigma_yy error below the first cell %.3f %%, raw RMS error %.3f %%, smoothed RMS %.3f %%\n",
+      tot.mean_speed, v_static, 100 * worst, 100 * stress_error(*c, c->P.stress, 1800.0, h),
+      100 * stress_error(*c, smooth, 1800.0, h));
   EXPECT_LT(tot.mean_speed, 0.01 * v_static);  // at rest
   EXPECT_LT(worst, 0.02);
 }

@@ -67,11 +67,13 @@ cfl = 0.4
 end_time = 2.5
 [output]
 interval = 2.5
-)", z, zg, kCell, three_d ? "box" : "rectangle",
+)",
+                     z, zg, kCell, three_d ? "box" : "rectangle",
                      three_d ? "z_min = \"roller\"\nz_max = \"roller\"" : "");
 }
 
-template <int D> RunResult run(const ScenarioOf<D>& s, const std::string& name) {
+template <int D>
+RunResult run(const ScenarioOf<D>& s, const std::string& name) {
   const fs::path out = skred::test::fresh_temp_dir(name);
   RunOptions opt;
   opt.progress = false;
@@ -101,13 +103,14 @@ TEST(Column3D, SlabWithRollerSidesReproducesThePlaneStrainRun) {
   EXPECT_EQ(r3.particles, 4 * r2.particles);  // two cells of 2 points each along z
   const StageMeasures &m2 = r2.stages.back(), &m3 = r3.stages.back();
   const double thickness = 2 * kCell;
-  std::printf("slab vs plane strain: runout %.4g vs %.4g m (z: %.4g, %.4g), front travel %.5g vs "
-              "%.5g m (%.3f %%), final height %.5g vs %.5g m (%.3f %%), gravity work per metre "
-              "%.6g vs %.6g J/m (%.3f %%)\n",
-              m3.runout, m2.runout, m3.runout_z_min, m3.runout_z_max, m3.max_displacement,
-              m2.max_displacement, 100 * rel(m3.max_displacement, m2.max_displacement),
-              m3.height_end, m2.height_end, 100 * rel(m3.height_end, m2.height_end),
-              m3.gravity_work / thickness, m2.gravity_work, 100 * rel(m3.gravity_work / thickness, m2.gravity_work));
+  std::printf(
+      "slab vs plane strain: runout %.4g vs %.4g m (z: %.4g, %.4g), front travel %.5g vs "
+      "%.5g m (%.3f %%), final height %.5g vs %.5g m (%.3f %%), gravity work per metre "
+      "%.6g vs %.6g J/m (%.3f %%)\n",
+      m3.runout, m2.runout, m3.runout_z_min, m3.runout_z_max, m3.max_displacement, m2.max_displacement,
+      100 * rel(m3.max_displacement, m2.max_displacement), m3.height_end, m2.height_end,
+      100 * rel(m3.height_end, m2.height_end), m3.gravity_work / thickness, m2.gravity_work,
+      100 * rel(m3.gravity_work / thickness, m2.gravity_work));
   EXPECT_GT(m2.runout, 4 * kCell);  // the column did collapse
   EXPECT_LT(m2.height_end, 0.8 * m2.height_start);
   EXPECT_LE(rel(m3.runout, m2.runout), 0.02);
@@ -148,7 +151,9 @@ y_min = "fixed"
 scheme = "usf"
 cfl = 0.4
 end_time = 1.5
-)", kCell), "square.toml"));
+)",
+                                                                         kCell),
+                                                             "square.toml"));
   Particles<3> P = build_particles(s);
   ASSERT_EQ(P.size(), 4u * 6 * 4 * 8);
   apply_initial_stress(s, P);
@@ -159,12 +164,14 @@ end_time = 1.5
   StageTracker<3> tracker("collapse", P, 0.0, 0.0, 0.0, 0.0, 0.0, kCell, L, 0.0, L);
   while (solver.time() < s.end_time - 0.5 * solver.dt()) ASSERT_TRUE(solver.step().ok);
   const auto t = solver.totals();
-  const StageMeasures m = tracker.finish(P, solver.time(), solver.steps(), t.kinetic_energy, 0, 0, 0, "duration");
+  const StageMeasures m =
+      tracker.finish(P, solver.time(), solver.steps(), t.kinetic_energy, 0, 0, 0, "duration");
   const MaterialExtent e = material_extent(P);
-  std::printf("square column: runout -x %.4g +x %.4g -z %.4g +z %.4g m; deposit x [%.4f, %.4f], "
-              "z [%.4f, %.4f], height %.4g m (from 1.5); mass change %.2e, momentum (%.2e, %.2e, %.2e)\n",
-              m.runout_x_min, m.runout_x_max, m.runout_z_min, m.runout_z_max, e.x_min, e.x_max,
-              e.z_min, e.z_max, m.height_end, t.mass - mass0, t.momentum[0], t.momentum[1], t.momentum[2]);
+  std::printf(
+      "square column: runout -x %.4g +x %.4g -z %.4g +z %.4g m; deposit x [%.4f, %.4f], "
+      "z [%.4f, %.4f], height %.4g m (from 1.5); mass change %.2e, momentum (%.2e, %.2e, %.2e)\n",
+      m.runout_x_min, m.runout_x_max, m.runout_z_min, m.runout_z_max, e.x_min, e.x_max, e.z_min, e.z_max,
+      m.height_end, t.mass - mass0, t.momentum[0], t.momentum[1], t.momentum[2]);
   EXPECT_EQ(t.mass, mass0);  // mass conservation: point masses never change
   EXPECT_GE(std::min({m.runout_x_min, m.runout_x_max, m.runout_z_min, m.runout_z_max}), 2 * kCell);
   EXPECT_LT(m.height_end, 0.8 * 1.5);

@@ -49,7 +49,10 @@ DiscRun run_discs(StressScheme scheme, Interpolation interp = Interpolation::Gim
   r.e_end = t.kinetic_energy + solver.energy().strain_energy;
   double px = 0, m0 = 0;
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.body[p] == 0) { px += P.mass[p] * P.v[p][0]; m0 += P.mass[p]; }
+    if (P.body[p] == 0) {
+      px += P.mass[p] * P.v[p][0];
+      m0 += P.mass[p];
+    }
   r.vx_disc0_end = px / m0;
   return r;
 }
@@ -58,14 +61,16 @@ DiscRun run_discs(StressScheme scheme, Interpolation interp = Interpolation::Gim
 
 TEST(CollidingDiscs, AveragedSchemeConservesEnergyAndMomentum) {
   const DiscRun r = run_discs(StressScheme::Averaged);
-  EXPECT_EQ(r.mass0, r.mass1);                  // mass exactly
+  EXPECT_EQ(r.mass0, r.mass1);                       // mass exactly
   EXPECT_LT(r.max_momentum, 1e-12 * r.mass0 * 0.1);  // momentum to round-off
-  EXPECT_LT(r.ke_min, 0.5 * r.e0);              // a real collision took place
-  EXPECT_LT(r.vx_disc0_end, -0.05);             // disc 0 rebounds (moves back)
+  EXPECT_LT(r.ke_min, 0.5 * r.e0);                   // a real collision took place
+  EXPECT_LT(r.vx_disc0_end, -0.05);                  // disc 0 rebounds (moves back)
   const double change = std::abs(r.e_end - r.e0) / r.e0;
   const double worst = (r.e0 - r.min_e) / r.e0;
-  std::printf("averaged: initial KE %.5f (exact 2.5133 for the continuous discs), energy change %.3f %%, "
-              "largest dip %.3f %%, rebound velocity %.4f\n", r.e0, 100 * change, 100 * worst, r.vx_disc0_end);
+  std::printf(
+      "averaged: initial KE %.5f (exact 2.5133 for the continuous discs), energy change %.3f %%, "
+      "largest dip %.3f %%, rebound velocity %.4f\n",
+      r.e0, 100 * change, 100 * worst, r.vx_disc0_end);
   EXPECT_LT(change, 0.01);
   EXPECT_LT(worst, 0.01);
 }
@@ -81,9 +86,10 @@ TEST(CollidingDiscs, SchemesCompared) {
     const DiscRun usf = run_discs(StressScheme::USF, interp);
     auto loss = [](const DiscRun& r) { return 100 * (r.e0 - r.e_end) / r.e0; };
     auto dip = [](const DiscRun& r) { return 100 * (r.e0 - r.min_e) / r.e0; };
-    std::printf("%s: energy lost over the run / largest dip during contact: USL %.3f %% / %.3f %%, "
-                "USF %.3f %% / %.3f %%, averaged %.3f %% / %.3f %%\n", to_string(interp), loss(usl),
-                dip(usl), loss(usf), dip(usf), loss(avg), dip(avg));
+    std::printf(
+        "%s: energy lost over the run / largest dip during contact: USL %.3f %% / %.3f %%, "
+        "USF %.3f %% / %.3f %%, averaged %.3f %% / %.3f %%\n",
+        to_string(interp), loss(usl), dip(usl), loss(usf), dip(usf), loss(avg), dip(avg));
     EXPECT_LT(usl.max_momentum, 1e-12 * usl.mass0 * 0.1);
     EXPECT_LT(std::abs(loss(avg)), 1.0);
     EXPECT_GT(dip(usl), 0.05);

@@ -40,8 +40,8 @@ TEST(CoulombFriction, SticksSlipsAndSeparatesWithoutCreatingEnergy) {
 }
 
 struct Throw {
-  double stop_distance = 0, stop_time = 0, ke0 = 0, ke_end = 0, friction = 0, stored = 0,
-         transfer = 0, gravity = 0, min_step_friction = 0;
+  double stop_distance = 0, stop_time = 0, ke0 = 0, ke_end = 0, friction = 0, stored = 0, transfer = 0,
+         gravity = 0, min_step_friction = 0;
 };
 
 // An 80 mm x 40 mm elastic block (2 x 2 points per cell) thrown at v0 along a frictional floor,
@@ -59,8 +59,8 @@ Throw throw_block(double h, VelocityTransfer transfer, StressScheme scheme, doub
   st.velocity_transfer = transfer;
   st.dt = 0.2 * h / m.wave_speed();
   st.gravity = Vec<2>(0.0, -g);
-  st.boundaries = {side(BoundaryKind::Free), side(BoundaryKind::Free),
-                   side(BoundaryKind::Friction, mu), side(BoundaryKind::Free)};
+  st.boundaries = {side(BoundaryKind::Free), side(BoundaryKind::Free), side(BoundaryKind::Friction, mu),
+                   side(BoundaryKind::Free)};
   const int nx = static_cast<int>(std::lround(0.25 / h)), ny = static_cast<int>(std::lround(0.06 / h));
   ExplicitSolver<2> solver(grid2(h, nx, ny), P, {m}, st, 1);
   Throw r;
@@ -97,16 +97,16 @@ void check_throw(double h, VelocityTransfer transfer, StressScheme scheme) {
   const double stop = v0 * v0 / (2 * mu * g), t_stop = v0 / (mu * g);  // 0.1094 m, 0.2187 s
   const Throw r = throw_block(h, transfer, scheme, mu, v0, 1.25 * t_stop);
   const double balance = r.ke_end + r.friction + r.stored + r.transfer - r.gravity;
-  std::printf("h %.1f mm %s %s: stops after %.5f m (exact %.5f, %+.2f %%) at %.4f s (exact %.4f, "
-              "%+.2f %%); KE0 %.5f J/m = friction %.5f + stored %.2e + transfer %.2e + KE %.1e - "
-              "W_g %.1e (%+.3f %%); friction + stored %+.3f %%; smallest step friction work %.1e\n",
-              1e3 * h, to_string(transfer), to_string(scheme), r.stop_distance, stop,
-              100 * (r.stop_distance - stop) / stop, r.stop_time, t_stop,
-              100 * (r.stop_time - t_stop) / t_stop, r.ke0, r.friction, r.stored, r.transfer,
-              r.ke_end, r.gravity, 100 * (balance - r.ke0) / r.ke0,
-              100 * (r.friction + r.stored - r.ke0) / r.ke0, r.min_step_friction);
+  std::printf(
+      "h %.1f mm %s %s: stops after %.5f m (exact %.5f, %+.2f %%) at %.4f s (exact %.4f, "
+      "%+.2f %%); KE0 %.5f J/m = friction %.5f + stored %.2e + transfer %.2e + KE %.1e - "
+      "W_g %.1e (%+.3f %%); friction + stored %+.3f %%; smallest step friction work %.1e\n",
+      1e3 * h, to_string(transfer), to_string(scheme), r.stop_distance, stop,
+      100 * (r.stop_distance - stop) / stop, r.stop_time, t_stop, 100 * (r.stop_time - t_stop) / t_stop,
+      r.ke0, r.friction, r.stored, r.transfer, r.ke_end, r.gravity, 100 * (balance - r.ke0) / r.ke0,
+      100 * (r.friction + r.stored - r.ke0) / r.ke0, r.min_step_friction);
   EXPECT_NEAR(r.stop_distance, stop, 0.02 * stop);
-  EXPECT_GE(r.min_step_friction, 0.0);  // friction dissipates at every step
+  EXPECT_GE(r.min_step_friction, 0.0);             // friction dissipates at every step
   if (transfer == VelocityTransfer::Flip) return;  // see FlipChattersAtTheWall
   EXPECT_NEAR(r.stop_time, t_stop, 0.02 * t_stop);
   EXPECT_NEAR(r.friction + r.stored, r.ke0, 0.01 * r.ke0);
@@ -117,16 +117,15 @@ void check_throw(double h, VelocityTransfer transfer, StressScheme scheme) {
 
 TEST(FrictionalBlock, ThrownBlockStopsAtTheAnalyticDistanceAndTime) {
   const char* cells = std::getenv("SKRED_FRICTION_CELLS");  // scripts/friction_block.sh: 0.0025
-  const std::vector<double> sizes = cells ? std::vector<double>{std::atof(cells)}
-                                          : std::vector<double>{0.01, 0.005};
+  const std::vector<double> sizes =
+      cells ? std::vector<double>{std::atof(cells)} : std::vector<double>{0.01, 0.005};
   for (double h : sizes)
     for (VelocityTransfer t : {VelocityTransfer::Flip, VelocityTransfer::Xpic, VelocityTransfer::Apic})
       check_throw(h, t, StressScheme::Averaged);
 }
 
 TEST(FrictionalBlock, ThrownBlockStopsWithEveryScheme) {
-  for (StressScheme s : {StressScheme::USF, StressScheme::USL})
-    check_throw(0.01, VelocityTransfer::Xpic, s);
+  for (StressScheme s : {StressScheme::USF, StressScheme::USL}) check_throw(0.01, VelocityTransfer::Xpic, s);
 }
 
 // Pure FLIP (Thesis eq. 2.56) stops the block at the right distance, but the points next to

@@ -133,7 +133,8 @@ vertices = [[0, 0], [60, 0], [60, 1], [0, 5]]
   const double point_area = std::pow(1.0 / 3.0, 2);
   for (int b = 0; b < 3; ++b) {
     SCOPED_TRACE(s.bodies[static_cast<std::size_t>(b)].name);
-    const double hand = std::abs(polygon_area(std::get<Polygon>(h.bodies[static_cast<std::size_t>(b)].shape)));
+    const double hand =
+        std::abs(polygon_area(std::get<Polygon>(h.bodies[static_cast<std::size_t>(b)].shape)));
     const double layer = layer_area(std::get<Layer>(s.bodies[static_cast<std::size_t>(b)].shape));
     EXPECT_NEAR(layer, hand, 1e-9 * hand);  // the exact area of the layer
     const double rho = b == 0 ? 1800 : 1900;
@@ -156,8 +157,10 @@ vertices = [[0, 0], [60, 0], [60, 1], [0, 5]]
 TEST(Ground, MalformedProfilesNameTheFileAndLine) {
   const fs::path dir = temp_dir();
   const auto layer = [&](const std::string& bottom) {
-    return kHead + "[[body]]\nmaterial = \"clay\"\nshape = \"layer\"\ntop = [[0, 20], [60, 20]]\n"
-                   "bottom = " + bottom + "\n";
+    return kHead +
+           "[[body]]\nmaterial = \"clay\"\nshape = \"layer\"\ntop = [[0, 20], [60, 20]]\n"
+           "bottom = " +
+           bottom + "\n";
   };
   const fs::path toml = dir / "s.toml";
   const std::pair<std::string, std::string> cases[] = {
@@ -182,11 +185,13 @@ TEST(Ground, MalformedProfilesNameTheFileAndLine) {
   }
   EXPECT_NE(error_of(layer("\"missing.csv\""), toml).find("key 'body[0].bottom': cannot open profile file"),
             std::string::npos);
-  EXPECT_NE(error_of(layer("[[0, 5], [10, 6], [5, 7]]"), toml).find("key 'body[0].bottom[2]': x must increase"),
-            std::string::npos);
+  EXPECT_NE(
+      error_of(layer("[[0, 5], [10, 6], [5, 7]]"), toml).find("key 'body[0].bottom[2]': x must increase"),
+      std::string::npos);
   EXPECT_NE(error_of(layer("[[0, 5]]"), toml).find("at least 2 points"), std::string::npos);
   EXPECT_NE(error_of(kHead + "[[body]]\nmaterial = \"clay\"\nshape = \"layer\"\n", toml)
-                .find("key 'body[0].shape': a layer needs `top`"), std::string::npos);
+                .find("key 'body[0].shape': a layer needs `top`"),
+            std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -1,7 +1,7 @@
 // Result files: VTU particles (read back with VTK's own reader), PVD index, series.csv,
 // summary.json and the atomic-write layer underneath them all.
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <cstdio>
 #include <cstdlib>
@@ -52,18 +52,29 @@ TEST_F(IoTest, VtuRoundTripsThroughVtkReader) {
   ASSERT_EQ(info.points, 8);
   EXPECT_EQ(info.point_arrays, 0);
   const std::map<std::string, std::pair<int, std::string>> expected = {
-      {"velocity", {3, "float64"}},        {"displacement", {3, "float64"}},
-      {"stress", {6, "float64"}},          {"mean_stress_p", {1, "float64"}},
-      {"deviatoric_stress_q", {1, "float64"}}, {"volume", {1, "float64"}},
-      {"det_F", {1, "float64"}},           {"plastic_shear_strain", {1, "float64"}},
-      {"yielding", {1, "uint8"}},  {"material_id", {1, "int16"}},
-      {"body_id", {1, "int16"}},            {"smoothed_stress", {6, "float64"}},
-      {"smoothed_p", {1, "float64"}},      {"smoothed_q", {1, "float64"}},
+      {"velocity", {3, "float64"}},
+      {"displacement", {3, "float64"}},
+      {"stress", {6, "float64"}},
+      {"mean_stress_p", {1, "float64"}},
+      {"deviatoric_stress_q", {1, "float64"}},
+      {"volume", {1, "float64"}},
+      {"det_F", {1, "float64"}},
+      {"plastic_shear_strain", {1, "float64"}},
+      {"yielding", {1, "uint8"}},
+      {"material_id", {1, "int16"}},
+      {"body_id", {1, "int16"}},
+      {"smoothed_stress", {6, "float64"}},
+      {"smoothed_p", {1, "float64"}},
+      {"smoothed_q", {1, "float64"}},
       // post-processing fields (test_post_files.cpp checks their values)
-      {"speed", {1, "float64"}},           {"F", {9, "float64"}},
-      {"engineering_strain", {6, "float64"}}, {"green_strain", {6, "float64"}},
-      {"hencky_strain", {6, "float64"}},   {"principal_stress", {3, "float64"}},
-      {"principal_angle", {1, "float64"}}, {"smoothed_principal_stress", {3, "float64"}},
+      {"speed", {1, "float64"}},
+      {"F", {9, "float64"}},
+      {"engineering_strain", {6, "float64"}},
+      {"green_strain", {6, "float64"}},
+      {"hencky_strain", {6, "float64"}},
+      {"principal_stress", {3, "float64"}},
+      {"principal_angle", {1, "float64"}},
+      {"smoothed_principal_stress", {3, "float64"}},
       {"smoothed_principal_angle", {1, "float64"}}};
   ASSERT_EQ(info.arrays.size(), expected.size());
   for (const auto& [name, spec] : expected) {
@@ -139,8 +150,8 @@ TEST_F(IoTest, VtuSpanningSeveralBuffersReadsBack) {
   Particles<2> P;
   const int n = 70001;  // more than two internal 32768-particle chunks
   for (int i = 0; i < n; ++i) {
-    P.add(Vec<2>(0.01 * (i % 300), 0.01 * (i / 300)), Vec<2>(i, -i), 1.0, 1e-4,
-          Vec<2>(0.005, 0.005), i % 3, i % 5);
+    P.add(Vec<2>(0.01 * (i % 300), 0.01 * (i / 300)), Vec<2>(i, -i), 1.0, 1e-4, Vec<2>(0.005, 0.005), i % 3,
+          i % 5);
     P.stress[i][3] = 1.5 * i;
   }
   const auto file = dir / "big.vtu";

@@ -1,12 +1,12 @@
 // 3D result files: a particle frame of hexahedral voxels (corners x_p + F_p (+-l0), Thesis
 // eq. 3.6-3.12; Post §3, §5) read back with VTK's own reader (python3-vtk9), whose cell
 // volumes must be det(F) V0, with the full 3D stress, F and vectors; the 3D grid file.
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <map>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 #include "io/grid_writer.hpp"
 #include "io/vtu_writer.hpp"
@@ -45,16 +45,27 @@ TEST_F(IoTest, Vtu3DRoundTripsHexahedraThroughVtkReader) {
     std::istringstream in(line);
     std::string key;
     in >> key;
-    if (key == "cells") in >> cells;
-    else if (key == "points") in >> points;
-    else if (key == "cell") { int c; std::string v; in >> c >> type[c] >> npoints[c] >> v; volume[c] = to_double(v); }
-    else if (key == "corner") {
-      int c, k; std::string x, y, z;
+    if (key == "cells")
+      in >> cells;
+    else if (key == "points")
+      in >> points;
+    else if (key == "cell") {
+      int c;
+      std::string v;
+      in >> c >> type[c] >> npoints[c] >> v;
+      volume[c] = to_double(v);
+    } else if (key == "corner") {
+      int c, k;
+      std::string x, y, z;
       in >> c >> k >> x >> y >> z;
       corner[{c, k}] = Vec<3>(to_double(x), to_double(y), to_double(z));
-    } else if (key == "array") { std::string n; in >> n; in >> components[n]; }
-    else if (key == "value") {
-      std::string n, v; int c, k;
+    } else if (key == "array") {
+      std::string n;
+      in >> n;
+      in >> components[n];
+    } else if (key == "value") {
+      std::string n, v;
+      int c, k;
       in >> n >> c >> k >> v;
       value[{n, c, k}] = to_double(v);
     }
@@ -108,13 +119,14 @@ TEST_F(IoTest, GridVtr3DHasThreeCoordinateArrays) {
   }
   const auto file = dir / "grid_000000.vtr";
   write_grid_vtr(file, g, GridNodeFieldsOf<3>{mass, vel, stress});
-  const auto [status, out] = run_command(
-      std::string(kPython) +
-      " -c 'import sys; from vtkmodules.vtkIOXML import vtkXMLRectilinearGridReader as R; "
-      "r = R(); r.SetFileName(sys.argv[1]); r.Update(); o = r.GetOutput(); "
-      "print(o.GetDimensions(), o.GetZCoordinates().GetValue(0), o.GetPointData().GetArray(\"velocity\").GetComponent(7, 2), "
-      "o.GetPointData().GetArray(\"mass\").GetValue(o.GetNumberOfPoints() - 1))' " +
-      shell_quote(file.string()));
+  const auto [status, out] =
+      run_command(std::string(kPython) +
+                  " -c 'import sys; from vtkmodules.vtkIOXML import vtkXMLRectilinearGridReader as R; "
+                  "r = R(); r.SetFileName(sys.argv[1]); r.Update(); o = r.GetOutput(); "
+                  "print(o.GetDimensions(), o.GetZCoordinates().GetValue(0), "
+                  "o.GetPointData().GetArray(\"velocity\").GetComponent(7, 2), "
+                  "o.GetPointData().GetArray(\"mass\").GetValue(o.GetNumberOfPoints() - 1))' " +
+                  shell_quote(file.string()));
   ASSERT_EQ(status, 0) << out;
   EXPECT_EQ(out, "(5, 4, 6) -1.5 7.0 " + std::to_string(n - 1) + ".0\n");
 }

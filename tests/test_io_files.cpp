@@ -29,7 +29,8 @@ void write_text(const fs::path& file, const std::string& text) {
 }
 
 // Expects `call` to throw std::runtime_error whose message names `file`.
-template <class F> void expect_error_naming(const fs::path& file, F call) {
+template <class F>
+void expect_error_naming(const fs::path& file, F call) {
   try {
     call();
     ADD_FAILURE() << "no exception writing " << file;
@@ -107,8 +108,7 @@ TEST_F(IoTest, PvdListsEveryDataSetWithItsTime) {
   PvdWriter pvd(dir);
   EXPECT_FALSE(fs::exists(dir / "particles.pvd"));
   const std::vector<std::pair<double, std::string>> sets = {
-      {0.0, "particles_000000.vtu"}, {0.1, "particles_000001.vtu"},
-      {1.0 / 3.0, "a&b <\"odd\">.vtu"}};
+      {0.0, "particles_000000.vtu"}, {0.1, "particles_000001.vtu"}, {1.0 / 3.0, "a&b <\"odd\">.vtu"}};
   for (std::size_t i = 0; i < sets.size(); ++i) {
     pvd.add(sets[i].first, sets[i].second);
     EXPECT_EQ(pvd.size(), i + 1);
@@ -140,9 +140,9 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
     SeriesWriter series(file);
     for (long i = 0; i < 5; ++i) {
       const double t = 0.1 * i;
-      rows.push_back({10 * i, t, 1.0 / (i + 3), 2.5e-7 * i, std::sqrt(2.0) * i, 1e300 / (i + 1),
-                      0.5 * t, t / 3, t / 7, 3 * t, -t, t * 1e-20, 1000 + i,
-                      static_cast<int>(i % 2), 0.25 * t, 7 * i});
+      rows.push_back({10 * i, t, 1.0 / (i + 3), 2.5e-7 * i, std::sqrt(2.0) * i, 1e300 / (i + 1), 0.5 * t,
+                      t / 3, t / 7, 3 * t, -t, t * 1e-20, 1000 + i, static_cast<int>(i % 2), 0.25 * t,
+                      7 * i});
       series.add(rows.back());
       if (i == 2) {
         series.flush();
@@ -166,11 +166,19 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
     ASSERT_EQ(f.size(), 17u) << lines[i + 1];
     const SeriesRow& r = rows[i];
     EXPECT_EQ(std::stol(f[0]), r.step);
-    const double expected[] = {r.time, r.kinetic_energy, r.strain_energy, r.gravity_work,
-                               r.plastic_dissipation, r.friction_work, r.transfer_dissipation,
-                               r.kinetic_energy + r.strain_energy + r.plastic_dissipation +
-                                   r.friction_work + r.transfer_dissipation - r.gravity_work,
-                               r.mean_speed, r.max_speed, r.momentum_x, r.momentum_y};
+    const double expected[] = {r.time,
+                               r.kinetic_energy,
+                               r.strain_energy,
+                               r.gravity_work,
+                               r.plastic_dissipation,
+                               r.friction_work,
+                               r.transfer_dissipation,
+                               r.kinetic_energy + r.strain_energy + r.plastic_dissipation + r.friction_work +
+                                   r.transfer_dissipation - r.gravity_work,
+                               r.mean_speed,
+                               r.max_speed,
+                               r.momentum_x,
+                               r.momentum_y};
     for (int k = 0; k < 12; ++k) EXPECT_EQ(to_double(f[k + 1]), expected[k]) << "column " << k + 1;
     EXPECT_EQ(std::stol(f[13]), r.num_particles);
     EXPECT_EQ(std::stoi(f[14]), r.stage);
@@ -181,9 +189,20 @@ TEST_F(IoTest, SeriesCsvRoundTripsEveryValue) {
 }
 
 TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
-  Summary s{"error", "bad \"value\" in C:\\path\nline two\ttab \x01 caf\xc3\xa9 \xff end",
-            1234, 0.5, 2.0, 4000, 1600, std::numeric_limits<double>::quiet_NaN(),
-            std::numeric_limits<double>::infinity(), 8, "slope \"A\".toml", "gimp", "usl", 1e-5};
+  Summary s{"error",
+            "bad \"value\" in C:\\path\nline two\ttab \x01 caf\xc3\xa9 \xff end",
+            1234,
+            0.5,
+            2.0,
+            4000,
+            1600,
+            std::numeric_limits<double>::quiet_NaN(),
+            std::numeric_limits<double>::infinity(),
+            8,
+            "slope \"A\".toml",
+            "gimp",
+            "usl",
+            1e-5};
   s.phase_seconds = {{"stress_update_force", 0.25}, {"grid_update", 1.5}};
   s.version = "0.1.0";
   s.git_commit = "unknown";
@@ -193,12 +212,10 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
   ASSERT_EQ(status, 0) << out << "\n" << read_text(file);
   std::map<std::string, std::string> got;
   std::istringstream lines(out);
-  for (std::string key, value; lines >> key && std::getline(lines >> std::ws, value);)
-    got[key] = value;
+  for (std::string key, value; lines >> key && std::getline(lines >> std::ws, value);) got[key] = value;
   const std::map<std::string, std::string> expected = {
       {"status", "\"error\""},
-      {"message",
-       R"("bad \"value\" in C:\\path\nline two\ttab \u0001 caf\u00e9 \ufffd end")"},
+      {"message", R"("bad \"value\" in C:\\path\nline two\ttab \u0001 caf\u00e9 \ufffd end")"},
       {"steps", "1234"},
       {"simulated_time", "0.5"},
       {"end_time", "2"},

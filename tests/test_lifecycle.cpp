@@ -20,7 +20,8 @@ namespace fs = std::filesystem;
 namespace {
 
 // A value of each field type that depends on `seed`, and equality (PointState has none).
-template <class T> T value_of(int seed) {
+template <class T>
+T value_of(int seed) {
   if constexpr (std::is_same_v<T, PointState>) {
     PointState s;
     s.plastic_shear_strain = seed;
@@ -36,7 +37,8 @@ template <class T> T value_of(int seed) {
     return v;
   }
 }
-template <class T> bool same(const T& a, const T& b) {
+template <class T>
+bool same(const T& a, const T& b) {
   if constexpr (std::is_same_v<T, PointState>)
     return a.plastic_shear_strain == b.plastic_shear_strain &&
            a.plastic_volume_strain == b.plastic_volume_strain && a.volume_strain == b.volume_strain &&
@@ -184,7 +186,7 @@ TEST(Lifecycle, SplitHalvesAPointConservingMassAndMomentum) {
   EXPECT_EQ(P.volume0[0] + P.volume0[q], 0.01);
   EXPECT_EQ(P.half0[q], Vec<2>(0.025, 0.05));
   EXPECT_NEAR((0.5 * (P.x[0] + P.x[q]) - Vec<2>(1.0, 1.0)).norm(), 0.0, 1e-15);  // centred
-  EXPECT_NEAR((P.x[q] - P.x[0] - Vec<2>(0.055, 0.0)).norm(), 0.0, 1e-15);  // F l0 e_x apart
+  EXPECT_NEAR((P.x[q] - P.x[0] - Vec<2>(0.055, 0.0)).norm(), 0.0, 1e-15);        // F l0 e_x apart
   EXPECT_EQ(P.F[q], P.F[0]);
 }
 
@@ -207,7 +209,8 @@ TEST(Lifecycle, PointsSplitAndRemovedMidRun) {
   opt.sort_every = 50;
   std::size_t n0 = 0, n1 = 0, n2 = 0;
   double mass0 = 0, mass1 = 0, mass2 = 0, removed = 0;
-  Vec<2> mom_split = Vec<2>::Zero(), mom_before = Vec<2>::Zero(), mom_removed = Vec<2>::Zero(), mom_after = Vec<2>::Zero();
+  Vec<2> mom_split = Vec<2>::Zero(), mom_before = Vec<2>::Zero(), mom_removed = Vec<2>::Zero(),
+         mom_after = Vec<2>::Zero();
   opt.edit_points = [&](Particles<2>& P, const ExplicitSolver<2>& solver) {
     if (solver.steps() == 100) {
       n0 = P.size();
@@ -240,8 +243,8 @@ TEST(Lifecycle, PointsSplitAndRemovedMidRun) {
   const RunResult r = run_simulation(s, out, opt);
   ASSERT_TRUE(r.completed) << r.message;
   EXPECT_GT(n1, n0);
-  EXPECT_EQ(mass1, mass0);               // splitting conserves mass exactly
-  EXPECT_LT(mom_split.norm(), 1e-14);    // and momentum (to the order of the sum)
+  EXPECT_EQ(mass1, mass0);                     // splitting conserves mass exactly
+  EXPECT_LT(mom_split.norm(), 1e-14);          // and momentum (to the order of the sum)
   EXPECT_NEAR(mass2, removed, 1e-13 * mass0);  // removal takes away the removed points' mass
   EXPECT_NEAR((mom_after - mom_removed).norm(), 0.0, 1e-14);
   EXPECT_EQ(n2, n1 - (n1 + 4) / 5);

@@ -20,8 +20,7 @@ using namespace skred;
 
 namespace {
 
-constexpr Model kModels[] = {Model::LinearElastic, Model::MohrCoulomb, Model::Tresca,
-                             Model::VonMises};
+constexpr Model kModels[] = {Model::LinearElastic, Model::MohrCoulomb, Model::Tresca, Model::VonMises};
 
 const ModelInfo& info_of(Model m) {
   Material mat;
@@ -48,8 +47,9 @@ std::string number(double v) {
 // `skip` (left out) and `key` (set to `value`), plus an `extra` line.
 std::string scenario(Model m, const std::string& skip, const std::string& key, double value,
                      const std::string& extra = "") {
-  std::string t = "title = \"t\"\n[grid]\norigin = [0, 0]\nsize = [4.0, 2.0]\ncell_size = 0.5\n"
-                  "[[material]]\nname = \"soil\"\nmodel = \"";
+  std::string t =
+      "title = \"t\"\n[grid]\norigin = [0, 0]\nsize = [4.0, 2.0]\ncell_size = 0.5\n"
+      "[[material]]\nname = \"soil\"\nmodel = \"";
   t += to_string(m);
   t += "\"\n";
   for (const ParamSpec& p : specs_of(m)) {

@@ -66,8 +66,8 @@ Law law_of(const Material& m, const Sym3& s0, const PointState& st) {
   return [m, s0, st](const Sym3& deps, int* region) {
     if (m.model == Model::MohrCoulomb || m.model == Model::Tresca) {
       MohrCoulombRegion r;
-      LawResult out = mohr_coulomb_evaluate(m.elastic_constants, m.mohr_coulomb_constants, s0,
-                                            deps, st, true, &r);
+      LawResult out =
+          mohr_coulomb_evaluate(m.elastic_constants, m.mohr_coulomb_constants, s0, deps, st, true, &r);
       *region = int(r);
       return out;
     }
@@ -85,8 +85,8 @@ Law law_of(const Material& m, const Sym3& s0, const PointState& st) {
 struct FdCheck {
   bool same_region = true;  // both perturbed updates in the base region
   int region = 0;
-  double error = 0.0;       // max |tangent - FD| / max |C|
-  double plastic = 0.0;     // max |tangent - C| / max |C| (how far from elastic)
+  double error = 0.0;    // max |tangent - FD| / max |C|
+  double plastic = 0.0;  // max |tangent - C| / max |C| (how far from elastic)
   Mat6 tangent, fd;
 };
 
@@ -131,24 +131,22 @@ Step step_to(const Material& m, const Vec3& trial, const Mat3& R, std::mt19937& 
   std::uniform_real_distribution<double> u(-2e-3, 2e-3);
   Step s;
   for (int i = 0; i < 6; ++i) s.deps[i] = (plane && i >= 4) ? 0.0 : u(rng);
-  s.s0 = to_voigt(R * trial.asDiagonal() * R.transpose()) -
-         elastic_stiffness(m.elastic_constants) * s.deps;
+  s.s0 = to_voigt(R * trial.asDiagonal() * R.transpose()) - elastic_stiffness(m.elastic_constants) * s.deps;
   return s;
 }
 
 const char* region_name(MohrCoulombRegion r) {
-  static const char* names[] = {"Elastic",         "Plane",        "CompressionEdge",
-                                "ExtensionEdge",   "Apex",         "Tension",
-                                "TensionEdge",     "TensionApex",  "PlaneTension",
-                                "ExtensionCorner", "CompressionCorner"};
+  static const char* names[] = {"Elastic",      "Plane",           "CompressionEdge",  "ExtensionEdge",
+                                "Apex",         "Tension",         "TensionEdge",      "TensionApex",
+                                "PlaneTension", "ExtensionCorner", "CompressionCorner"};
   return names[int(r)];
 }
 
 // Random trial stresses (principal values uniform in [lo, hi] kPa, general and plane-strain
 // orientations); every sample whose FD stays in one region is checked. Returns the number of
 // checked samples and the largest error per region.
-std::map<MohrCoulombRegion, std::pair<int, double>> sweep_mc(const Material& m, double lo,
-                                                             double hi, int n, unsigned seed) {
+std::map<MohrCoulombRegion, std::pair<int, double>> sweep_mc(const Material& m, double lo, double hi, int n,
+                                                             unsigned seed) {
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(lo * kPa, hi * kPa);
   std::map<MohrCoulombRegion, std::pair<int, double>> out;
@@ -165,8 +163,9 @@ std::map<MohrCoulombRegion, std::pair<int, double>> sweep_mc(const Material& m, 
     auto& [count, worst] = out[MohrCoulombRegion(c.region)];
     ++count;
     worst = std::max(worst, c.error);
-    EXPECT_LE(c.error, kTol) << region_name(MohrCoulombRegion(c.region)) << " sample " << i
-                             << "\nanalytic\n" << c.tangent << "\nFD\n" << c.fd;
+    EXPECT_LE(c.error, kTol) << region_name(MohrCoulombRegion(c.region)) << " sample " << i << "\nanalytic\n"
+                             << c.tangent << "\nFD\n"
+                             << c.fd;
   }
   for (const auto& [r, cw] : out)
     std::printf("  %-17s %5d states, max FD error %.2e\n", region_name(r), cw.first, cw.second);
@@ -196,9 +195,8 @@ TEST(MaterialTangent, ElasticInsideTheYieldSurfaceGivesC) {
   // Trials well inside the surface: the plastic laws are elastic and return exactly C.
   const Sym3 s0 = (Sym3() << -60, -80, -70, 5, 2, -3).finished() * kPa;
   const Sym3 deps = (Sym3() << 1e-4, -1e-4, 0, 5e-5, 0, 0).finished();
-  for (const Material& m :
-       {mohr_coulomb(30 * deg, 10 * kPa, 10 * deg), mohr_coulomb(0.0, 50 * kPa, 0.0),
-        von_mises(50 * kPa, 10 * kPa, -1e5)}) {
+  for (const Material& m : {mohr_coulomb(30 * deg, 10 * kPa, 10 * deg), mohr_coulomb(0.0, 50 * kPa, 0.0),
+                            von_mises(50 * kPa, 10 * kPa, -1e5)}) {
     const FdCheck c = fd_check(m, law_of(m, s0, PointState{}), deps);
     EXPECT_EQ(c.region, 0);  // MohrCoulombRegion::Elastic, VonMisesBranch::Elastic
     EXPECT_TRUE(c.same_region);
@@ -220,8 +218,8 @@ TEST(MaterialTangent, MohrCoulombEveryRegionMatchesFiniteDifferences) {
   std::printf("Mohr-Coulomb phi 30, psi 10, c 10 kPa, tension cut-off 5 kPa:\n");
   const Material mt = mohr_coulomb(30 * deg, 10 * kPa, 10 * deg, 5 * kPa);
   const auto b = sweep_mc(mt, -120, 40, 4000, 2);
-  for (R r : {R::Plane, R::CompressionEdge, R::ExtensionEdge, R::Tension, R::TensionEdge,
-              R::TensionApex, R::PlaneTension, R::ExtensionCorner, R::CompressionCorner})
+  for (R r : {R::Plane, R::CompressionEdge, R::ExtensionEdge, R::Tension, R::TensionEdge, R::TensionApex,
+              R::PlaneTension, R::ExtensionCorner, R::CompressionCorner})
     EXPECT_GE(b.count(r) ? b.at(r).first : 0, 3) << region_name(r);
   // Associated flow (psi = phi) too.
   std::printf("Mohr-Coulomb phi 35, psi 35, c 5 kPa:\n");
@@ -239,12 +237,16 @@ TEST(MaterialTangent, MohrCoulombHandPickedRegionsAreAssertedAndPlastic) {
     R region;
   };
   const Case cases[] = {
-      {&m, {-150, -70, 0}, R::Plane},        {&m, {-150, -3, 0}, R::CompressionEdge},
-      {&m, {-150, -147, 0}, R::ExtensionEdge}, {&m, {30, 35, 40}, R::Apex},
-      {&mt, {-10, -5, 8}, R::Tension},        {&mt, {-10, 7, 8}, R::TensionEdge},
+      {&m, {-150, -70, 0}, R::Plane},
+      {&m, {-150, -3, 0}, R::CompressionEdge},
+      {&m, {-150, -147, 0}, R::ExtensionEdge},
+      {&m, {30, 35, 40}, R::Apex},
+      {&mt, {-10, -5, 8}, R::Tension},
+      {&mt, {-10, 7, 8}, R::TensionEdge},
       {&mt, {10, 12, 14}, R::TensionApex},
       // Equal trial principal stresses (the spin factors' limit): on the edge and apex lines.
-      {&m, {-150, -150, 0}, R::ExtensionEdge}, {&m, {-150, 0, 0}, R::CompressionEdge},
+      {&m, {-150, -150, 0}, R::ExtensionEdge},
+      {&m, {-150, 0, 0}, R::CompressionEdge},
       {&m, {30, 30, 30}, R::Apex},
   };
   std::mt19937 rng(7);
@@ -323,16 +325,15 @@ TEST(MaterialTangent, VonMisesSofteningBothSidesOfTheKink) {
       Vec3 d(u(rng), u(rng), u(rng));
       d.array() -= d.mean();
       d *= k.q * kPa / std::sqrt(0.5 * d.squaredNorm());
-      const Step s = step_to(m, d + Vec3::Constant(-50 * kPa), random_rotation(rng, plane), rng,
-                             plane);
+      const Step s = step_to(m, d + Vec3::Constant(-50 * kPa), random_rotation(rng, plane), rng, plane);
       PointState st;
       st.plastic_shear_strain = k.kappa;
       const FdCheck c = fd_check(m, law_of(m, s.s0, st), s.deps);
       EXPECT_EQ(VonMisesBranch(c.region), k.branch) << k.kappa;
       EXPECT_TRUE(c.same_region);
       EXPECT_LE(c.error, kTol) << k.kappa << "\n" << c.tangent << "\n\n" << c.fd;
-      std::printf("  von Mises kappa %.1e q %2.0f kPa: branch %d, max FD error %.2e\n", k.kappa,
-                  k.q, c.region, c.error);
+      std::printf("  von Mises kappa %.1e q %2.0f kPa: branch %d, max FD error %.2e\n", k.kappa, k.q,
+                  c.region, c.error);
       // Softening changes the tangent: compare with perfect plasticity at the same trial.
       if (k.branch == VonMisesBranch::Softening) {
         const FdCheck p = fd_check(perfect, law_of(perfect, s.s0, PointState{}), s.deps);

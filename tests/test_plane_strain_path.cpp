@@ -82,8 +82,7 @@ TEST(PlaneStrainPath, HandUnrolledEqualsGeneral3DUpdateOnRandomStates) {
       const double a = 100 * kPa * u(rng) - 50 * kPa, b = 100 * kPa * u(rng) - 50 * kPa;
       const double c = std::cos(th), s = std::sin(th);
       PointStress<2> s2;
-      s2 << a * c * c + b * s * s, a * s * s + b * c * c, 100 * kPa * u(rng) - 50 * kPa,
-          (a - b) * c * s;
+      s2 << a * c * c + b * s * s, a * s * s + b * c * c, 100 * kPa * u(rng) - 50 * kPa, (a - b) * c * s;
       Mat<2> F, Fe, grad_v;
       F << 1 + 0.3 * u(rng), 0.3 * u(rng), 0.3 * u(rng), 1 + 0.3 * u(rng);
       Fe << 1 + 0.1 * u(rng), 0.1 * u(rng), 0.1 * u(rng), 1 + 0.1 * u(rng);
@@ -101,8 +100,7 @@ TEST(PlaneStrainPath, HandUnrolledEqualsGeneral3DUpdateOnRandomStates) {
       Mat<2> F2 = F, Fe2 = Fe;
       Mat3 F3 = embed3<2>(F, 1.0), Fe3 = embed3<2>(Fe, 1.0);
       PointStress<3> s3 = full_stress<2>(s2);
-      const StressUpdateResult r2 =
-          update_point_stress<2>(n.m, grad_v, dt, volume0, s2, st2, F2, Fe2);
+      const StressUpdateResult r2 = update_point_stress<2>(n.m, grad_v, dt, volume0, s2, st2, F2, Fe2);
       const StressUpdateResult r3 =
           update_point_stress<3>(n.m, embed3<2>(grad_v, 0.0), dt, volume0, s3, st3, F3, Fe3);
       plastic += n.m.plastic() && st2.yielding;
@@ -121,14 +119,14 @@ TEST(PlaneStrainPath, HandUnrolledEqualsGeneral3DUpdateOnRandomStates) {
       for (int r = 0; r < 2; ++r)
         for (int c2 = 0; c2 < 2; ++c2)
           ef = std::max({ef, rel(F2(r, c2), F3(r, c2), 1.0), rel(Fe2(r, c2), Fe3(r, c2), 1.0)});
-      ef = std::max({ef, rel(F3(2, 2), 1.0, 1.0), std::abs(F3(0, 2)) + std::abs(F3(2, 0)) +
-                                                      std::abs(F3(1, 2)) + std::abs(F3(2, 1)) +
-                                                      std::abs(Fe3(0, 2)) + std::abs(Fe3(2, 0))});
+      ef = std::max({ef, rel(F3(2, 2), 1.0, 1.0),
+                     std::abs(F3(0, 2)) + std::abs(F3(2, 0)) + std::abs(F3(1, 2)) + std::abs(F3(2, 1)) +
+                         std::abs(Fe3(0, 2)) + std::abs(Fe3(2, 0))});
       // Work: relative to V |sigma| |d_eps|.
       const double ws = volume0 * ss * gs;
-      const double ew = std::max({rel(r2.strain_energy, r3.strain_energy, ws),
-                                  rel(r2.dissipation, r3.dissipation, ws),
-                                  rel(r2.volume, r3.volume, volume0)});
+      const double ew =
+          std::max({rel(r2.strain_energy, r3.strain_energy, ws), rel(r2.dissipation, r3.dissipation, ws),
+                    rel(r2.volume, r3.volume, volume0)});
       EXPECT_LE(es, kRel) << n.name << " sample " << i << " stress\n" << s2 << "\n\n" << s3;
       EXPECT_LE(ek, kRel) << n.name << " sample " << i << " state";
       EXPECT_LE(ef, kRel) << n.name << " sample " << i << " F, Fe";
@@ -138,9 +136,10 @@ TEST(PlaneStrainPath, HandUnrolledEqualsGeneral3DUpdateOnRandomStates) {
       worst_F = std::max(worst_F, ef);
       worst_work = std::max(worst_work, ew);
     }
-    std::printf("  %-32s %4d/%d plastic; max rel. diff stress %.1e state %.1e F/Fe %.1e "
-                "work %.1e\n", n.name, plastic, count, worst_stress, worst_state, worst_F,
-                worst_work);
+    std::printf(
+        "  %-32s %4d/%d plastic; max rel. diff stress %.1e state %.1e F/Fe %.1e "
+        "work %.1e\n",
+        n.name, plastic, count, worst_stress, worst_state, worst_F, worst_work);
     if (n.m.plastic()) {
       EXPECT_GE(plastic, count / 5) << n.name << ": too few plastic steps";
     }

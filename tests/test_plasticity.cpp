@@ -51,8 +51,7 @@ Eig reference_eig(const Sym3& s) {
 }
 
 Mat3 rotation(double a, double b, double c) {
-  return (Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) *
-          Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY()) *
+  return (Eigen::AngleAxisd(a, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(b, Eigen::Vector3d::UnitY()) *
           Eigen::AngleAxisd(c, Eigen::Vector3d::UnitX()))
       .toRotationMatrix();
 }
@@ -128,17 +127,17 @@ struct McCase {
 
 struct McCheck {
   MohrCoulombRegion region;
-  Eigen::Vector3d sig;  // returned principal stresses (reference eigensolver), ascending
-  Eigen::Vector3d ep;   // plastic strain in the trial's principal frame
-  double f_rel = 0.0;   // f(sigma) / (c cos phi + |p|)
+  Eigen::Vector3d sig;     // returned principal stresses (reference eigensolver), ascending
+  Eigen::Vector3d ep;      // plastic strain in the trial's principal frame
+  double f_rel = 0.0;      // f(sigma) / (c cos phi + |p|)
   double hooke_rel = 0.0;  // |sigma - (trial - C : d_eps_p)| / |trial|
   double coax_rel = 0.0;   // off-diagonal of d_eps_p in the trial frame / |d_eps_p|
   bool kkt = false;        // admissible, on an active surface, d_eps_p in the cone of gradients
   Sym3 stress, deps_p;
 };
 
-McCheck check_mc(const McCase& mc, const Elastic& el, const Sym3& s0, const Sym3& deps,
-                 double psi_flow, PointState* state_io = nullptr) {
+McCheck check_mc(const McCase& mc, const Elastic& el, const Sym3& s0, const Sym3& deps, double psi_flow,
+                 PointState* state_io = nullptr) {
   McCheck r;
   PointState local;
   PointState& st = state_io ? *state_io : local;
@@ -158,8 +157,8 @@ McCheck check_mc(const McCase& mc, const Elastic& el, const Sym3& s0, const Sym3
   r.coax_rel = en > 0 ? (M - Mat3(M.diagonal().asDiagonal())).norm() / en : 0.0;
   // Koiter: active surfaces at the result (all six Mohr-Coulomb planes of the unordered
   // principal space and the three Rankine planes), gradients of the potentials.
-  const double tol = 1e-9 * (scale + std::abs(r.sig[0]) + std::abs(r.sig[2]) +
-                             (std::isfinite(mc.t) ? std::abs(mc.t) : 0.0));
+  const double tol =
+      1e-9 * (scale + std::abs(r.sig[0]) + std::abs(r.sig[2]) + (std::isfinite(mc.t) ? std::abs(mc.t) : 0.0));
   std::vector<Eigen::Vector3d> gens;
   bool admissible = true;
   for (int i = 0; i < 3; ++i)
@@ -353,8 +352,10 @@ TEST(Principal, RebuildAndPlaneStrainFastPathMatchGeneral) {
     const Eig ref = reference_eig(s);
     worst_fast = std::max(worst_fast, (p.values - ref.val).norm() / sn);
   }
-  std::printf("[principal] worst rebuild %.2e, orthonormality %.2e, values vs Eigen %.2e, 3D "
-              "screening values %.2e\n", worst_rebuild, worst_orth, worst_fast, worst_screen);
+  std::printf(
+      "[principal] worst rebuild %.2e, orthonormality %.2e, values vs Eigen %.2e, 3D "
+      "screening values %.2e\n",
+      worst_rebuild, worst_orth, worst_fast, worst_screen);
   EXPECT_LT(worst_screen, 1e-2 * kScreenRelMargin);
   EXPECT_LT(worst_rebuild, 1e-14);
   EXPECT_LT(worst_orth, 1e-14);
@@ -398,8 +399,8 @@ TEST(MohrCoulomb, ElasticPathUnchangedAndCheap) {
     const double s1 = -200 * kPa;
     const double scale = c * std::cos(phi) + std::abs(s1);
     // f = 0.5 (s3 - s1) + 0.5 (s1 + s3) sin(phi) - c cos(phi) = rel * scale, solved for s3.
-    const double s3 = (rel * scale + c * std::cos(phi) + 0.5 * s1 * (1 - std::sin(phi))) /
-                      (0.5 * (1 + std::sin(phi)));
+    const double s3 =
+        (rel * scale + c * std::cos(phi) + 0.5 * s1 * (1 - std::sin(phi))) / (0.5 * (1 + std::sin(phi)));
     const Sym3 trial = from_frame(Eigen::Vector3d(s1, s1 * (1 - 1e-9), s3), rotation(0.3, 0.2, 0.1));
     const McCheck r = check_mc(mc, kSoil, trial, Sym3::Zero(), 0);
     if (rel < 0) {
@@ -433,8 +434,8 @@ TEST(MohrCoulomb, PlaneReturnFlowDirection) {
     EXPECT_LT(std::abs(r.ep[0] * (1 + sp) + r.ep[2] * (1 - sp)) / en, 1e-12);
     // State: gamma_p = 2 sqrt(J2(d_eps_p)), eps_p_v = tr(d_eps_p).
     const Eigen::Vector3d e = r.ep;
-    const double j2 = ((e[0] - e[1]) * (e[0] - e[1]) + (e[1] - e[2]) * (e[1] - e[2]) +
-                       (e[2] - e[0]) * (e[2] - e[0])) / 6;
+    const double j2 =
+        ((e[0] - e[1]) * (e[0] - e[1]) + (e[1] - e[2]) * (e[1] - e[2]) + (e[2] - e[0]) * (e[2] - e[0])) / 6;
     EXPECT_NEAR(st.plastic_shear_strain, 2 * std::sqrt(j2), 1e-12 * en);
     EXPECT_NEAR(st.plastic_volume_strain, e.sum(), 1e-12 * en);
     EXPECT_NEAR(e.sum(), en * std::sqrt(2.0) * sp / std::sqrt(1 + sp * sp), 1e-12 * en);
@@ -525,8 +526,8 @@ TEST(MohrCoulomb, TrescaHasEdgesButNoApex) {
     // Pressure is kept by Tresca with psi = 0.
     EXPECT_NEAR(r.sig.sum(), c.v.sum() * kPa, 1e-9 * c.v.norm() * kPa);
   }
-  const McCheck hyd = check_mc(tr, kSoil, from_frame(Eigen::Vector3d(1, 1, 1) * 1e4 * kPa, R),
-                               Sym3::Zero(), 0);
+  const McCheck hyd =
+      check_mc(tr, kSoil, from_frame(Eigen::Vector3d(1, 1, 1) * 1e4 * kPa, R), Sym3::Zero(), 0);
   EXPECT_EQ(hyd.region, MohrCoulombRegion::Elastic);
 }
 
@@ -560,8 +561,7 @@ TEST(MohrCoulomb, TensionCutOff) {
   EXPECT_EQ(check_mc(high, kSoil, trial, Sym3::Zero(), mc.psi).region, R::Apex);
   // Tresca with a cut-off: plane return limited by sigma_3 <= t.
   const McCase tc{0, 20 * kPa, 0, 5 * kPa};
-  const McCheck r = check_mc(tc, kSoil, from_frame(Eigen::Vector3d(0, 10, 30) * kPa, Q),
-                             Sym3::Zero(), 0);
+  const McCheck r = check_mc(tc, kSoil, from_frame(Eigen::Vector3d(0, 10, 30) * kPa, Q), Sym3::Zero(), 0);
   EXPECT_TRUE(r.kkt);
   EXPECT_NEAR(r.sig[2], 5 * kPa, 1e-9);
 }
@@ -570,11 +570,16 @@ TEST(MohrCoulomb, TensionCutOff) {
 // conditions and the region it reports.
 TEST(MohrCoulomb, RandomTrialsSatisfyKoiterConditions) {
   const double inf = std::numeric_limits<double>::infinity();
-  const McCase cases[] = {{30 * deg, 10 * kPa, 0, inf},       {30 * deg, 10 * kPa, 10 * deg, inf},
-                          {30 * deg, 10 * kPa, 30 * deg, inf}, {42 * deg, 1 * kPa, 0, inf},
-                          {35 * deg, 0, 5 * deg, inf},          {0, 20 * kPa, 0, inf},
-                          {30 * deg, 10 * kPa, 10 * deg, 2 * kPa}, {30 * deg, 10 * kPa, 0, -3 * kPa},
-                          {0, 20 * kPa, 0, 5 * kPa},            {35 * deg, 0, 5 * deg, 0.0}};
+  const McCase cases[] = {{30 * deg, 10 * kPa, 0, inf},
+                          {30 * deg, 10 * kPa, 10 * deg, inf},
+                          {30 * deg, 10 * kPa, 30 * deg, inf},
+                          {42 * deg, 1 * kPa, 0, inf},
+                          {35 * deg, 0, 5 * deg, inf},
+                          {0, 20 * kPa, 0, inf},
+                          {30 * deg, 10 * kPa, 10 * deg, 2 * kPa},
+                          {30 * deg, 10 * kPa, 0, -3 * kPa},
+                          {0, 20 * kPa, 0, 5 * kPa},
+                          {35 * deg, 0, 5 * deg, 0.0}};
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(-1, 1), ang(-3.2, 3.2);
   int counts[11] = {};
@@ -595,8 +600,8 @@ TEST(MohrCoulomb, RandomTrialsSatisfyKoiterConditions) {
       const McCheck r = check_mc(mc, kSoil, trial, Sym3::Zero(), mc.psi);
       ++counts[int(r.region)];
       using MR = MohrCoulombRegion;
-      const bool on_mc = r.region != MR::Elastic && r.region != MR::Tension &&
-                         r.region != MR::TensionEdge && r.region != MR::TensionApex;
+      const bool on_mc = r.region != MR::Elastic && r.region != MR::Tension && r.region != MR::TensionEdge &&
+                         r.region != MR::TensionApex;
       if (on_mc) worst_f = std::max(worst_f, std::abs(r.f_rel));
       worst_hooke = std::max(worst_hooke, r.hooke_rel);
       // Where Koiter's conditions have no solution at all (non-associated flow, e.g. psi = 0 and a
@@ -606,20 +611,25 @@ TEST(MohrCoulomb, RandomTrialsSatisfyKoiterConditions) {
         gap = true;
         ++gaps;
       }
-      const bool ok = (r.kkt || gap) && (!on_mc || std::abs(r.f_rel) < 1e-10) && geometry_matches(r.region, mc, r.sig) && r.hooke_rel < 1e-12 &&
-                      r.coax_rel < 1e-10 && (!plane || (r.stress[4] == 0 && r.stress[5] == 0));
+      const bool ok = (r.kkt || gap) && (!on_mc || std::abs(r.f_rel) < 1e-10) &&
+                      geometry_matches(r.region, mc, r.sig) && r.hooke_rel < 1e-12 && r.coax_rel < 1e-10 &&
+                      (!plane || (r.stress[4] == 0 && r.stress[5] == 0));
       if (!ok && ++fails < 10)
-        ADD_FAILURE() << "kkt exists " << kkt_return_exists(mc, kSoil, reference_eig(trial).val) << " " << "phi " << mc.phi / deg << " c " << mc.c << " psi " << mc.psi / deg
-                      << " t " << mc.t << " trial " << v.transpose() << " region "
-                      << int(r.region) << " -> " << r.sig.transpose() << " kkt " << r.kkt;
+        ADD_FAILURE() << "kkt exists " << kkt_return_exists(mc, kSoil, reference_eig(trial).val) << " "
+                      << "phi " << mc.phi / deg << " c " << mc.c << " psi " << mc.psi / deg << " t " << mc.t
+                      << " trial " << v.transpose() << " region " << int(r.region) << " -> "
+                      << r.sig.transpose() << " kkt " << r.kkt;
     }
-  std::printf("[MC random] regions: elastic %d plane %d c-edge %d e-edge %d apex %d tension %d "
-              "t-edge %d t-apex %d plane-t %d e-corner %d c-corner %d\n",
-              counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6],
-              counts[7], counts[8], counts[9], counts[10]);
+  std::printf(
+      "[MC random] regions: elastic %d plane %d c-edge %d e-edge %d apex %d tension %d "
+      "t-edge %d t-apex %d plane-t %d e-corner %d c-corner %d\n",
+      counts[0], counts[1], counts[2], counts[3], counts[4], counts[5], counts[6], counts[7], counts[8],
+      counts[9], counts[10]);
   std::printf("[MC random] apex returns where no Koiter solution exists: %d\n", gaps);
-  std::printf("[MC random] worst |f|/(c cos phi + |p|) %.2e, worst |sigma - (trial - C:deps_p)|/|trial| "
-              "%.2e\n", worst_f, worst_hooke);
+  std::printf(
+      "[MC random] worst |f|/(c cos phi + |p|) %.2e, worst |sigma - (trial - C:deps_p)|/|trial| "
+      "%.2e\n",
+      worst_f, worst_hooke);
   for (int i = 0; i < 11; ++i) EXPECT_GT(counts[i], 0) << "region " << i << " never hit";
   EXPECT_EQ(fails, 0);
 }
@@ -666,9 +676,10 @@ TEST(MohrCoulomb, ConsistencyAcrossIncrements) {
   struct {
     Eigen::Vector3d start, dir;
     MohrCoulombRegion reg;
-  } paths[] = {{Eigen::Vector3d(-100, -70, -50), Eigen::Vector3d(-1, -0.3, 0.5), MohrCoulombRegion::Plane},
-               {Eigen::Vector3d(-100, -50, -50), Eigen::Vector3d(-1, 0.5, 0.5), MohrCoulombRegion::CompressionEdge},
-               {Eigen::Vector3d(-100, -100, -50), Eigen::Vector3d(-0.5, -0.5, 1), MohrCoulombRegion::ExtensionEdge}};
+  } paths[] = {
+      {Eigen::Vector3d(-100, -70, -50), Eigen::Vector3d(-1, -0.3, 0.5), MohrCoulombRegion::Plane},
+      {Eigen::Vector3d(-100, -50, -50), Eigen::Vector3d(-1, 0.5, 0.5), MohrCoulombRegion::CompressionEdge},
+      {Eigen::Vector3d(-100, -100, -50), Eigen::Vector3d(-0.5, -0.5, 1), MohrCoulombRegion::ExtensionEdge}};
   for (const auto& pth : paths) {
     const Sym3 s0 = from_frame(pth.start * kPa, R);
     const Sym3 dtot = from_frame(pth.dir * 2e-2, R);
@@ -710,8 +721,8 @@ namespace {
 using Update = std::function<void(Sym3&, const Sym3&, PointState&)>;
 
 struct PathResult {
-  double peak_axial = 0;   // max compression -sigma_yy
-  double final_axial = 0;  // -sigma_yy at the end
+  double peak_axial = 0;     // max compression -sigma_yy
+  double final_axial = 0;    // -sigma_yy at the end
   double worst_lateral = 0;  // |lateral + sigma_c| / sigma_c over all steps
   double final_zz = 0;
 };
@@ -719,8 +730,8 @@ struct PathResult {
 // Axial (yy) strain steps d_ea; the lateral strain (xx, and zz for triaxial; zz = 0 in plane
 // strain) is found each step by a secant iteration on the lateral stress, so sigma_xx (= sigma_zz)
 // stays at -sigma_c. Starting state: -sigma_c I.
-PathResult drive(const Update& update, const Elastic& el, bool triaxial, double sigma_c,
-                 double d_ea, int steps) {
+PathResult drive(const Update& update, const Elastic& el, bool triaxial, double sigma_c, double d_ea,
+                 int steps) {
   PathResult out;
   Sym3 s = Sym3::Zero();
   s.head<3>().setConstant(-sigma_c);
@@ -778,18 +789,16 @@ TEST(PlasticR5, MohrCoulombTriaxialAndPlaneStrainStrength) {
   for (const McCase& mc : cases) {
     const MohrCoulombConstants k(mc.params());
     const ElasticConstants ec = kSoil.constants();
-    const Update upd = [&](Sym3& s, const Sym3& d, PointState& st) {
-      mohr_coulomb_update(ec, k, s, d, st);
-    };
+    const Update upd = [&](Sym3& s, const Sym3& d, PointState& st) { mohr_coulomb_update(ec, k, s, d, st); };
     const double ref = mc_strength(mc.phi, mc.c, sigma_c);
     for (bool tri : {true, false}) {
       const PathResult r = drive(upd, kSoil, tri, sigma_c, -1e-4, 600);
       const double err = (r.peak_axial - ref) / ref;
-      std::printf("[R5 MC] %-12s phi %4.1f c %5.1f kPa psi %4.1f: peak %.4f kPa, ref %.4f kPa, "
-                  "err %+.2e, end %+.2e (lateral control %.1e)\n",
-                  tri ? "triaxial" : "plane strain", mc.phi / deg, mc.c / kPa, mc.psi / deg,
-                  r.peak_axial / kPa, ref / kPa, err, (r.final_axial - ref) / ref,
-                  r.worst_lateral);
+      std::printf(
+          "[R5 MC] %-12s phi %4.1f c %5.1f kPa psi %4.1f: peak %.4f kPa, ref %.4f kPa, "
+          "err %+.2e, end %+.2e (lateral control %.1e)\n",
+          tri ? "triaxial" : "plane strain", mc.phi / deg, mc.c / kPa, mc.psi / deg, r.peak_axial / kPa,
+          ref / kPa, err, (r.final_axial - ref) / ref, r.worst_lateral);
       // Achieved: 1.5e-15. The bound is 10x the lateral control's own tolerance (1e-11).
       EXPECT_LT(std::abs(err), 1e-10);
       EXPECT_LT(std::abs(r.final_axial - ref) / ref, 1e-10);
@@ -806,19 +815,16 @@ TEST(PlasticR5, TrescaAndVonMisesPlaneStrainLimitAgree) {
   vm.cohesion_peak = vm.cohesion_residual = su;
   vm.softening_modulus = 0;
   const ElasticConstants ec = kSoil.constants();
-  const Update mc_upd = [&](Sym3& s, const Sym3& d, PointState& st) {
-    mohr_coulomb_update(ec, k, s, d, st);
-  };
-  const Update vm_upd = [&](Sym3& s, const Sym3& d, PointState& st) {
-    von_mises_update(ec, vm, s, d, st);
-  };
+  const Update mc_upd = [&](Sym3& s, const Sym3& d, PointState& st) { mohr_coulomb_update(ec, k, s, d, st); };
+  const Update vm_upd = [&](Sym3& s, const Sym3& d, PointState& st) { von_mises_update(ec, vm, s, d, st); };
   const PathResult a = drive(mc_upd, kSoil, false, sigma_c, -1e-4, 1000);
   const PathResult b = drive(vm_upd, kSoil, false, sigma_c, -1e-4, 1000);
   const double dev_t = 0.5 * (a.final_axial - sigma_c), dev_v = 0.5 * (b.final_axial - sigma_c);
-  std::printf("[R5 Tresca/VM] plane-strain limit (s1 - s3)/2: Tresca %.6f kPa (err %+.2e), "
-              "von Mises %.6f kPa (err %+.2e), s_u = %.1f kPa; VM sigma_zz %.4f vs mean %.4f kPa\n",
-              dev_t / kPa, dev_t / su - 1, dev_v / kPa, dev_v / su - 1, su / kPa, b.final_zz / kPa,
-              0.5 * (b.final_axial + sigma_c) / kPa);
+  std::printf(
+      "[R5 Tresca/VM] plane-strain limit (s1 - s3)/2: Tresca %.6f kPa (err %+.2e), "
+      "von Mises %.6f kPa (err %+.2e), s_u = %.1f kPa; VM sigma_zz %.4f vs mean %.4f kPa\n",
+      dev_t / kPa, dev_t / su - 1, dev_v / kPa, dev_v / su - 1, su / kPa, b.final_zz / kPa,
+      0.5 * (b.final_axial + sigma_c) / kPa);
   EXPECT_LT(std::abs(dev_t / su - 1), 1e-9);
   EXPECT_LT(std::abs(dev_v / su - 1), 1e-10);  // achieved: 0 (10x the lateral control's 1e-11)
   EXPECT_LT(std::abs(dev_v / dev_t - 1), 1e-10);
@@ -839,7 +845,10 @@ TEST(VonMises, SimpleShearSofteningMatchesClosedForm) {
   // Pure shear closed form: tau = G (gamma - gamma_p), tau = max(c_r, c_p + H gamma_p),
   // kappa = gamma_p (2 sqrt(J2(d_eps_p)) = d_gamma_p).
   auto exact = [&](double gamma, double& kappa) {
-    if (G * gamma <= cp) { kappa = 0; return G * gamma; }
+    if (G * gamma <= cp) {
+      kappa = 0;
+      return G * gamma;
+    }
     kappa = (G * gamma - cp) / (G + H);
     if (cp + H * kappa >= cr) return cp + H * kappa;
     kappa = gamma - cr / G;
@@ -870,9 +879,10 @@ TEST(VonMises, SimpleShearSofteningMatchesClosedForm) {
     worst_tau = std::max(worst_tau, std::abs(s[3] - tau) / cp);
     EXPECT_NEAR(st.plastic_shear_strain, kappa_ref, 1e-12) << i;
   }
-  std::printf("[VM softening] worst |f|/c %.2e, worst |tau - exact|/c_p %.2e, softening steps %d, "
-              "residual steps %d, kink-crossing steps %d\n",
-              worst_f, worst_tau, soft_steps, resid_steps, crossing);
+  std::printf(
+      "[VM softening] worst |f|/c %.2e, worst |tau - exact|/c_p %.2e, softening steps %d, "
+      "residual steps %d, kink-crossing steps %d\n",
+      worst_f, worst_tau, soft_steps, resid_steps, crossing);
   EXPECT_LT(worst_f, 1e-10);
   EXPECT_LT(worst_tau, 1e-10);
   EXPECT_GT(soft_steps, 5);
@@ -897,8 +907,17 @@ TEST(VonMises, RandomReturnsRadialOnSurface) {
     const double k0 = st.plastic_shear_strain;
     Sym3 s = trial;
     const Sym3 ep = von_mises_update(el.constants(), vm, s, Sym3::Zero(), st);
-    auto dev = [](Sym3 a) { const double p = (a[0] + a[1] + a[2]) / 3; a[0] -= p; a[1] -= p; a[2] -= p; return a; };
-    auto j2 = [&](const Sym3& a) { const Sym3 d = dev(a); return 0.5 * contract(d, d); };
+    auto dev = [](Sym3 a) {
+      const double p = (a[0] + a[1] + a[2]) / 3;
+      a[0] -= p;
+      a[1] -= p;
+      a[2] -= p;
+      return a;
+    };
+    auto j2 = [&](const Sym3& a) {
+      const Sym3 d = dev(a);
+      return 0.5 * contract(d, d);
+    };
     const double c0 = std::max(3 * kPa, 12 * kPa - 30 * kPa * k0);
     if (std::sqrt(j2(trial)) <= c0) {
       EXPECT_EQ(st.yielding, 0);

@@ -1,8 +1,8 @@
 // Post-processing result files: the particle VTU's strain, invariant, yield and split fields,
 // the grid node file (.vtr) and grid.pvd, read back with VTK's own readers; and what a run
 // writes into its output folder.
-#include <Eigen/LU>
 #include <gtest/gtest.h>
+#include <Eigen/LU>
 
 #include <cmath>
 #include <cstdio>
@@ -41,7 +41,8 @@ Particles<2> three_particles() {
 
 void expect_sym(const VtuInfo& info, const std::string& name, int cell, const Sym3& s, double tol) {
   for (int k = 0; k < 6; ++k)
-    EXPECT_NEAR(info.arrays.at(name).values.at({cell, k}), s[k], tol) << name << " cell " << cell << " k " << k;
+    EXPECT_NEAR(info.arrays.at(name).values.at({cell, k}), s[k], tol)
+        << name << " cell " << cell << " k " << k;
 }
 
 void expect_mat(const VtuInfo& info, const std::string& name, int cell, const Mat3& m, double tol) {
@@ -80,11 +81,20 @@ TEST_F(IoTest, PostFieldsInParticleVtu) {
   write_particles_vtu(file, P, extra);
   const VtuInfo info = read_vtu(file);
   ASSERT_EQ(info.cells, 3);
-  const std::map<std::string, int> components = {
-      {"speed", 1}, {"F", 9}, {"engineering_strain", 6}, {"green_strain", 6},
-      {"hencky_strain", 6}, {"principal_stress", 3}, {"principal_angle", 1},
-      {"relative_yield", 1}, {"smoothed_principal_stress", 3}, {"smoothed_principal_angle", 1},
-      {"smoothed_relative_yield", 1}, {"Fe", 9}, {"Fp", 9}, {"stress_from_Fe", 6}};
+  const std::map<std::string, int> components = {{"speed", 1},
+                                                 {"F", 9},
+                                                 {"engineering_strain", 6},
+                                                 {"green_strain", 6},
+                                                 {"hencky_strain", 6},
+                                                 {"principal_stress", 3},
+                                                 {"principal_angle", 1},
+                                                 {"relative_yield", 1},
+                                                 {"smoothed_principal_stress", 3},
+                                                 {"smoothed_principal_angle", 1},
+                                                 {"smoothed_relative_yield", 1},
+                                                 {"Fe", 9},
+                                                 {"Fp", 9},
+                                                 {"stress_from_Fe", 6}};
   for (const auto& [name, k] : components) {
     ASSERT_TRUE(info.arrays.count(name)) << name;
     EXPECT_EQ(info.arrays.at(name).components, k) << name;
@@ -110,8 +120,10 @@ TEST_F(IoTest, PostFieldsInParticleVtu) {
       EXPECT_EQ(value(prefix + "principal_stress", 2), ps.s3);
       EXPECT_EQ(value(prefix + "principal_angle"), principal_angle_degrees(s));
       const double fr = value(prefix + "relative_yield");
-      if (P.material[c] == 0) EXPECT_TRUE(std::isnan(fr)) << "material 0 has no strength";
-      else EXPECT_EQ(fr, relative_yield(s, strength[1].friction, strength[1].cohesion));
+      if (P.material[c] == 0)
+        EXPECT_TRUE(std::isnan(fr)) << "material 0 has no strength";
+      else
+        EXPECT_EQ(fr, relative_yield(s, strength[1].friction, strength[1].cohesion));
     }
     expect_mat(info, "Fe", c, Fe[c], 0.0);
     expect_mat(info, "Fp", c, plastic_F(Fe[c], F), 0.0);
@@ -174,15 +186,22 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
       std::istringstream in(line);
       std::string key;
       in >> key;
-      if (key == "dims") in >> dims[0] >> dims[1] >> dims[2];
+      if (key == "dims")
+        in >> dims[0] >> dims[1] >> dims[2];
       else if (key == "xcoord" || key == "ycoord") {
-        int i; std::string v; in >> i >> v;
+        int i;
+        std::string v;
+        in >> i >> v;
         (key == "xcoord" ? xs : ys).push_back(to_double(v));
       } else if (key == "array") {
-        std::string name, cls; in >> name; in >> comps[name] >> cls;
+        std::string name, cls;
+        in >> name;
+        in >> comps[name] >> cls;
         EXPECT_EQ(cls, name == "has_material" ? "uint8" : "float64") << name;
       } else if (key == "value") {
-        std::string name, v; int i, k; in >> name >> i >> k >> v;
+        std::string name, v;
+        int i, k;
+        in >> name >> i >> k >> v;
         values[name][{i, k}] = to_double(v);
       }
     }
@@ -192,8 +211,11 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
     ASSERT_EQ(xs.size(), 7u);
     for (int j = 0; j < g.nodes(0); ++j) EXPECT_EQ(xs[j], g.origin[0] + g.node_coordinate(0, j));
     for (int j = 0; j < g.nodes(1); ++j) EXPECT_EQ(ys[j], g.origin[1] + g.node_coordinate(1, j));
-    EXPECT_EQ(comps, (std::map<std::string, int>{{"mass", 1}, {"velocity", 3}, {"stress", 6},
-                                                 {"mean_stress_p", 1}, {"deviatoric_stress_q", 1},
+    EXPECT_EQ(comps, (std::map<std::string, int>{{"mass", 1},
+                                                 {"velocity", 3},
+                                                 {"stress", 6},
+                                                 {"mean_stress_p", 1},
+                                                 {"deviatoric_stress_q", 1},
                                                  {"has_material", 1}}));
     auto at = [&values](const std::string& name, std::size_t i, int k) {
       return values[name][std::make_pair(static_cast<int>(i), k)];
@@ -219,9 +241,9 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
 
 TEST_F(IoTest, RunWritesGridFilesScenarioCopyAndPostFields) {
   const fs::path scenario = fs::path(SKRED_SOURCE_DIR) / "tests" / "data" / "minimal.toml";
-  const auto [status, out] = run_command(std::string(SKRED_BINARY) + " run " +
-                                         shell_quote(scenario.string()) + " -o " +
-                                         shell_quote((dir / "out").string()) + " --threads 1");
+  const auto [status, out] =
+      run_command(std::string(SKRED_BINARY) + " run " + shell_quote(scenario.string()) + " -o " +
+                  shell_quote((dir / "out").string()) + " --threads 1");
   ASSERT_EQ(status, 0) << out;
   const fs::path o = dir / "out";
   EXPECT_EQ(read_text(o / "scenario.toml"), read_text(scenario));

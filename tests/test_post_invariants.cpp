@@ -72,7 +72,7 @@ TEST(PostInvariants, GeneralThreeDimensionalStateMatchesInvariants) {
   const Mat3 m = to_matrix(s);
   EXPECT_NEAR(p.s1 + p.s2 + p.s3, m.trace(), 1e-12);
   EXPECT_NEAR(p.s1 * p.s2 * p.s3, m.determinant(), 1e-9);
-  EXPECT_NEAR(mean_stress_p(p), mean_stress(s), 1e-12);        // eq. 61
+  EXPECT_NEAR(mean_stress_p(p), mean_stress(s), 1e-12);              // eq. 61
   EXPECT_NEAR(deviatoric_stress_q(p), deviatoric_stress(s), 1e-12);  // eq. 62 = sqrt(3 J2)
 }
 
@@ -86,8 +86,9 @@ TEST(PostInvariants, RelativeYieldIsOneOnTheMohrCoulombSurface) {
   EXPECT_NEAR(relative_yield(at_yield, phi, c), 1.0, 1e-12);
   // Rotated in the plane: same principal stresses, same value.
   const double cen = 0.5 * (s1 + s3), r = 0.5 * (s3 - s1);
-  EXPECT_NEAR(relative_yield(voigt(cen + r * std::cos(1.0), cen - r * std::cos(1.0), cen,
-                                   r * std::sin(1.0)), phi, c), 1.0, 1e-12);
+  EXPECT_NEAR(
+      relative_yield(voigt(cen + r * std::cos(1.0), cen - r * std::cos(1.0), cen, r * std::sin(1.0)), phi, c),
+      1.0, 1e-12);
   // Half the radius at the same centre: 0.5. Hydrostatic: 0.
   EXPECT_NEAR(relative_yield(voigt(cen - r / 2, cen + r / 2, cen, 0), phi, c), 0.5, 1e-12);
   EXPECT_NEAR(relative_yield(voigt(cen, cen, cen, 0), phi, c), 0.0, 1e-12);

@@ -53,9 +53,9 @@ TEST_F(IoTest, RenderColoursVoxelsByFieldWithColourBar) {
   require_python_vtk();
   write_two_particles(dir);
   const fs::path png = dir / "two.png", info = dir / "two.json";
-  const auto [status, out] = run_skred("render " + shell_quote(dir.string()) +
-                                   " --field stress:xx --step 0 --range 0 10 -o " +
-                                   shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+  const auto [status, out] =
+      run_skred("render " + shell_quote(dir.string()) + " --field stress:xx --step 0 --range 0 10 -o " +
+                shell_quote(png.string()) + " --info " + shell_quote(info.string()));
   ASSERT_EQ(status, 0) << out;
   EXPECT_NE(out.find("wrote " + png.string()), std::string::npos) << out;
   expect_pixels("field", png, info);
@@ -66,7 +66,7 @@ TEST_F(IoTest, RenderShowsValuesWithoutStrengthAsGrey) {
   write_two_particles(dir);
   const fs::path png = dir / "nan.png", info = dir / "nan.json";
   const auto [status, out] = run_skred("render " + shell_quote(dir.string()) + " --field relative_yield -o " +
-                                   shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+                                       shell_quote(png.string()) + " --info " + shell_quote(info.string()));
   ASSERT_EQ(status, 0) << out;
   expect_pixels("nan", png, info);
 }
@@ -75,13 +75,13 @@ TEST_F(IoTest, RenderCheckerboardFollowsTheReferenceConfiguration) {
   require_python_vtk();
   write_two_particles(dir);
   const fs::path png = dir / "checker.png", info = dir / "checker.json";
-  const auto [status, out] =
-      run_skred("render " + shell_quote(dir.string()) + " --checkerboard --pattern-width 1 --arrows --crosses -o " +
-            shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+  const auto [status, out] = run_skred("render " + shell_quote(dir.string()) +
+                                       " --checkerboard --pattern-width 1 --arrows --crosses -o " +
+                                       shell_quote(png.string()) + " --info " + shell_quote(info.string()));
   ASSERT_EQ(status, 0) << out;  // with the overlays: runs; the pixels are checked without them
-  const auto [s2, o2] = run_skred("render " + shell_quote(dir.string()) +
-                              " --checkerboard --pattern-width 1 -o " + shell_quote(png.string()) +
-                              " --info " + shell_quote(info.string()));
+  const auto [s2, o2] =
+      run_skred("render " + shell_quote(dir.string()) + " --checkerboard --pattern-width 1 -o " +
+                shell_quote(png.string()) + " --info " + shell_quote(info.string()));
   ASSERT_EQ(s2, 0) << o2;
   expect_pixels("checker", png, info);
 }
@@ -91,13 +91,14 @@ TEST_F(IoTest, RenderAllWritesEveryFrameAndAnAnimatedGif) {
   write_two_particles(dir, 3);
   const fs::path gif = dir / "anim.gif";
   const auto [status, out] = run_skred("render " + shell_quote(dir.string()) + " --all --field speed -o " +
-                                   shell_quote(gif.string()));
+                                       shell_quote(gif.string()));
   ASSERT_EQ(status, 0) << out;
   for (int f = 0; f < 3; ++f)
     EXPECT_TRUE(fs::exists(dir / "anim_frames" / ("frame_00000" + std::to_string(f) + ".png")));
   const auto [s2, o2] = run_command(std::string(kPython) +
                                     " -c 'import sys; from PIL import Image; im = Image.open(sys.argv[1]); "
-                                    "print(im.format, im.n_frames, im.size)' " + shell_quote(gif.string()));
+                                    "print(im.format, im.n_frames, im.size)' " +
+                                    shell_quote(gif.string()));
   ASSERT_EQ(s2, 0) << o2;
   EXPECT_EQ(o2, "GIF 3 (800, 600)\n");
   expect_no_tmp_files();
@@ -109,7 +110,8 @@ TEST_F(IoTest, RenderAndReportFailClearly) {
   const std::string d = shell_quote(dir.string());
   auto [s1, o1] = run_skred("render " + d + " --field no_such_field");
   EXPECT_EQ(s1, 1) << o1;
-  EXPECT_NE(o1.find("field 'no_such_field' is not in particles_000000.vtu; fields:"), std::string::npos) << o1;
+  EXPECT_NE(o1.find("field 'no_such_field' is not in particles_000000.vtu; fields:"), std::string::npos)
+      << o1;
   EXPECT_NE(o1.find("hencky_strain"), std::string::npos) << o1;
   auto [s2, o2] = run_skred("render " + d + " --field stress");
   EXPECT_EQ(s2, 1) << o2;
@@ -130,10 +132,11 @@ TEST_F(IoTest, RenderAndReportFailClearly) {
   EXPECT_EQ(s7, 6) << o7;  // README, "Exit codes": missing Python
   EXPECT_NE(o7.find("apt-get install python3 python3-matplotlib"), std::string::npos) << o7;
   // A missing module (matplotlib hidden): exit status 6 naming the Debian package.
-  const std::string hide = std::string(kPython) +
-                           " -E -s -c 'import sys; sys.modules[\"matplotlib\"] = None; sys.path.insert(0, sys.argv[1]); "
-                           "from skred_post.deps import require_modules; require_modules()' " +
-                           shell_quote(std::string(SKRED_SOURCE_DIR) + "/python");
+  const std::string hide =
+      std::string(kPython) +
+      " -E -s -c 'import sys; sys.modules[\"matplotlib\"] = None; sys.path.insert(0, sys.argv[1]); "
+      "from skred_post.deps import require_modules; require_modules()' " +
+      shell_quote(std::string(SKRED_SOURCE_DIR) + "/python");
   auto [s8, o8] = run_command(hide);
   EXPECT_EQ(s8, 6) << o8;
   EXPECT_NE(o8.find("apt-get install python3-matplotlib"), std::string::npos) << o8;

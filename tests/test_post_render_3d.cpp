@@ -44,8 +44,9 @@ TEST_F(IoTest, Render3DSectionDrawsTheVoxelsInTheSlab) {
   write_three_voxels(dir);
   const std::string skred = SKRED_BINARY, d = shell_quote(dir.string());
   const fs::path png = dir / "section.png", info = dir / "section.json";
-  const auto [status, out] = run_command(skred + " render " + d + " --field stress:xx --range 0 10 --section-z 0.5 --slab 0.5 -o " +
-                                         shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+  const auto [status, out] =
+      run_command(skred + " render " + d + " --field stress:xx --range 0 10 --section-z 0.5 --slab 0.5 -o " +
+                  shell_quote(png.string()) + " --info " + shell_quote(info.string()));
   ASSERT_EQ(status, 0) << out;
   const auto [s2, o2] = run_python("check_render.py", {"field", png.string(), info.string()});
   EXPECT_EQ(s2, 0) << o2;  // A in viridis(0.25), not C's viridis(1) in front of it

@@ -32,19 +32,19 @@ TEST_F(IoTest, ReportOpensInHeadlessChromiumWithAllImages) {
                               shell_quote(out.string()) + " --threads 1");
   ASSERT_EQ(s1, 0) << o1;
   const fs::path html = dir / "report.html";
-  auto [s2, o2] = run_command(std::string(SKRED_BINARY) + " report " + shell_quote(out.string()) +
-                              " -o " + shell_quote(html.string()));
+  auto [s2, o2] = run_command(std::string(SKRED_BINARY) + " report " + shell_quote(out.string()) + " -o " +
+                              shell_quote(html.string()));
   ASSERT_EQ(s2, 0) << o2;
   // The flags keep Chromium off the network (the machine has none) and out of the sandbox
   // (tests run as root); a fresh profile per run.
   const fs::path dom = dir / "dom.html", log = dir / "chromium.log";
-  const std::string chromium =
-      std::string(kChromium) +
-      " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
-      " --disable-background-networking --disable-component-update --disable-sync"
-      " --enable-logging=stderr --v=0 --user-data-dir=" + shell_quote((dir / "profile").string()) +
-      " --dump-dom " + shell_quote("file://" + html.string()) + " > " + shell_quote(dom.string()) +
-      " 2> " + shell_quote(log.string());
+  const std::string chromium = std::string(kChromium) +
+                               " --headless --no-sandbox --disable-gpu --disable-quic --no-first-run"
+                               " --disable-background-networking --disable-component-update --disable-sync"
+                               " --enable-logging=stderr --v=0 --user-data-dir=" +
+                               shell_quote((dir / "profile").string()) + " --dump-dom " +
+                               shell_quote("file://" + html.string()) + " > " + shell_quote(dom.string()) +
+                               " 2> " + shell_quote(log.string());
   auto [s3, o3] = run_command("timeout 120 " + chromium);
   ASSERT_EQ(s3, 0) << o3 << read_text(log);
   auto [s4, o4] = run_python("check_report.py", {html.string(), dom.string(), log.string()});

@@ -32,15 +32,12 @@ struct Block {
 
 Sym3 linear_field(const Vec<2>& x) {
   Sym3 s;
-  s << -1e4 + 3e3 * x[0] - 2e3 * x[1], -2e4 + 5e3 * x[1], -1.5e4 + 1e3 * x[0], 700 * x[0] - 400 * x[1],
-      0, 0;
+  s << -1e4 + 3e3 * x[0] - 2e3 * x[1], -2e4 + 5e3 * x[1], -1.5e4 + 1e3 * x[0], 700 * x[0] - 400 * x[1], 0, 0;
   return s;
 }
 
 // Distance from x to the block's boundary.
-double depth(const Vec<2>& x) {
-  return std::min({x[0] - kX0, kX1 - x[0], x[1] - kY0, kY1 - x[1]});
-}
+double depth(const Vec<2>& x) { return std::min({x[0] - kX0, kX1 - x[0], x[1] - kY0, kY1 - x[1]}); }
 
 const Interpolation kKernels[] = {Interpolation::Linear, Interpolation::Gimp, Interpolation::Bspline};
 

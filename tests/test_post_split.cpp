@@ -2,8 +2,8 @@
 // (eq. 75-77).
 #include <gtest/gtest.h>
 
-#include <Eigen/LU>
 #include <fmt/format.h>
+#include <Eigen/LU>
 
 #include <cmath>
 
@@ -43,7 +43,7 @@ TEST(PostSplit, FeTimesFpReconstructsFToRoundOff) {
     F = dF * F;
     const Sym3 deps = strain_increment(dF);
     Sym3 deps_e = 0.6 * deps;
-    deps_e[2] += 2e-4;  // plastic flow leaves an out-of-plane elastic strain
+    deps_e[2] += 2e-4;                  // plastic flow leaves an out-of-plane elastic strain
     Fe = update_elastic_F(Fe, deps_e);  // eq. 72-73
     const Mat3 Fp = plastic_F(Fe, F);   // eq. 74
     worst = std::max(worst, max_abs(Fe * Fp - F));
@@ -70,7 +70,8 @@ TEST(PostSplit, ElasticFIncrementIsSymmetricStrainPlusIdentity) {
   const Mat3 dFe = elastic_F_increment(d);
   EXPECT_EQ(dFe, to_matrix(d) + Mat3::Identity());
   EXPECT_EQ(dFe, dFe.transpose());
-  EXPECT_LT((elastic_strain_from_F(dFe) - d).cwiseAbs().maxCoeff(), 2.3e-16);  // eq. 75 undoes eq. 72 (to an ulp of 1)
+  EXPECT_LT((elastic_strain_from_F(dFe) - d).cwiseAbs().maxCoeff(),
+            2.3e-16);  // eq. 75 undoes eq. 72 (to an ulp of 1)
 }
 
 TEST(PostSplit, StressFromFeMatchesTheIncrementalElasticStress) {

@@ -75,7 +75,8 @@ TEST(PostStrain, HenckyOfRotatedStretchIsTheStretchInRotatedAxes) {
   expect_near(hencky_strain(F), expected, kTol, "hencky");
   // And F = diag(l) R: U = R^T diag(l) R.
   const Mat3 G = Mat3(Eigen::Vector3d(l[0], l[1], l[2]).asDiagonal()) * R;
-  const Mat3 lnU = R.transpose() * Eigen::Vector3d(std::log(l[0]), std::log(l[1]), std::log(l[2])).asDiagonal() * R;
+  const Mat3 lnU =
+      R.transpose() * Eigen::Vector3d(std::log(l[0]), std::log(l[1]), std::log(l[2])).asDiagonal() * R;
   expect_near(hencky_strain(G), to_voigt(lnU), kTol, "hencky, rotated axes");
 }
 

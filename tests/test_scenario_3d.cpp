@@ -67,7 +67,7 @@ TEST(Scenario3D, EveryKeyParses) {
 
   EXPECT_EQ(s.initial_stress.rule, K0Rule::Jaky);
   EXPECT_EQ(s.gravity, Vec<3>(0.0, -9.81, 0.0));
-  const BoundaryKind kinds[6] = {BoundaryKind::Roller, BoundaryKind::Fixed, BoundaryKind::Friction,
+  const BoundaryKind kinds[6] = {BoundaryKind::Roller, BoundaryKind::Fixed,  BoundaryKind::Friction,
                                  BoundaryKind::Free,   BoundaryKind::Roller, BoundaryKind::Roller};
   for (int k = 0; k < 6; ++k) EXPECT_EQ(s.boundaries[k].kind, kinds[k]) << k;
   EXPECT_EQ(s.boundaries[2].friction, 0.4);
@@ -125,7 +125,8 @@ k0 = "poisson"
 acceleration = [0, -10, 0]
 [solver]
 end_time = 1
-)", "k0.toml");
+)",
+                                             "k0.toml");
   const Scenario3& s = std::get<Scenario3>(any);
   Particles<3> P = build_particles(s);
   apply_initial_stress(s, P);
@@ -133,8 +134,10 @@ end_time = 1
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Vec<3>& x = P.x[p];
     double expected;
-    if (P.body[p] == 1) expected = -10.0 * 1000 * (1.5 - x[1]);
-    else expected = -10.0 * (2000 * (1.0 - x[1]) + (x[2] < 1.0 ? 1000 * 0.5 : 0.0));
+    if (P.body[p] == 1)
+      expected = -10.0 * 1000 * (1.5 - x[1]);
+    else
+      expected = -10.0 * (2000 * (1.0 - x[1]) + (x[2] < 1.0 ? 1000 * 0.5 : 0.0));
     ASSERT_NEAR(P.stress[p][1], expected, 1e-9) << p;
     EXPECT_NEAR(P.stress[p][0], k0 * expected, 1e-9);
     EXPECT_NEAR(P.stress[p][2], k0 * expected, 1e-9);
@@ -198,11 +201,13 @@ max = [1, 1]
 z_min = "roller"
 [solver]
 end_time = 1
-)", "two.toml");
+)",
+                       "two.toml");
     FAIL() << "accepted z_min in 2D";
   } catch (const ScenarioError& e) {
-    EXPECT_EQ(std::string(e.what()), "two.toml:16:1: key 'boundary.z_min': unknown key; allowed keys "
-                                     "here: x_min, x_max, y_min, y_max");
+    EXPECT_EQ(std::string(e.what()),
+              "two.toml:16:1: key 'boundary.z_min': unknown key; allowed keys "
+              "here: x_min, x_max, y_min, y_max");
   }
 }
 
@@ -233,7 +238,8 @@ radius = 0.4
 [solver]
 end_time = 1
 )";
-  const AnyScenario any = parse_any_scenario(text, "sweep.toml", {{"grid.cell_size", 0.25}, {"body[0].radius", 0.3}});
+  const AnyScenario any =
+      parse_any_scenario(text, "sweep.toml", {{"grid.cell_size", 0.25}, {"body[0].radius", 0.3}});
   const Scenario3& s = std::get<Scenario3>(any);
   EXPECT_EQ(s.cells, (std::array<int, 3>{8, 4, 4}));
   EXPECT_EQ(std::get<Sphere>(s.bodies[0].shape).radius, 0.3);

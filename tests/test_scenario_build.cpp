@@ -142,7 +142,7 @@ TEST(BuildParticles, EmptyBodyIsAnError) {
 TEST(BuildParticles, DescribeSummarisesTheScenario) {
   const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/tests/data/full.toml");
   const std::string d = describe(s);
-  for (const char* part : {"48 x 16 cells", "sand", "clay", "column", "body-1", "boulder",
-                           "gimp-quadrature", "usl", "friction (mu = 0.6)", "roller"})
+  for (const char* part : {"48 x 16 cells", "sand", "clay", "column", "body-1", "boulder", "gimp-quadrature",
+                           "usl", "friction (mu = 0.6)", "roller"})
     EXPECT_NE(d.find(part), std::string::npos) << part << " missing in:\n" << d;
 }

@@ -46,9 +46,9 @@ TEST(Schema, DocsAreGeneratedFromTheSchema) {
     const std::string generated = schema::update_generated_blocks(text);
     std::size_t at = 0;  // the first difference, for the message
     while (at < generated.size() && at < text.size() && generated[at] == text[at]) ++at;
-    EXPECT_TRUE(generated == text)
-        << doc << " differs from the schema near \"" << text.substr(at < 40 ? 0 : at - 40, 80)
-        << "\": run `build/skred schema --update " << doc + 1 << "`";
+    EXPECT_TRUE(generated == text) << doc << " differs from the schema near \""
+                                   << text.substr(at < 40 ? 0 : at - 40, 80)
+                                   << "\": run `build/skred schema --update " << doc + 1 << "`";
     for (const schema::Section& s : schema::sections())
       if (text.find("<!-- schema: " + s.title + " -->") != std::string::npos) used.insert(s.title);
   }
@@ -81,8 +81,7 @@ TEST(Schema, RangesAndDefaultsComeFromTheSchema) {
   // A default of the schema reaches the scenario; its bounds are the parser's.
   const auto s = std::get<Scenario>(parse_any_scenario(kMinimal, "t.toml"));
   EXPECT_EQ(s.cfl, schema::section("solver").at("cfl").def.value);
-  EXPECT_EQ(s.bodies[0].particles_per_cell,
-            schema::section("body").at("particles_per_cell").def.value);
+  EXPECT_EQ(s.bodies[0].particles_per_cell, schema::section("body").at("particles_per_cell").def.value);
   const schema::Range cfl = schema::section("solver").at("cfl").range;
   EXPECT_NE(error_of(kMinimal + "cfl = " + std::to_string(cfl.hi * 1.01) + "\n"), "");
   EXPECT_EQ(error_of(kMinimal + "cfl = " + std::to_string(cfl.hi) + "\n"), "");
@@ -108,7 +107,10 @@ TEST(Schema, AKeyAMillionPartsDeepIsASyntaxErrorNotACrash) {
   EXPECT_NE(e.find("t.toml:2:"), std::string::npos) << e.substr(0, 200);
   EXPECT_NE(e.find("dotted key with more than"), std::string::npos) << e.substr(0, 200);
   // Dots in values, strings and comments do not count.
-  std::string values = kMinimal + "# a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d\n";
+  std::string values = kMinimal +
+                       "# "
+                       "a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p.q.r.s.t.u.v.w.x.y.z.a.b.c.d.e.f.g.h.i.j.k.l.m.n.o.p."
+                       "q.r.s.t.u.v.w.x.y.z.a.b.c.d\n";
   EXPECT_EQ(error_of(values), "");
   EXPECT_EQ(error_of("title = \"" + std::string(200, '.') + "\"\n" + kMinimal), "");
 }
@@ -120,7 +122,8 @@ TEST(Schema, ATimeStepAboveTheStableOneIsRefusedUnlessAllowed) {
   EXPECT_NEAR(stable, 0.5 / 40.0, 1e-12);
   const std::string above = kMinimal + "time_step = " + std::to_string(stable * 1.2) + "\n";
   EXPECT_NE(error_of(above).find("solver.time_step': 0.015 s exceeds the stable time step"),
-            std::string::npos) << error_of(above);
+            std::string::npos)
+      << error_of(above);
   EXPECT_EQ(error_of(above + "allow_unstable_time_step = true\n"), "");
   EXPECT_EQ(error_of(kMinimal + "time_step = " + std::to_string(stable * 0.99) + "\n"), "");
 }

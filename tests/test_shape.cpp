@@ -14,7 +14,8 @@ using namespace skred;
 
 namespace {
 
-template <int D> GridGeometry<D> make_grid(bool bspline) {
+template <int D>
+GridGeometry<D> make_grid(bool bspline) {
   GridGeometry<D> g;
   for (int d = 0; d < D; ++d) {
     g.origin[d] = -0.3 * (d + 1);
@@ -59,7 +60,8 @@ void check_invariants(const K& kernel, bool bspline, const Mat<D>& F, double mar
   EXPECT_EQ(evaluated, 2000) << "points inside the domain rejected";
 }
 
-template <int D> Mat<D> shear() {
+template <int D>
+Mat<D> shear() {
   Mat<D> F = Mat<D>::Identity();
   F(0, 1) = 0.4;
   F(1, 0) = -0.1;
@@ -104,7 +106,10 @@ TEST(Shape, QuadratureConvergesToAnalyticGimp) {
         double wr = 0;
         Vec<2> gr = Vec<2>::Zero();
         for (int j = 0; j < 9; ++j)
-          if (ref.base + off3.off[j] == node) { wr = ref.w[j]; gr = ref.grad[j]; }
+          if (ref.base + off3.off[j] == node) {
+            wr = ref.w[j];
+            gr = ref.grad[j];
+          }
         const double e = std::abs(st.w[k] - wr);
         werr = std::max(werr, e);
         gerr = std::max(gerr, (st.grad[k] - gr).norm());
@@ -117,8 +122,8 @@ TEST(Shape, QuadratureConvergesToAnalyticGimp) {
   weight_error(GimpQuadratureKernel<2, 1>{}, w1, g1, i1);
   weight_error(GimpQuadratureKernel<2, 2>{}, w2, g2, i2);
   weight_error(GimpQuadratureKernel<2, 3>{}, w3, g3, i3);
-  std::printf("max |N_quad - N_gimp|: 1pt %.4f  2x2 %.4f  3x3 %.4f; gradient: %.4f %.4f %.4f\n",
-              w1, w2, w3, g1, g2, g3);
+  std::printf("max |N_quad - N_gimp|: 1pt %.4f  2x2 %.4f  3x3 %.4f; gradient: %.4f %.4f %.4f\n", w1, w2, w3,
+              g1, g2, g3);
   EXPECT_GT(w1, w2);
   EXPECT_GT(w2, w3);
   EXPECT_GT(g1, g2);
@@ -186,7 +191,8 @@ TEST(Shape, GimpThreeNodeFormMatchesEquation314) {
 
 // Packed storage recovers the omitted weight from partition of unity: the unpacked weights
 // equal the kernel's own to round-off, for every separable kernel.
-template <class K> void check_packing(const K& kernel, bool bspline) {
+template <class K>
+void check_packing(const K& kernel, bool bspline) {
   const GridGeometry<2> g = make_grid<2>(bspline);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -47,12 +47,14 @@ density = 2000.0
 young = 10e6
 poisson = 0.3
 cohesion = 0.0
-friction = )" << phi << R"(
+friction = )"
+    << phi << R"(
 [[body]]
 material = "sand"
 particles_per_cell = 2
 shape = "polygon"
-vertices = [[0.0, 0.0], [12.0, 0.0], [12.0, 1.0], [)" << toe << R"(, 1.0], [3.0, 3.0], [0.0, 3.0]]
+vertices = [[0.0, 0.0], [12.0, 0.0], [12.0, 1.0], [)"
+    << toe << R"(, 1.0], [3.0, 3.0], [0.0, 3.0]]
 [gravity]
 acceleration = [0.0, -9.81]
 [boundary]
@@ -62,7 +64,8 @@ y_min = "fixed"
 [solver]
 scheme = "usf"
 cfl = 0.4
-pic_fraction = )" << pic << R"(
+pic_fraction = )"
+    << pic << R"(
 [[stage]]
 name = "equilibrium"
 duration = 1.2
@@ -92,23 +95,24 @@ TEST(Slides, DrySlopesFailWhenSteeperThanPhiAndStandWhenGentler) {
     ASSERT_TRUE(r.completed) << r.message;
     ASSERT_EQ(r.stages.size(), 2u);
     const StageMeasures& m = r.stages[1];
-    std::printf("phi = %4.1f: runout %.3f m, peak mean speed %.3f m/s, final %.4f m/s, "
-                "ended by %s at %.2f s, plastic points %ld, height %.3f -> %.3f m, max displacement %.3f m\n",
-                phi, m.runout, m.peak_mean_speed, m.final_mean_speed, m.ended_by.c_str(),
-                m.end_time - m.start_time, m.plastic_points, m.height_start, m.height_end, m.max_displacement);
+    std::printf(
+        "phi = %4.1f: runout %.3f m, peak mean speed %.3f m/s, final %.4f m/s, "
+        "ended by %s at %.2f s, plastic points %ld, height %.3f -> %.3f m, max displacement %.3f m\n",
+        phi, m.runout, m.peak_mean_speed, m.final_mean_speed, m.ended_by.c_str(), m.end_time - m.start_time,
+        m.plastic_points, m.height_start, m.height_end, m.max_displacement);
     results.emplace_back(phi, m);
   }
   const StageMeasures& stable = results[0].second;
   EXPECT_EQ(stable.ended_by, "rest");
-  EXPECT_LT(stable.runout, 0.2);            // less than one cell
+  EXPECT_LT(stable.runout, 0.2);  // less than one cell
   EXPECT_LT(stable.max_displacement, 0.05);
   EXPECT_LT(stable.final_mean_speed, 0.002);
   const StageMeasures& weak = results[1].second;
   const StageMeasures& weaker = results[2].second;
-  EXPECT_GT(weak.runout, 0.3);              // the tip passes the toe by more than a cell
-  EXPECT_GT(weak.max_displacement, 0.5);    // the slide moves soil by metres, not millimetres
+  EXPECT_GT(weak.runout, 0.3);            // the tip passes the toe by more than a cell
+  EXPECT_GT(weak.max_displacement, 0.5);  // the slide moves soil by metres, not millimetres
   EXPECT_GT(weak.peak_mean_speed, 10 * stable.peak_mean_speed);
-  EXPECT_GT(weaker.runout, weak.runout);    // runout grows as phi falls
+  EXPECT_GT(weaker.runout, weak.runout);  // runout grows as phi falls
   EXPECT_GT(weaker.gravity_work, weak.gravity_work);
 }
 
@@ -141,12 +145,14 @@ TEST(Slides, SoilColumnCollapsesSymmetricallyAndComesToRest) {
       best = std::min(best, (Vec<2>(40.0 - P.x[q][0], P.x[q][1]) - P.x[p]).norm());
     worst = std::max(worst, best);
   }
-  std::printf("column: width 10 -> %.2f m (points), top %.2f m, peak mean speed %.3f, final %.4f "
-              "m/s, worst mirror mismatch %.2e m\n", x_hi - x_lo, y_hi, peak, last, worst);
-  EXPECT_GT(x_hi - x_lo, 14.0);          // wider: the toes ran out by metres
-  EXPECT_LT(y_hi, 5.0);                  // not higher than the column
-  EXPECT_LT(worst, s.cell_size);         // symmetric to within one cell
-  EXPECT_LT(last, 0.01 * peak);          // at rest
+  std::printf(
+      "column: width 10 -> %.2f m (points), top %.2f m, peak mean speed %.3f, final %.4f "
+      "m/s, worst mirror mismatch %.2e m\n",
+      x_hi - x_lo, y_hi, peak, last, worst);
+  EXPECT_GT(x_hi - x_lo, 14.0);   // wider: the toes ran out by metres
+  EXPECT_LT(y_hi, 5.0);           // not higher than the column
+  EXPECT_LT(worst, s.cell_size);  // symmetric to within one cell
+  EXPECT_LT(last, 0.01 * peak);   // at rest
   // Grid-smoothed stresses (Thesis eq. 4.18-4.19) are smooth where the raw ones are noisy:
   // roughness = RMS difference of sigma_yy between points closer than one cell.
   std::vector<Sym3> smooth;
@@ -185,9 +191,9 @@ TEST(Slides, EnergyBalanceOverAPlasticCollapse) {
     ASSERT_TRUE(r.completed) << r.message;
     const StageMeasures& m = r.stages[0];
     const double rhs = m.kinetic_energy_change + m.strain_energy + m.plastic_dissipation;
-    std::printf("%s: W_g = %.1f J/m, KE %.1f + stored %.1f + dissipated %.1f = %.1f (%.3f %%)\n",
-                scheme, m.gravity_work, m.kinetic_energy_change, m.strain_energy,
-                m.plastic_dissipation, rhs, 100 * (rhs - m.gravity_work) / m.gravity_work);
+    std::printf("%s: W_g = %.1f J/m, KE %.1f + stored %.1f + dissipated %.1f = %.1f (%.3f %%)\n", scheme,
+                m.gravity_work, m.kinetic_energy_change, m.strain_energy, m.plastic_dissipation, rhs,
+                100 * (rhs - m.gravity_work) / m.gravity_work);
     EXPECT_GT(m.plastic_dissipation, 0.5 * m.gravity_work);  // a plastic collapse indeed
     EXPECT_NEAR(rhs, m.gravity_work, 0.02 * m.gravity_work);
   }

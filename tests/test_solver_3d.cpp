@@ -17,8 +17,8 @@ namespace {
 constexpr double g = 9.81;
 
 // n^3 points per cell filling the box [lo, hi] (faces on cell planes).
-void fill_box(Particles<3>& P, const Material& m, double h, int n, const Vec<3>& lo,
-              const Vec<3>& hi, const Vec<3>& v, int body) {
+void fill_box(Particles<3>& P, const Material& m, double h, int n, const Vec<3>& lo, const Vec<3>& hi,
+              const Vec<3>& v, int body) {
   const double q = h / n;
   int count[3];
   for (int d = 0; d < 3; ++d) count[d] = static_cast<int>(std::lround((hi[d] - lo[d]) / q));
@@ -69,9 +69,10 @@ TEST(Solver3D, ConfinedColumnReachesTheOedometricStressState) {
   }
   const double rms = std::sqrt(se / n) / (rho * g * H);
   const auto tot = solver.totals();
-  std::printf("3D column: mean speed %.2e m/s (scale g T1 = %.2e), sigma_yy RMS error %.3f %% of "
-              "rho g H, worst |sigma_lateral - K0 sigma_yy| %.3f %% of rho g H\n",
-              tot.mean_speed, g * T1, 100 * rms, 100 * lat / (rho * g * H));
+  std::printf(
+      "3D column: mean speed %.2e m/s (scale g T1 = %.2e), sigma_yy RMS error %.3f %% of "
+      "rho g H, worst |sigma_lateral - K0 sigma_yy| %.3f %% of rho g H\n",
+      tot.mean_speed, g * T1, 100 * rms, 100 * lat / (rho * g * H));
   EXPECT_LT(tot.mean_speed, 0.01 * g * T1);  // at rest
   EXPECT_LT(rms, 0.02);
   EXPECT_LT(lat / (rho * g * H), 0.02);
@@ -96,14 +97,20 @@ TEST(Solver3D, CollidingBlocksConserveMassMomentumAndEnergy) {
     const auto t = solver.totals();
     worst_p = std::max(worst_p, t.momentum.norm());
     worst_m = std::max(worst_m, std::abs(t.mass - t0.mass));
-    max_drift = std::max(max_drift, std::abs(t.kinetic_energy + solver.energy().strain_energy -
-                                             t0.kinetic_energy) / t0.kinetic_energy);
+    max_drift =
+        std::max(max_drift, std::abs(t.kinetic_energy + solver.energy().strain_energy - t0.kinetic_energy) /
+                                t0.kinetic_energy);
   }
   double vx0 = 0, m0 = 0;  // the first block's mean x velocity: it must have rebounded
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.body[p] == 0) { vx0 += P.mass[p] * P.v[p][0]; m0 += P.mass[p]; }
-  std::printf("3D blocks: |momentum| <= %.2e, mass change %.2e, energy drift <= %.3f %%, block 0 "
-              "vx %.4f (was 0.1)\n", worst_p, worst_m, 100 * max_drift, vx0 / m0);
+    if (P.body[p] == 0) {
+      vx0 += P.mass[p] * P.v[p][0];
+      m0 += P.mass[p];
+    }
+  std::printf(
+      "3D blocks: |momentum| <= %.2e, mass change %.2e, energy drift <= %.3f %%, block 0 "
+      "vx %.4f (was 0.1)\n",
+      worst_p, worst_m, 100 * max_drift, vx0 / m0);
   EXPECT_LT(worst_p, 1e-14);
   EXPECT_EQ(worst_m, 0.0);
   EXPECT_LT(max_drift, 0.01);

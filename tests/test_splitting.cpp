@@ -66,8 +66,8 @@ TEST(Splitting, EveryModeConservesAndTilesTheDeformedVoxel) {
   struct Case {
     const char* name;
     Mat<2> F;
-    int axis;     // expected separation axis
-    int i, j;     // the component reset
+    int axis;  // expected separation axis
+    int i, j;  // the component reset
   };
   Mat<2> stretch_x, stretch_y, squeeze_x, squeeze_y, shear_xy, shear_yx;
   stretch_x << 2.2, 0.1, 0.0, 1.0;
@@ -76,8 +76,8 @@ TEST(Splitting, EveryModeConservesAndTilesTheDeformedVoxel) {
   squeeze_y << 1.7, 0.1, 0.0, 0.45;
   shear_xy << 1.0, 1.3, 0.0, 1.0;
   shear_yx << 1.0, 0.0, -1.4, 1.0;
-  const Case cases[] = {{"F11 > alpha", stretch_x, 0, 0, 0}, {"F22 > alpha", stretch_y, 1, 1, 1},
-                        {"F11 < beta", squeeze_x, 1, 0, 0},  {"F22 < beta", squeeze_y, 0, 1, 1},
+  const Case cases[] = {{"F11 > alpha", stretch_x, 0, 0, 0},  {"F22 > alpha", stretch_y, 1, 1, 1},
+                        {"F11 < beta", squeeze_x, 1, 0, 0},   {"F22 < beta", squeeze_y, 0, 1, 1},
                         {"|F12| > gamma", shear_xy, 1, 0, 1}, {"|F21| > gamma", shear_yx, 0, 1, 0}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.name);
@@ -99,8 +99,8 @@ TEST(Splitting, EveryModeConservesAndTilesTheDeformedVoxel) {
     for (std::size_t q = 0; q < 2; ++q) {
       area += 4 * P.F[q].determinant() * P.half0[q].prod();
       for (const auto& y : corners(P, q)) EXPECT_TRUE(inside(y, x0, c.F, l0));
-      EXPECT_EQ(P.F[q], c.F);                 // F inherited
-      EXPECT_EQ(P.stress[q][0], -1234.0);     // stress inherited
+      EXPECT_EQ(P.F[q], c.F);              // F inherited
+      EXPECT_EQ(P.stress[q][0], -1234.0);  // stress inherited
       EXPECT_EQ(P.splits[q], 1);
       const Mat<2> Fs = P.F[q] * P.split_gauge[q];
       EXPECT_NEAR(Fs(c.i, c.j), c.i == c.j ? 1.0 : 0.0, 1e-14);  // the mode is reset

@@ -27,8 +27,8 @@ Scenario bar(const test::TempDir& d, double dt) {
   std::string text = t.str();
   const auto at = text.find("time_step = 0.01");
   EXPECT_NE(at, std::string::npos);
-  text.replace(at, 16, "time_step = " + std::to_string(dt) +
-                           (dt > 0.05 ? "\nallow_unstable_time_step = true" : ""));
+  text.replace(at, 16,
+               "time_step = " + std::to_string(dt) + (dt > 0.05 ? "\nallow_unstable_time_step = true" : ""));
   const fs::path file = d / ("bar_" + std::to_string(dt) + ".toml");
   std::ofstream(file) << text;
   return load_scenario(file.string());

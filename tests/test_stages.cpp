@@ -31,7 +31,8 @@ cell_size = 0.005
 name = "soil"
 model = "linear-elastic"
 density = 1800.0
-young = )" << young << "\npoisson = " << poisson << R"(
+young = )"
+    << young << "\npoisson = " << poisson << R"(
 [[body]]
 name = "column"
 material = "soil"
@@ -50,9 +51,7 @@ cfl = 0.3
   return t.str();
 }
 
-fs::path temp_dir(const std::string& name) {
-  return skred::test::fresh_temp_dir(name);
-}
+fs::path temp_dir(const std::string& name) { return skred::test::fresh_temp_dir(name); }
 
 std::string read(const fs::path& f) {
   std::ifstream in(f);
@@ -134,7 +133,8 @@ end_time = 0.1
   apply_initial_stress(s, P);
   for (std::size_t p = 0; p < P.size(); ++p) {
     const double y = P.x[p][1];
-    const double syy = y >= 1.0 ? -2000.0 * 10.0 * (1.5 - y) : -(2000.0 * 10.0 * 0.5 + 1000.0 * 10.0 * (1.0 - y));
+    const double syy =
+        y >= 1.0 ? -2000.0 * 10.0 * (1.5 - y) : -(2000.0 * 10.0 * 0.5 + 1000.0 * 10.0 * (1.0 - y));
     const double k0 = y >= 1.0 ? 1.0 - std::sin(M_PI / 6) : 0.25 / 0.75;  // Post eq. 51 / Thesis eq. 5.7
     EXPECT_NEAR(P.stress[p][1], syy, 1e-9 * std::abs(syy)) << "y = " << y;
     EXPECT_NEAR(P.stress[p][0], k0 * syy, 1e-9 * std::abs(syy)) << "y = " << y;
@@ -206,7 +206,8 @@ rest_speed = 1e-4
 rest_time = 0.02
 [output]
 interval = 0.1
-)"), "staged.toml");
+)"),
+                                    "staged.toml");
   const fs::path out = temp_dir("column");
   RunOptions opt;
   opt.progress = false;
@@ -216,8 +217,8 @@ interval = 0.1
   ASSERT_EQ(r.stages.size(), 2u);
   const double U = 0.02 * std::pow(1800.0 * 9.81, 2) * std::pow(0.1, 3) / (6 * 1e6);
   const StageMeasures& g = r.stages[0];
-  std::printf("gravity stage: U = %.6g (exact %.6g), W_g = %.6g, final mean speed %.3g\n",
-              g.strain_energy, U, g.gravity_work, g.final_mean_speed);
+  std::printf("gravity stage: U = %.6g (exact %.6g), W_g = %.6g, final mean speed %.3g\n", g.strain_energy, U,
+              g.gravity_work, g.final_mean_speed);
   EXPECT_NEAR(g.strain_energy, U, 0.01 * U);
   EXPECT_NEAR(g.gravity_work, g.strain_energy, 0.002 * U);
   EXPECT_EQ(g.ended_by, "duration");
@@ -254,7 +255,8 @@ density = 2700
 density_ramp_time = 0.34
 [output]
 interval = 0.1
-)"), "rain.toml");
+)"),
+                                    "rain.toml");
   const fs::path out = temp_dir("rain");
   RunOptions opt;
   opt.progress = false;
@@ -279,7 +281,9 @@ duration = 0.1
 name = "soil"
 density = 2700
 density_ramp_time = 0.2
-)"), "bad.toml"), ScenarioError);
+)"),
+                              "bad.toml"),
+               ScenarioError);
   fs::remove_all(out);
 }
 
@@ -340,7 +344,8 @@ velocity = [5.0, 0.0]
 [boundary]
 y_min = "roller"
 y_max = "roller"
-x_max = )" << side << R"(
+x_max = )"
+      << side << R"(
 [solver]
 end_time = 0.1
 scheme = "usf"

@@ -22,9 +22,10 @@ Particles<2> two_bodies() {
   return P;
 }
 
-template <class Fn> void for_each_interpolation(Fn&& fn) {
-  for (Interpolation i : {Interpolation::Linear, Interpolation::Gimp, Interpolation::Bspline,
-                          Interpolation::GimpQuadrature})
+template <class Fn>
+void for_each_interpolation(Fn&& fn) {
+  for (Interpolation i :
+       {Interpolation::Linear, Interpolation::Gimp, Interpolation::Bspline, Interpolation::GimpQuadrature})
     fn(i);
 }
 
@@ -78,7 +79,8 @@ TEST(BodyFields, PerBodyFieldsSumToTheCentreOfMassField) {
 TEST(Transfers, MapsConserveAndReproduceLinearFields) {
   for_each_interpolation([](Interpolation interp) {
     Particles<2> P = two_bodies();
-    for (std::size_t p = 0; p < P.size(); ++p) P.stress[p] << -100.0 * P.x[p][1], -50.0, -30.0, 20.0 * P.x[p][0];
+    for (std::size_t p = 0; p < P.size(); ++p)
+      P.stress[p] << -100.0 * P.x[p][1], -50.0, -30.0, 20.0 * P.x[p][0];
     GridGeometry<2> g = grid2(0.05, 20, 20);
     g.bspline_dofs = interp == Interpolation::Bspline;
     Transfer<2> T(g, 2);

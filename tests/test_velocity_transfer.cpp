@@ -63,9 +63,10 @@ TEST(VelocityTransfer, DiscEnergyWithTheTransferDissipationBooked) {
     const DiscEnergy r = discs(t, StressScheme::Averaged);
     const double drift = (r.e_end - r.e0) / r.e0;
     const double booked = (r.e_end + r.transfer - r.e0) / r.e0;
-    std::printf("R3 discs, %s: KE + strain energy %+.3f %%, transfer dissipation %.3f %%, balance "
-                "%+.3f %%; KE after the rebound %.4f vs %.4f before\n", to_string(t), 100 * drift,
-                100 * r.transfer / r.e0, 100 * booked, r.ke_after, r.ke_before);
+    std::printf(
+        "R3 discs, %s: KE + strain energy %+.3f %%, transfer dissipation %.3f %%, balance "
+        "%+.3f %%; KE after the rebound %.4f vs %.4f before\n",
+        to_string(t), 100 * drift, 100 * r.transfer / r.e0, 100 * booked, r.ke_after, r.ke_before);
     // APIC's booked loss is against the FLIP update of v_p alone, without the kinetic energy of
     // its affine velocity C_p, which is not in eq. 4.15: its balance closes to 2 %.
     EXPECT_LT(std::abs(booked), t == VelocityTransfer::Apic ? 0.02 : 0.01);
@@ -88,8 +89,8 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
     fs::remove_all(out);
     ASSERT_TRUE(r.completed) << r.message;
     const StageMeasures& m = r.stages[0];
-    std::printf("soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m\n",
-                t, m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout);
+    std::printf("soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m\n", t,
+                m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout);
     if (std::string(t) == "apic") {
       EXPECT_EQ(m.ended_by, "rest");
     }

@@ -45,27 +45,38 @@ inline VtuInfo read_vtu(const std::filesystem::path& file, const std::string& ce
     std::istringstream in(line);
     std::string key;
     in >> key;
-    if (key == "cells") in >> info.cells;
-    else if (key == "points") in >> info.points;
-    else if (key == "pointarrays") in >> info.point_arrays;
-    else if (key == "celltype") { int c; in >> c; in >> info.cell_type[c]; }
-    else if (key == "cellpoints") {
+    if (key == "cells")
+      in >> info.cells;
+    else if (key == "points")
+      in >> info.points;
+    else if (key == "pointarrays")
+      in >> info.point_arrays;
+    else if (key == "celltype") {
+      int c;
+      in >> c;
+      in >> info.cell_type[c];
+    } else if (key == "cellpoints") {
       int c, id;
       in >> c;
       while (in >> id) info.cell_points[c].push_back(id);
     } else if (key == "point") {
-      int i; std::string x, y, z;
+      int i;
+      std::string x, y, z;
       in >> i >> x >> y >> z;
       info.point[i] = Vec<2>(to_double(x), to_double(y));
       EXPECT_EQ(to_double(z), 0.0);
     } else if (key == "array") {
-      std::string name; in >> name;
+      std::string name;
+      in >> name;
       in >> info.arrays[name].components >> info.arrays[name].vtk_class;
     } else if (key == "compname") {
-      std::string name; int k; in >> name >> k;
+      std::string name;
+      int k;
+      in >> name >> k;
       in >> info.arrays[name].component_names[k];
     } else if (key == "value") {
-      std::string name, v; int c, k;
+      std::string name, v;
+      int c, k;
       in >> name >> c >> k >> v;
       info.arrays[name].values[{c, k}] = to_double(v);
     } else {

@@ -46,10 +46,11 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads, skr
     fmt::print(stderr, "skred: {}\n", res.message);
     return code::kUnstable;
   }
-  fmt::print("completed {} steps ({:.4g} s simulated) with {} particles in {:.2f} s wall, "
-             "{:.2f} M particle-updates/s; results in {}\n",
-             res.steps, res.simulated_time, res.particles, res.wall_seconds,
-             res.particle_updates_per_second / 1e6, outdir);
+  fmt::print(
+      "completed {} steps ({:.4g} s simulated) with {} particles in {:.2f} s wall, "
+      "{:.2f} M particle-updates/s; results in {}\n",
+      res.steps, res.simulated_time, res.particles, res.wall_seconds, res.particle_updates_per_second / 1e6,
+      outdir);
   return code::kSuccess;
 }
 
@@ -95,11 +96,11 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::str
   skred::prepare_output_folder(outdir, overwrite, file);
   o.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto rows = skred::run_sweep(file, outdir, o);
-  fmt::print("{:>12} {:>10} {:>10} {:>10} {:>12} {:>10}\n", o.key.substr(0, 12), "status", "runout",
-             "height", "peak speed", "stop time");
+  fmt::print("{:>12} {:>10} {:>10} {:>10} {:>12} {:>10}\n", o.key.substr(0, 12), "status", "runout", "height",
+             "peak speed", "stop time");
   for (const auto& r : rows)
-    fmt::print("{:>12.6g} {:>10} {:>10.4g} {:>10.4g} {:>12.4g} {:>10.4g}\n", r.value, r.status,
-               r.runout, r.height_end, r.peak_mean_speed, r.stop_time);
+    fmt::print("{:>12.6g} {:>10} {:>10.4g} {:>10.4g} {:>12.4g} {:>10.4g}\n", r.value, r.status, r.runout,
+               r.height_end, r.peak_mean_speed, r.stop_time);
   fmt::print("table: {}\n", (std::filesystem::path(outdir) / "sweep.csv").string());
   for (const auto& r : rows)
     if (r.status != "completed") return code::kUnstable;
@@ -116,7 +117,8 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   CLI::App app{"skred: material point method for large-deformation geomechanics"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", fmt::format("skred {} (commit {})", skred::version(), skred::git_commit()));
+  app.set_version_flag("--version",
+                       fmt::format("skred {} (commit {})", skred::version(), skred::git_commit()));
   bool overwrite = false;
 
   std::string scenario, outdir;
@@ -128,7 +130,8 @@ int main(int argc, char** argv) {
   skred::RunOptions ro;
   std::string restart;
   run->add_option("--checkpoint-every", ro.checkpoint_every,
-                  "Write OUTDIR/checkpoint.skc every N steps and at the end")->check(CLI::Range(1L, 1000000000L));
+                  "Write OUTDIR/checkpoint.skc every N steps and at the end")
+      ->check(CLI::Range(1L, 1000000000L));
   run->add_option("--restart", restart, "Continue from this checkpoint (of the same scenario)")
       ->check(CLI::ExistingFile);
   run->add_flag("--overwrite", overwrite, "Replace an earlier run in OUTDIR (removes its files first)");
@@ -136,8 +139,10 @@ int main(int argc, char** argv) {
   auto* resume = app.add_subcommand("resume", "Continue an interrupted run from OUTDIR/checkpoint.skc");
   resume->add_option("outdir", outdir, "Output folder of the run")->required()->check(CLI::ExistingDirectory);
   resume->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
-  resume->add_option("--checkpoint-every", ro.checkpoint_every,
-                     "Checkpoint period in steps (default: that of the run)")->check(CLI::Range(1L, 1000000000L));
+  resume
+      ->add_option("--checkpoint-every", ro.checkpoint_every,
+                   "Checkpoint period in steps (default: that of the run)")
+      ->check(CLI::Range(1L, 1000000000L));
 
   skred::ScenarioCommands scenario_commands(app);  // check, schema
   bool force = false;
@@ -155,12 +160,16 @@ int main(int argc, char** argv) {
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged", transfer = "flip";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
-  bench->add_option("--problem", bo.problem, "block (elastic, adjustable size) | column (Mohr-Coulomb collapse)")
+  bench
+      ->add_option("--problem", bo.problem,
+                   "block (elastic, adjustable size) | column (Mohr-Coulomb collapse)")
       ->check(CLI::IsMember({"block", "column"}));
   bench->add_option("--dim", bo.dim, "column: 2 (plane strain) or 3 (a slab 4 cells thick, roller z sides)")
       ->check(CLI::IsMember({2, 3}));
-  bench->add_option("--refine", bo.refine, "column: cells per 0.05 m (particles x refine^2)")->check(CLI::Range(1, 20));
-  bench->add_option("--particles", bo.particles, "block: approximate number of particles")->check(CLI::Range(100L, 100000000L));
+  bench->add_option("--refine", bo.refine, "column: cells per 0.05 m (particles x refine^2)")
+      ->check(CLI::Range(1, 20));
+  bench->add_option("--particles", bo.particles, "block: approximate number of particles")
+      ->check(CLI::Range(100L, 100000000L));
   bench->add_option("--steps", bo.steps, "Timed steps per repeat")->check(CLI::Range(1, 1000000));
   bench->add_option("--repeats", bo.repeats, "Repeats (the median is reported)")->check(CLI::Range(1, 1000));
   bench->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
@@ -171,7 +180,8 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0L, 1000000000L));
   bench->add_option("--bodies", bo.bodies, "column: 1, or 2 (two halves in frictional contact, mu = tan phi)")
       ->check(CLI::IsMember({1, 2}));
-  bench->add_option("--scheme", scheme, "usf | usl | averaged")->check(CLI::IsMember({"usf", "usl", "averaged"}));
+  bench->add_option("--scheme", scheme, "usf | usl | averaged")
+      ->check(CLI::IsMember({"usf", "usl", "averaged"}));
   bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic")
       ->check(CLI::IsMember({"flip", "xpic", "apic"}));
 
@@ -206,24 +216,25 @@ int main(int argc, char** argv) {
         return code::kUsage;
       }
       bo.threads = threads > 0 ? threads : omp_get_max_threads();
-      bo.interpolation = interp == "linear" ? skred::Interpolation::Linear
-                         : interp == "gimp" ? skred::Interpolation::Gimp
+      bo.interpolation = interp == "linear"    ? skred::Interpolation::Linear
+                         : interp == "gimp"    ? skred::Interpolation::Gimp
                          : interp == "bspline" ? skred::Interpolation::Bspline
                                                : skred::Interpolation::GimpQuadrature;
-      bo.scheme = scheme == "usf" ? skred::StressScheme::USF
+      bo.scheme = scheme == "usf"   ? skred::StressScheme::USF
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
       bo.velocity_transfer = transfer == "xpic"   ? skred::VelocityTransfer::Xpic
                              : transfer == "apic" ? skred::VelocityTransfer::Apic
                                                   : skred::VelocityTransfer::Flip;
       const auto r = skred::run_bench(bo);
-      fmt::print("bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
-                 bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
-                 bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats,
-                 bo.threads, interp, bo.problem == "column" ? "usf" : scheme, transfer);
+      fmt::print(
+          "bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
+          bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
+          bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats,
+          bo.threads, interp, bo.problem == "column" ? "usf" : scheme, transfer);
       if (bo.problem == "column")
-        fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n",
-                   r.status, r.runout, bo.steps * 1e-4, r.yielding, r.particles);
+        fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n", r.status,
+                   r.runout, bo.steps * 1e-4, r.yielding, r.particles);
       for (double u : r.updates_per_second) fmt::print("  run: {:.3f} M particle-updates/s\n", u / 1e6);
       fmt::print("median: {:.3f} M particle-updates/s ({:.3f} M per thread)\n", r.median / 1e6,
                  r.median / 1e6 / bo.threads);

@@ -2,8 +2,8 @@
 // works without Python) and passed on to python/skred-post.py (python_post.hpp).
 // Included by main.cpp only (it needs CLI11).
 #pragma once
-#include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <CLI/CLI.hpp>
 #include <string>
 #include <vector>
 
@@ -14,9 +14,13 @@ namespace skred {
 class PostCommands {
  public:
   explicit PostCommands(CLI::App& app) {
-    render_ = app.add_subcommand("render", "Draw results: PNG of one frame, every frame + GIF, or the series");
-    render_->add_option("outdir", outdir_, "Output folder of `skred run`")->required()->check(CLI::ExistingDirectory);
-    render_->add_option("--field", field_, "Colour field NAME or NAME:COMPONENT, e.g. stress:yy, smoothed_p (default speed)");
+    render_ =
+        app.add_subcommand("render", "Draw results: PNG of one frame, every frame + GIF, or the series");
+    render_->add_option("outdir", outdir_, "Output folder of `skred run`")
+        ->required()
+        ->check(CLI::ExistingDirectory);
+    render_->add_option("--field", field_,
+                        "Colour field NAME or NAME:COMPONENT, e.g. stress:yy, smoothed_p (default speed)");
     auto* step = render_->add_option("--step", step_, "Frame number (default: the last)");
     auto* all = render_->add_flag("--all", all_, "Render every frame and assemble an animated GIF");
     auto* series = render_->add_flag("--series", series_, "Plot series.csv (energies, speeds, momentum)");
@@ -28,22 +32,32 @@ class PostCommands {
     auto* stripes = render_->add_flag("--stripes", stripes_, "Colour by body with stripes (Post §5.2)");
     auto* checker = render_->add_flag("--checkerboard", checker_, "Colour by body with a checkerboard");
     stripes->excludes(checker);
-    render_->add_option("--pattern-width", pattern_width_, "Stripe/square width [m] (default 4 voxels)")->check(CLI::PositiveNumber);
+    render_->add_option("--pattern-width", pattern_width_, "Stripe/square width [m] (default 4 voxels)")
+        ->check(CLI::PositiveNumber);
     render_->add_option("--pattern-angle", pattern_angle_, "Stripe direction [degrees from x]");
     render_->add_option("--range", range_, "Colour range MIN MAX")->expected(2);
     render_->add_option("--cmap", cmap_, "matplotlib colour map (default viridis)");
-    render_->add_option("--sample", sample_, "Overlays: one particle per N x N voxels (default 4)")->check(CLI::Range(1, 1000));
-    render_->add_option("--fps", fps_, "Frames per second of the GIF (default 8)")->check(CLI::PositiveNumber);
-    render_->add_option("--dpi", dpi_, "Pixels per inch (default 100; 8 x 6 inch pictures)")->check(CLI::Range(20, 1000));
+    render_->add_option("--sample", sample_, "Overlays: one particle per N x N voxels (default 4)")
+        ->check(CLI::Range(1, 1000));
+    render_->add_option("--fps", fps_, "Frames per second of the GIF (default 8)")
+        ->check(CLI::PositiveNumber);
+    render_->add_option("--dpi", dpi_, "Pixels per inch (default 100; 8 x 6 inch pictures)")
+        ->check(CLI::Range(20, 1000));
     render_->add_option("--info", info_, "Also write where axes and colour bar lie in the picture (JSON)");
-    render_->add_option("--view", view_, "3D runs: section (z = const, default) or top (the surface from above)")
+    render_
+        ->add_option("--view", view_, "3D runs: section (z = const, default) or top (the surface from above)")
         ->check(CLI::IsMember({"section", "top"}));
-    render_->add_option("--section-z", section_z_, "3D section: z of the plane [m] (default: the middle of the material)");
-    render_->add_option("--slab", slab_, "3D section: thickness of the slab of points drawn [m] (default: one voxel)")
+    render_->add_option("--section-z", section_z_,
+                        "3D section: z of the plane [m] (default: the middle of the material)");
+    render_
+        ->add_option("--slab", slab_,
+                     "3D section: thickness of the slab of points drawn [m] (default: one voxel)")
         ->check(CLI::PositiveNumber);
 
     report_ = app.add_subcommand("report", "Write a self-contained HTML report of a run");
-    report_->add_option("outdir", outdir_, "Output folder of `skred run`")->required()->check(CLI::ExistingDirectory);
+    report_->add_option("outdir", outdir_, "Output folder of `skred run`")
+        ->required()
+        ->check(CLI::ExistingDirectory);
     report_->add_option("-o,--output", output_, "HTML file (default OUTDIR/report.html)");
     report_->add_option("--field", field_, "Field of the frame pictures (default speed)");
   }
@@ -88,8 +102,7 @@ class PostCommands {
   CLI::App* report_ = nullptr;
   std::string outdir_, field_, output_, cmap_, info_, view_;
   int step_ = -1, sample_ = 4, dpi_ = 100;
-  bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, stripes_ = false,
-       checker_ = false;
+  bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, stripes_ = false, checker_ = false;
   double pattern_width_ = 0.0, pattern_angle_ = 0.0, fps_ = 8.0, section_z_ = 0.0, slab_ = 0.0;
   std::vector<double> range_;
 };

@@ -21,7 +21,8 @@ constexpr double kCountPointsUpTo = 2e6;
 
 std::string gigabytes(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
 
-template <int D> void refuse_if_too_big(const ScenarioOf<D>& s, const ScenarioSize& z) {
+template <int D>
+void refuse_if_too_big(const ScenarioOf<D>& s, const ScenarioSize& z) {
   const double available = available_memory_bytes();
   if (z.memory_bytes > 0.8 * available)
     throw ScenarioError(fmt::format(
@@ -31,7 +32,8 @@ template <int D> void refuse_if_too_big(const ScenarioOf<D>& s, const ScenarioSi
         s.source, gigabytes(z.memory_bytes), z.points, z.nodes, gigabytes(available)));
 }
 
-template <int D> void print_check(const ScenarioOf<D>& s, bool force) {
+template <int D>
+void print_check(const ScenarioOf<D>& s, bool force) {
   const ScenarioSize z = estimate_size(s);
   if (!force) refuse_if_too_big(s, z);
   fmt::print("{}", describe(s));
@@ -40,14 +42,13 @@ template <int D> void print_check(const ScenarioOf<D>& s, bool force) {
   else
     fmt::print("particles: about {:.3g} (estimated from the shapes)\n", z.points);
   const double dt = scenario_time_step(s);
-  fmt::print("time step: {:.6g} s ({:.0f} steps; stable step {:.4g} s)\n", dt, z.steps,
-             stable_time_step(s));
+  fmt::print("time step: {:.6g} s ({:.0f} steps; stable step {:.4g} s)\n", dt, z.steps, stable_time_step(s));
   if (dt > stable_time_step(s))
     fmt::print("warning: the time step exceeds the stable step (allow_unstable_time_step = true)\n");
   fmt::print("grid nodes: {:.0f}\nmemory: about {} (this machine offers {})\n", z.nodes,
              gigabytes(z.memory_bytes), gigabytes(available_memory_bytes()));
-  fmt::print("output: {:.0f} particle frames of about {:.3g} MB, {} in all\n", z.frames,
-             z.frame_bytes / 1e6, gigabytes(z.output_bytes()));
+  fmt::print("output: {:.0f} particle frames of about {:.3g} MB, {} in all\n", z.frames, z.frame_bytes / 1e6,
+             gigabytes(z.output_bytes()));
   fmt::print("scenario is valid\n");
 }
 
@@ -76,8 +77,9 @@ ScenarioCommands::ScenarioCommands(CLI::App& app) {
   check_ = app.add_subcommand("check", "Validate a scenario and estimate its size without running it");
   check_->add_option("scenario", scenario_, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
   check_->add_flag("--force", force_, "Accept a scenario that needs more memory than the machine has");
-  schema_ = app.add_subcommand("schema", "Print every scenario key as markdown tables, or update "
-                                         "the generated tables of docs/scenario.md");
+  schema_ = app.add_subcommand("schema",
+                               "Print every scenario key as markdown tables, or update "
+                               "the generated tables of docs/scenario.md");
   schema_->add_option("--update", update_, "Rewrite the generated blocks of this markdown file");
 }
 

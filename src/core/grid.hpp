@@ -13,7 +13,8 @@
 
 namespace skred {
 
-template <int D> struct GridGeometry {
+template <int D>
+struct GridGeometry {
   Vec<D> origin = Vec<D>::Zero();  // position of the low wall corner
   double h = 1.0;                  // cell size (equal in every direction)
   std::array<int, D> cells{};      // cells between the walls, per axis

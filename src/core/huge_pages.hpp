@@ -26,7 +26,8 @@ inline void advise_huge_pages(const void* p, std::size_t bytes) {
 }
 
 // Reserves room for n entries and advises huge pages for it, before any entry is touched.
-template <class T, class A> void reserve_huge(std::vector<T, A>& v, std::size_t n) {
+template <class T, class A>
+void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   v.reserve(n);
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
 }
@@ -34,24 +35,34 @@ template <class T, class A> void reserve_huge(std::vector<T, A>& v, std::size_t 
 // Allocator for the grid arrays: memory comes zeroed from calloc (for large arrays fresh
 // pages from the kernel) and resize() does not write it, so pages of nodes no point ever
 // reaches are never touched and cost no resident memory.
-template <class T> struct ZeroPageAllocator {
+template <class T>
+struct ZeroPageAllocator {
   using value_type = T;
   ZeroPageAllocator() = default;
-  template <class U> ZeroPageAllocator(const ZeroPageAllocator<U>&) noexcept {}
+  template <class U>
+  ZeroPageAllocator(const ZeroPageAllocator<U>&) noexcept {}
   T* allocate(std::size_t n) {
     void* p = std::calloc(n, sizeof(T));
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
   void deallocate(T* p, std::size_t) noexcept { std::free(p); }
-  template <class U> void construct(U* p) noexcept { ::new (static_cast<void*>(p)) U; }  // zero page
-  template <class U, class... A> void construct(U* p, A&&... a) {
+  template <class U>
+  void construct(U* p) noexcept {
+    ::new (static_cast<void*>(p)) U;
+  }  // zero page
+  template <class U, class... A>
+  void construct(U* p, A&&... a) {
     ::new (static_cast<void*>(p)) U(std::forward<A>(a)...);
   }
-  template <class U> bool operator==(const ZeroPageAllocator<U>&) const noexcept { return true; }
+  template <class U>
+  bool operator==(const ZeroPageAllocator<U>&) const noexcept {
+    return true;
+  }
 };
 
 // A grid array: zero-initialised without touching its pages (see ZeroPageAllocator).
-template <class T> using GridArray = std::vector<T, ZeroPageAllocator<T>>;
+template <class T>
+using GridArray = std::vector<T, ZeroPageAllocator<T>>;
 
 }  // namespace skred

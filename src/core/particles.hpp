@@ -16,8 +16,8 @@
 
 #include "core/grid.hpp"
 #include "core/huge_pages.hpp"
-#include "core/types.hpp"
 #include "core/point_state.hpp"
+#include "core/types.hpp"
 
 namespace skred {
 
@@ -32,7 +32,8 @@ inline constexpr long kSortEvery = 100;
 // One per-point field: its name (in checkpoints), the array, and the value a new point gets.
 // An optional field may be empty, meaning every point has the initial value (it is then left
 // empty by every operation).
-template <class P, class T> struct ParticleField {
+template <class P, class T>
+struct ParticleField {
   using value_type = T;
   const char* name;
   std::vector<T> P::*member;
@@ -40,15 +41,16 @@ template <class P, class T> struct ParticleField {
   bool optional = false;
 };
 
-template <int D> struct Particles {
+template <int D>
+struct Particles {
   // Thesis §2.2: position, velocity, mass and initial volume of each material point.
-  std::vector<Vec<D>> x;       // current position x_p
-  std::vector<Vec<D>> x_ref;   // position at the start of the stage (displacement = x - x_ref)
-  std::vector<Vec<D>> v;       // velocity v_p
-  std::vector<double> mass;    // m_p
-  std::vector<double> volume0; // V_p^0 (current volume V_p = det(F_p) V_p^0)
-  std::vector<Vec<D>> half0;   // voxel half-lengths l_p^0 in the reference configuration
-  std::vector<Mat<D>> F;       // deformation gradient F_p (Thesis eq. 3.1-3.5)
+  std::vector<Vec<D>> x;               // current position x_p
+  std::vector<Vec<D>> x_ref;           // position at the start of the stage (displacement = x - x_ref)
+  std::vector<Vec<D>> v;               // velocity v_p
+  std::vector<double> mass;            // m_p
+  std::vector<double> volume0;         // V_p^0 (current volume V_p = det(F_p) V_p^0)
+  std::vector<Vec<D>> half0;           // voxel half-lengths l_p^0 in the reference configuration
+  std::vector<Mat<D>> F;               // deformation gradient F_p (Thesis eq. 3.1-3.5)
   std::vector<PointStress<D>> stress;  // Cauchy stress incl. the out-of-plane component (Voigt)
   std::vector<std::int16_t> material;  // index into the scenario's material table
   std::vector<std::int16_t> body;      // index into the scenario's body table (see kMaxBodies)
@@ -88,26 +90,27 @@ template <int D> struct Particles {
         ParticleField<Pt, PointState>{"state", &Pt::state, +[] { return PointState{}; }},
         ParticleField<Pt, Mat<D>>{"Fe", &Pt::Fe, +[] { return Mat<D>(Mat<D>::Identity()); }},
         ParticleField<Pt, PointStress<D>>{"stress_ref", &Pt::stress_ref,
-                                          +[] { return PointStress<D>(PointStress<D>::Zero()); },
-                                          true},
+                                          +[] { return PointStress<D>(PointStress<D>::Zero()); }, true},
         ParticleField<Pt, double>{"plastic_ref", &Pt::plastic_ref, +[] { return 0.0; }},
-        ParticleField<Pt, Mat<D>>{"split_gauge", &Pt::split_gauge,
-                                  +[] { return Mat<D>(Mat<D>::Identity()); }, true},
-        ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
-        ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); },
+        ParticleField<Pt, Mat<D>>{"split_gauge", &Pt::split_gauge, +[] { return Mat<D>(Mat<D>::Identity()); },
                                   true},
+        ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
+        ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); }, true},
     };
   }
 
   // fn(field, array) for every field of the list (the arrays of optional empty fields too).
-  template <class Fn> void for_each_field(Fn&& fn) {
+  template <class Fn>
+  void for_each_field(Fn&& fn) {
     std::apply([&](const auto&... f) { (fn(f, this->*f.member), ...); }, fields());
   }
-  template <class Fn> void for_each_field(Fn&& fn) const {
+  template <class Fn>
+  void for_each_field(Fn&& fn) const {
     std::apply([&](const auto&... f) { (fn(f, this->*f.member), ...); }, fields());
   }
   // The same for the fields that hold one entry per point (every field but empty optional ones).
-  template <class Fn> void for_each_present_field(Fn&& fn) {
+  template <class Fn>
+  void for_each_present_field(Fn&& fn) {
     for_each_field([&](const auto& f, auto& a) {
       if (!(f.optional && a.empty())) fn(f, a);
     });
@@ -127,11 +130,15 @@ template <int D> struct Particles {
   }
 
   // Appends one undeformed, stress-free material point.
-  void add(const Vec<D>& pos, const Vec<D>& vel, double m, double vol, const Vec<D>& half,
-           int mat, int bod) {
+  void add(const Vec<D>& pos, const Vec<D>& vel, double m, double vol, const Vec<D>& half, int mat, int bod) {
     assert(mat >= 0 && mat < kMaxIds && bod >= 0 && bod < kMaxIds);
     const std::size_t p = add_default();
-    x[p] = pos; x_ref[p] = pos; v[p] = vel; mass[p] = m; volume0[p] = vol; half0[p] = half;
+    x[p] = pos;
+    x_ref[p] = pos;
+    v[p] = vel;
+    mass[p] = m;
+    volume0[p] = vol;
+    half0[p] = half;
     material[p] = static_cast<std::int16_t>(mat);
     body[p] = static_cast<std::int16_t>(bod);
   }
@@ -157,10 +164,14 @@ template <int D> struct Particles {
     half0[q][axis] = half0[p][axis];
     const Vec<D> shift = F[p].col(axis) * half0[p][axis];
     const Vec<D> shift_ref = Vec<D>::Unit(axis) * half0[p][axis];
-    x[p] -= shift; x[q] += shift;
-    x_ref[p] -= shift_ref; x_ref[q] += shift_ref;
-    mass[p] *= 0.5; mass[q] = mass[p];
-    volume0[p] *= 0.5; volume0[q] = volume0[p];
+    x[p] -= shift;
+    x[q] += shift;
+    x_ref[p] -= shift_ref;
+    x_ref[q] += shift_ref;
+    mass[p] *= 0.5;
+    mass[q] = mass[p];
+    volume0[p] *= 0.5;
+    volume0[q] = volume0[p];
     return q;
   }
 
@@ -232,7 +243,8 @@ template <int D> struct Particles {
     for (std::size_t p = 0; p < n; ++p) ++sort_count_[sort_key_[p] + 1];
     for (std::size_t c = 0; c < cells; ++c) sort_count_[c + 1] += sort_count_[c];
     sort_order_.resize(n);
-    for (std::size_t p = 0; p < n; ++p) sort_order_[sort_count_[sort_key_[p]]++] = static_cast<std::uint32_t>(p);
+    for (std::size_t p = 0; p < n; ++p)
+      sort_order_[sort_count_[sort_key_[p]]++] = static_cast<std::uint32_t>(p);
     reorder(sort_order_);
     return true;
   }
@@ -264,7 +276,8 @@ template <int D> struct Particles {
       if (first) n = head[2];
       first = false;
       if (head[2] != n && !(f.optional && head[2] == 0))
-        throw std::runtime_error(std::string("particle field '") + f.name + "' has the wrong number of points");
+        throw std::runtime_error(std::string("particle field '") + f.name +
+                                 "' has the wrong number of points");
       a.resize(head[2]);
       is.read(reinterpret_cast<char*>(a.data()), static_cast<std::streamsize>(a.size() * sizeof(T)));
       if (!is) throw std::runtime_error(std::string("particle field '") + f.name + "' is truncated");

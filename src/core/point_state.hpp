@@ -14,7 +14,7 @@ struct PointState {
   // models accumulate it; the solver sets it to ln det F at the start of every stage, so a
   // stage held elastic (which leaves the state untouched) does not lose it.
   double volume_strain = 0.0;
-  std::uint8_t yielding = 0;           // 1 if the last update was plastic
+  std::uint8_t yielding = 0;  // 1 if the last update was plastic
 };
 
 }  // namespace skred

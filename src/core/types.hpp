@@ -7,8 +7,10 @@
 
 namespace skred {
 
-template <int D> using Vec = Eigen::Matrix<double, D, 1>;
-template <int D> using Mat = Eigen::Matrix<double, D, D>;
+template <int D>
+using Vec = Eigen::Matrix<double, D, 1>;
+template <int D>
+using Mat = Eigen::Matrix<double, D, D>;
 using Mat3 = Eigen::Matrix3d;
 
 // Symmetric 3D stress or strain in Voigt order [xx, yy, zz, xy, yz, xz].
@@ -18,9 +20,11 @@ using Sym3 = Eigen::Matrix<double, 6, 1>;
 // A point's stress as stored: plane strain keeps [xx, yy, zz, xy] (its out-of-plane shear
 // components are zero), 3D the full Voigt vector. The first four entries have the same order
 // and meaning in both, so s[0..3] read alike; full_stress / stored_stress convert.
-template <int D> using PointStress = Eigen::Matrix<double, D == 2 ? 4 : 6, 1>;
+template <int D>
+using PointStress = Eigen::Matrix<double, D == 2 ? 4 : 6, 1>;
 
-template <int D> [[gnu::always_inline]] inline Sym3 full_stress(const PointStress<D>& s) {
+template <int D>
+[[gnu::always_inline]] inline Sym3 full_stress(const PointStress<D>& s) {
   if constexpr (D == 2) {
     Sym3 o;
     o << s[0], s[1], s[2], s[3], 0.0, 0.0;
@@ -29,7 +33,8 @@ template <int D> [[gnu::always_inline]] inline Sym3 full_stress(const PointStres
     return s;
   }
 }
-template <int D> [[gnu::always_inline]] inline PointStress<D> stored_stress(const Sym3& s) {
+template <int D>
+[[gnu::always_inline]] inline PointStress<D> stored_stress(const Sym3& s) {
   if constexpr (D == 2) {
     return s.template head<4>();
   } else {
@@ -59,7 +64,8 @@ inline Sym3 to_voigt(const Mat3& m) {
 
 // Embeds a D x D tensor into 3D, filling the out-of-plane part with `fill` on the diagonal
 // (plane strain: velocity gradient gets 0, deformation gradient gets 1).
-template <int D> inline Mat3 embed3(const Mat<D>& a, double fill) {
+template <int D>
+inline Mat3 embed3(const Mat<D>& a, double fill) {
   Mat3 m = Mat3::Identity() * fill;
   m.template topLeftCorner<D, D>() = a;
   return m;
@@ -67,7 +73,8 @@ template <int D> inline Mat3 embed3(const Mat<D>& a, double fill) {
 
 // Symmetric part of a D x D tensor embedded in 3D Voigt form (plane strain: zero
 // out-of-plane components).
-template <int D> [[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
+template <int D>
+[[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
   Sym3 s = Sym3::Zero();
   s[0] = a(0, 0);
   s[1] = a(1, 1);
@@ -81,7 +88,8 @@ template <int D> [[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
 }
 
 // The D x D block of a symmetric 3D tensor in Voigt form (Sym3 or a stored PointStress).
-template <int D, class V> [[gnu::always_inline]] inline Mat<D> sym_block(const V& s) {
+template <int D, class V>
+[[gnu::always_inline]] inline Mat<D> sym_block(const V& s) {
   if constexpr (D == 2) {
     Mat<2> m;
     m << s[0], s[3], s[3], s[1];

@@ -19,8 +19,7 @@ fs::path temporary_path_for(const fs::path& file) {
   return tmp;
 }
 
-void write_file_atomically(const fs::path& file,
-                           const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const fs::path& file, const std::function<void(std::ostream&)>& write) {
   const fs::path tmp = temporary_path_for(file);
   const auto remove_tmp = [&tmp] {
     std::error_code ignored;
@@ -31,9 +30,8 @@ void write_file_atomically(const fs::path& file,
   std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
   if (!out) {
     const int err = errno;
-    throw std::runtime_error(fmt::format("cannot write '{}': cannot create '{}'{}{}",
-                                         file.string(), tmp.string(), err ? ": " : "",
-                                         err ? std::strerror(err) : ""));
+    throw std::runtime_error(fmt::format("cannot write '{}': cannot create '{}'{}{}", file.string(),
+                                         tmp.string(), err ? ": " : "", err ? std::strerror(err) : ""));
   }
 
   try {
@@ -48,16 +46,15 @@ void write_file_atomically(const fs::path& file,
   if (out.fail()) {
     remove_tmp();
     throw std::runtime_error(
-        fmt::format("cannot write '{}': writing '{}' failed (disk full?)", file.string(),
-                    tmp.string()));
+        fmt::format("cannot write '{}': writing '{}' failed (disk full?)", file.string(), tmp.string()));
   }
 
   std::error_code ec;
   fs::rename(tmp, file, ec);
   if (ec) {
     remove_tmp();
-    throw std::runtime_error(fmt::format("cannot write '{}': renaming '{}' onto it failed: {}",
-                                         file.string(), tmp.string(), ec.message()));
+    throw std::runtime_error(fmt::format("cannot write '{}': renaming '{}' onto it failed: {}", file.string(),
+                                         tmp.string(), ec.message()));
   }
 }
 

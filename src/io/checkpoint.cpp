@@ -13,7 +13,8 @@ namespace {
 
 constexpr std::size_t kHeaderSize = 8 + 4 + 4 + 8 + 8;  // magic, version, dimension, hash, size
 
-template <class T> T load(const std::string& bytes, std::size_t at) {
+template <class T>
+T load(const std::string& bytes, std::size_t at) {
   T v;
   std::memcpy(&v, bytes.data() + at, sizeof v);
   return v;
@@ -70,8 +71,10 @@ std::string read_checkpoint(const std::filesystem::path& file, const CheckpointK
     throw CheckpointError(fmt::format("checkpoint '{}' is of a {}D run, not {}D", name,
                                       load<std::uint32_t>(bytes, 12), key.dimension));
   if (load<std::uint64_t>(bytes, 16) != key.scenario_hash)
-    throw CheckpointError(fmt::format("checkpoint '{}' was written for another scenario "
-                                      "(the scenario text differs)", name));
+    throw CheckpointError(
+        fmt::format("checkpoint '{}' was written for another scenario "
+                    "(the scenario text differs)",
+                    name));
   return bytes.substr(kHeaderSize, size);
 }
 

@@ -20,7 +20,8 @@
 namespace skred {
 
 inline constexpr char kCheckpointMagic[8] = {'S', 'K', 'R', 'E', 'D', 'C', 'K', 'P'};
-inline constexpr std::uint32_t kCheckpointVersion = 4;  // 2: splitting, 3: contact, 4: friction and transfer work
+inline constexpr std::uint32_t kCheckpointVersion =
+    4;  // 2: splitting, 3: contact, 4: friction and transfer work
 
 // A checkpoint that cannot be used: truncated, corrupt, foreign, of another format version,
 // dimension or scenario. The message names the file.
@@ -50,7 +51,8 @@ std::string read_checkpoint(const std::filesystem::path& file, const CheckpointK
 // vectors of them.
 struct ByteWriter {
   std::ostream& os;
-  template <class T> void operator()(const T& v) {
+  template <class T>
+  void operator()(const T& v) {
     if constexpr (std::is_arithmetic_v<T>) {
       os.write(reinterpret_cast<const char*>(&v), sizeof v);
     } else if constexpr (std::is_same_v<T, std::string>) {
@@ -59,7 +61,10 @@ struct ByteWriter {
     } else if constexpr (requires { v.has_value(); }) {
       (*this)(static_cast<std::uint8_t>(v.has_value()));
       if (v) (*this)(*v);
-    } else if constexpr (requires { v.first; v.second; }) {
+    } else if constexpr (requires {
+                           v.first;
+                           v.second;
+                         }) {
       (*this)(v.first);
       (*this)(v.second);
     } else {
@@ -77,7 +82,8 @@ struct ByteReader {
   void need(bool ok) const {
     if (!ok) throw CheckpointError(what + ": payload ends early or is inconsistent");
   }
-  template <class T> void operator()(T& v) {
+  template <class T>
+  void operator()(T& v) {
     if constexpr (std::is_arithmetic_v<T>) {
       is.read(reinterpret_cast<char*>(&v), sizeof v);
       need(static_cast<bool>(is));
@@ -88,7 +94,10 @@ struct ByteReader {
       v.assign(n, '\0');
       is.read(v.data(), static_cast<std::streamsize>(n));
       need(static_cast<bool>(is));
-    } else if constexpr (requires { v.has_value(); v.reset(); }) {
+    } else if constexpr (requires {
+                           v.has_value();
+                           v.reset();
+                         }) {
       std::uint8_t has = 0;
       (*this)(has);
       v.reset();
@@ -97,7 +106,10 @@ struct ByteReader {
         (*this)(x);
         v = x;
       }
-    } else if constexpr (requires { v.first; v.second; }) {
+    } else if constexpr (requires {
+                           v.first;
+                           v.second;
+                         }) {
       (*this)(v.first);
       (*this)(v.second);
     } else {

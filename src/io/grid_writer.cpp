@@ -26,7 +26,8 @@ struct Array {
   bool is_bytes() const { return values.empty() && !bytes.empty(); }
   std::size_t size_bytes() const { return is_bytes() ? bytes.size() : values.size() * sizeof(double); }
   const char* data() const {
-    return is_bytes() ? reinterpret_cast<const char*>(bytes.data()) : reinterpret_cast<const char*>(values.data());
+    return is_bytes() ? reinterpret_cast<const char*>(bytes.data())
+                      : reinterpret_cast<const char*>(values.data());
   }
 };
 
@@ -48,7 +49,8 @@ std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
   auto arrays = [&](const char* section, const std::vector<Array>& list) {
     fmt::format_to(out, "      <{}>\n", section);
     for (const Array& a : list) {
-      fmt::format_to(out, "        <DataArray type=\"{}\" Name=\"{}\"", a.is_bytes() ? "UInt8" : "Float64", a.name);
+      fmt::format_to(out, "        <DataArray type=\"{}\" Name=\"{}\"", a.is_bytes() ? "UInt8" : "Float64",
+                     a.name);
       if (a.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", a.components);
       for (std::size_t c = 0; c < a.component_names.size(); ++c)
         fmt::format_to(out, " ComponentName{}=\"{}\"", c, a.component_names[c]);
@@ -64,13 +66,12 @@ std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
 }
 
 template <int D>
-void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid,
-               const GridNodeFieldsOf<D>& f) {
+void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid, const GridNodeFieldsOf<D>& f) {
   const std::size_t n = grid.node_count();
   if (f.mass.size() != n || f.velocity.size() != n || f.stress.size() != n)
-    throw std::invalid_argument(fmt::format(
-        "write_grid_vtr: {} nodes but mass/velocity/stress have {}/{}/{} entries", n,
-        f.mass.size(), f.velocity.size(), f.stress.size()));
+    throw std::invalid_argument(
+        fmt::format("write_grid_vtr: {} nodes but mass/velocity/stress have {}/{}/{} entries", n,
+                    f.mass.size(), f.velocity.size(), f.stress.size()));
 
   std::vector<Array> coords;
   for (int d = 0; d < D; ++d) {
@@ -113,8 +114,7 @@ void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid,
 
 }  // namespace
 
-void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
-                    const GridNodeFields& f) {
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid, const GridNodeFields& f) {
   write_vtr(file, grid, f);
 }
 

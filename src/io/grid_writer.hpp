@@ -10,7 +10,8 @@
 namespace skred {
 
 // Nodal arrays, flat-indexed like GridGeometry (axis 0 fastest), each grid.node_count() long.
-template <int D> struct GridNodeFieldsOf {
+template <int D>
+struct GridNodeFieldsOf {
   std::span<const double> mass;      // m_i = sum_p N_ip m_p
   std::span<const Vec<D>> velocity;  // v_i = sum_p N_ip m_p v_p / m_i (0 where m_i = 0)
   std::span<const Sym3> stress;      // sigma_i = sum_p N_ip m_p sigma_p / m_i (Post eq. 57)

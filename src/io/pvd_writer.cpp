@@ -30,15 +30,14 @@ std::string xml_attribute_escape(const std::string& s) {
 
 }  // namespace
 
-PvdWriter::PvdWriter(const std::filesystem::path& folder, const std::string& name)
-    : file_(folder / name) {}
+PvdWriter::PvdWriter(const std::filesystem::path& folder, const std::string& name) : file_(folder / name) {}
 
 void PvdWriter::add(double time, const std::string& vtu_filename) {
   if (!std::isfinite(time))
     throw std::invalid_argument(fmt::format("PvdWriter: non-finite time for '{}'", vtu_filename));
   // "{}" is the shortest representation that reads back to the same double.
-  entries_ += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n",
-                          time, xml_attribute_escape(vtu_filename));
+  entries_ += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,
+                          xml_attribute_escape(vtu_filename));
   ++count_;
   constexpr bool little = std::endian::native == std::endian::little;
   write_file_atomically(file_, [&](std::ostream& os) {

@@ -71,8 +71,8 @@ bool append(const std::filesystem::path& file, const std::string& text) {
       const int cut = ::ftruncate(fd, st.st_size);  // keep whole rows only (best effort)
       static_cast<void>(cut);
       ::close(fd);
-      throw std::runtime_error(fmt::format("cannot write '{}': appending failed: {}", file.string(),
-                                           std::strerror(err)));
+      throw std::runtime_error(
+          fmt::format("cannot write '{}': appending failed: {}", file.string(), std::strerror(err)));
     }
     done += static_cast<std::size_t>(n);
   }

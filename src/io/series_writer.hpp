@@ -13,17 +13,17 @@ struct SeriesRow {
   double strain_energy;
   double gravity_work;
   double plastic_dissipation;
-  double friction_work;          // energy the walls took (EnergyTotals::friction_work)
-  double transfer_dissipation;   // energy the velocity transfer took (EnergyTotals)
+  double friction_work;         // energy the walls took (EnergyTotals::friction_work)
+  double transfer_dissipation;  // energy the velocity transfer took (EnergyTotals)
   double mean_speed;
   double max_speed;
   double momentum_x;
   double momentum_y;
   long num_particles;
-  int stage;             // zero-based stage index
-  double runout;         // front advance since the stage start [m] (StageTracker::runout)
-  long yielding_points;  // points whose last stress update was plastic
-  double momentum_z = 0.0;  // 3D runs only
+  int stage;                  // zero-based stage index
+  double runout;              // front advance since the stage start [m] (StageTracker::runout)
+  long yielding_points;       // points whose last stress update was plastic
+  double momentum_z = 0.0;    // 3D runs only
   double contact_work = 0.0;  // runs with contact only (last column; Paper III §C.2.7)
 };
 
@@ -39,8 +39,8 @@ struct SeriesRow {
 // time integration's error). 3D runs add a column momentum_z, runs with contact a last column
 // contact_work (the energy the contact phase took out: friction between bodies and the
 // inelastic stop of approaching bodies). Gravity work, strain energy
-// (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is written as the
-// shortest decimal that reads back to the identical double.
+// (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is
+// written as the shortest decimal that reads back to the identical double.
 class SeriesWriter {
  public:
   // Nothing is written until the first flush().

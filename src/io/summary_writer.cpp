@@ -18,7 +18,8 @@ std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
   std::size_t len;
   unsigned char lo = 0x80, hi = 0xBF;  // allowed range of the second byte
   if (c < 0x80) return 1;
-  if (c >= 0xC2 && c <= 0xDF) len = 2;
+  if (c >= 0xC2 && c <= 0xDF)
+    len = 2;
   else if (c >= 0xE0 && c <= 0xEF) {
     len = 3;
     if (c == 0xE0) lo = 0xA0;
@@ -37,9 +38,7 @@ std::size_t utf8_sequence_length(const std::string& s, std::size_t i) {
   return len;
 }
 
-std::string json_number(double x) {
-  return std::isfinite(x) ? fmt::format("{}", x) : std::string("null");
-}
+std::string json_number(double x) { return std::isfinite(x) ? fmt::format("{}", x) : std::string("null"); }
 
 }  // namespace
 
@@ -88,17 +87,18 @@ std::string stages_json(const std::vector<StageMeasures>& stages) {
     const auto num = [](double x) { return json_number(x); };
     out += fmt::format(
         "{}\n    {{\"name\": {}, \"start_time\": {}, \"end_time\": {}, \"steps\": {}, "
-        "\"ended_by\": {},\n     \"runout\": {}, \"runout_x_min\": {}, \"runout_x_max\": {}, \"max_displacement\": {}, "
+        "\"ended_by\": {},\n     \"runout\": {}, \"runout_x_min\": {}, \"runout_x_max\": {}, "
+        "\"max_displacement\": {}, "
         "\"height_start\": {}, \"height_end\": {},\n     \"peak_mean_speed\": {}, "
         "\"peak_time\": {}, \"final_mean_speed\": {}, \"stop_time\": {},\n     "
         "\"gravity_work\": {}, \"kinetic_energy_change\": {}, \"strain_energy\": {}, "
         "\"plastic_dissipation\": {},\n     \"plastic_volume\": {}, \"plastic_points\": {}}}",
         out.empty() ? "" : ",", json_string(m.name), num(m.start_time), num(m.end_time), m.steps,
         json_string(m.ended_by), num(m.runout), num(m.runout_x_min), num(m.runout_x_max) + z_runout(m),
-        num(m.max_displacement), num(m.height_start), num(m.height_end), num(m.peak_mean_speed), num(m.peak_time),
-        num(m.final_mean_speed), m.stop_time ? num(*m.stop_time) : std::string("null"),
-        num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy),
-        num(m.plastic_dissipation), num(m.plastic_volume), m.plastic_points);
+        num(m.max_displacement), num(m.height_start), num(m.height_end), num(m.peak_mean_speed),
+        num(m.peak_time), num(m.final_mean_speed), m.stop_time ? num(*m.stop_time) : std::string("null"),
+        num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy), num(m.plastic_dissipation),
+        num(m.plastic_volume), m.plastic_points);
   }
   return stages.empty() ? out : out + "\n  ";
 }
@@ -137,10 +137,9 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
       json_number(s.end_time), s.particles, s.cells,
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
-      json_number(s.wall_seconds),
-      json_number(s.particle_updates_per_second), s.threads, json_string(s.scenario),
-      json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step), phases_json(s.phase_seconds),
-      stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
+      json_number(s.wall_seconds), json_number(s.particle_updates_per_second), s.threads,
+      json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step),
+      phases_json(s.phase_seconds), stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

@@ -1,7 +1,7 @@
 // The end-of-run summary (summary.json).
 #pragma once
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <optional>
 #include <string>
 #include <utility>
@@ -20,14 +20,14 @@ struct StageMeasures {
   double runout_x_min = 0.0, runout_x_max = 0.0, runout = 0.0;
   // 3D only (NaN in 2D, not written): the same towards -z and +z.
   double runout_z_min = NAN, runout_z_max = NAN;
-  double max_displacement = 0.0;  // largest point displacement in the stage [m]
+  double max_displacement = 0.0;                // largest point displacement in the stage [m]
   double height_start = 0.0, height_end = 0.0;  // top of the material above its lowest point
   double peak_mean_speed = 0.0, peak_time = 0.0, final_mean_speed = 0.0;  // eq. 5.12
-  double gravity_work = 0.0;          // eq. 5.13, from the stage start
+  double gravity_work = 0.0;                                              // eq. 5.13, from the stage start
   double kinetic_energy_change = 0.0;
-  double strain_energy = 0.0;         // stored elastic energy change
+  double strain_energy = 0.0;  // stored elastic energy change
   double plastic_dissipation = 0.0;
-  double plastic_volume = 0.0;        // volume of the points that yielded during the stage
+  double plastic_volume = 0.0;  // volume of the points that yielded during the stage
   long plastic_points = 0;
   // Stage time after which the mean speed stayed below the rest speed (or, without a rest
   // criterion, below 1 % of its peak); empty if the material was still moving at the end.
@@ -52,7 +52,7 @@ struct Summary {
   std::vector<StageMeasures> stages = {};
   // Wall seconds spent in each phase of the time step over the run, in step order.
   std::vector<std::pair<std::string, double>> phase_seconds = {};
-  int dimension = 2;  // written (after cells) only when 3
+  int dimension = 2;                          // written (after cells) only when 3
   std::string version = {}, git_commit = {};  // of the skred that ran (written last)
 };
 

@@ -28,7 +28,8 @@ struct Block {
   std::size_t bytes_per_particle() const { return value_bytes * values_per_particle; }
 };
 
-template <class T> inline unsigned char* put(unsigned char* out, T value) {
+template <class T>
+inline unsigned char* put(unsigned char* out, T value) {
   std::memcpy(out, &value, sizeof value);
   return out + sizeof value;
 }
@@ -58,8 +59,13 @@ inline const std::vector<std::string>& tensor_names() {
 // A cell-data block of `components` doubles per particle computed by f(p, out) -> out.
 template <class F>
 Block doubles(std::string name, int components, F f, std::vector<std::string> names = {}) {
-  return Block{"CellData", std::move(name), "Float64", components, sizeof(double),
-               static_cast<std::size_t>(components), std::move(names),
+  return Block{"CellData",
+               std::move(name),
+               "Float64",
+               components,
+               sizeof(double),
+               static_cast<std::size_t>(components),
+               std::move(names),
                [f](std::size_t b, std::size_t e, unsigned char* out) {
                  for (std::size_t p = b; p < e; ++p) out = f(p, out);
                }};
@@ -67,7 +73,13 @@ Block doubles(std::string name, int components, F f, std::vector<std::string> na
 
 template <class T>
 Block integers(std::string name, const char* type, const std::vector<T>& values) {
-  return Block{"CellData", std::move(name), type, 1, sizeof(T), 1, {},
+  return Block{"CellData",
+               std::move(name),
+               type,
+               1,
+               sizeof(T),
+               1,
+               {},
                [&values](std::size_t b, std::size_t e, unsigned char* out) {
                  std::memcpy(out, values.data() + b, (e - b) * sizeof(T));
                }};

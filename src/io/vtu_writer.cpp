@@ -1,7 +1,7 @@
 #include "io/vtu_writer.hpp"
 
-#include <Eigen/LU>  // determinant(); core/types.hpp includes only Eigen/Core
 #include <fmt/format.h>
+#include <Eigen/LU>  // determinant(); core/types.hpp includes only Eigen/Core
 
 #include <algorithm>
 #include <bit>
@@ -25,14 +25,16 @@ constexpr std::uint8_t kVtkQuad = 9;
 constexpr std::uint8_t kVtkHexahedron = 12;
 
 // Velocity-like vectors padded to three components (z = 0 in 2D).
-template <int D> unsigned char* put_vec3(unsigned char* o, const Vec<D>& v) {
+template <int D>
+unsigned char* put_vec3(unsigned char* o, const Vec<D>& v) {
   o = put(put(o, v[0]), v[1]);
   return put(o, D == 3 ? v[D - 1] : 0.0);
 }
 
 // The corners x_p + F_p (+-l0) of a deformed voxel (Thesis eq. 3.6-3.12), in VTK order:
 // a quad counter-clockwise (2D, z = 0), or a hexahedron's z- face then its z+ face.
-template <int D> unsigned char* put_corners(unsigned char* out, const Particles<D>& P, std::size_t p) {
+template <int D>
+unsigned char* put_corners(unsigned char* out, const Particles<D>& P, std::size_t p) {
   static constexpr double sx[8] = {-1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0};
   static constexpr double sy[8] = {-1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0};
   static constexpr double sz[8] = {-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0};
@@ -48,39 +50,49 @@ template <int D> unsigned char* put_corners(unsigned char* out, const Particles<
 }
 constexpr std::size_t kChunk = 1 << 15;  // particles converted per buffer fill
 
-template <int D> std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra) {
+template <int D>
+std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra) {
   const std::vector<std::string>& voigt = voigt_names();
   std::vector<Block> blocks;
   constexpr std::size_t corners = 1 << D;
 
-  blocks.push_back({"Points", "", "Float64", 3, sizeof(double), 3 * corners, {},
+  blocks.push_back({"Points",
+                    "",
+                    "Float64",
+                    3,
+                    sizeof(double),
+                    3 * corners,
+                    {},
                     [&P](std::size_t b, std::size_t e, unsigned char* out) {
                       for (std::size_t p = b; p < e; ++p) out = put_corners<D>(out, P, p);
                     }});
-  blocks.push_back({"Cells", "connectivity", "Int64", 1, 8, corners, {},
+  blocks.push_back({"Cells",
+                    "connectivity",
+                    "Int64",
+                    1,
+                    8,
+                    corners,
+                    {},
                     [](std::size_t b, std::size_t e, unsigned char* out) {
                       for (std::size_t i = corners * b; i < corners * e; ++i)
                         out = put(out, static_cast<std::int64_t>(i));
                     }});
-  blocks.push_back({"Cells", "offsets", "Int64", 1, 8, 1, {},
-                    [](std::size_t b, std::size_t e, unsigned char* out) {
-                      for (std::size_t p = b; p < e; ++p)
-                        out = put(out, static_cast<std::int64_t>(corners * (p + 1)));
-                    }});
-  blocks.push_back({"Cells", "types", "UInt8", 1, 1, 1, {},
-                    [](std::size_t b, std::size_t e, unsigned char* out) {
-                      std::fill(out, out + (e - b), D == 3 ? kVtkHexahedron : kVtkQuad);
-                    }});
+  blocks.push_back(
+      {"Cells", "offsets", "Int64", 1, 8, 1, {}, [](std::size_t b, std::size_t e, unsigned char* out) {
+         for (std::size_t p = b; p < e; ++p) out = put(out, static_cast<std::int64_t>(corners * (p + 1)));
+       }});
+  blocks.push_back(
+      {"Cells", "types", "UInt8", 1, 1, 1, {}, [](std::size_t b, std::size_t e, unsigned char* out) {
+         std::fill(out, out + (e - b), D == 3 ? kVtkHexahedron : kVtkQuad);
+       }});
 
-  blocks.push_back(doubles("velocity", 3, [&P](std::size_t p, unsigned char* o) {
-    return put_vec3<D>(o, P.v[p]);
-  }));
+  blocks.push_back(
+      doubles("velocity", 3, [&P](std::size_t p, unsigned char* o) { return put_vec3<D>(o, P.v[p]); }));
   blocks.push_back(doubles("displacement", 3, [&P](std::size_t p, unsigned char* o) {
     return put_vec3<D>(o, Vec<D>(P.x[p] - P.x_ref[p]));
   }));
   blocks.push_back(doubles(
-      "stress", 6,
-      [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<D>(P.stress[p])); },
+      "stress", 6, [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<D>(P.stress[p])); },
       voigt));
   blocks.push_back(doubles("mean_stress_p", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, mean_stress(full_stress<D>(P.stress[p])));
@@ -88,33 +100,28 @@ template <int D> std::vector<Block> make_blocks(const Particles<D>& P, const Par
   blocks.push_back(doubles("deviatoric_stress_q", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, deviatoric_stress(full_stress<D>(P.stress[p])));
   }));
-  blocks.push_back(doubles("volume", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, P.volume(p));
-  }));
-  blocks.push_back(doubles("det_F", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, P.F[p].determinant());
-  }));
+  blocks.push_back(
+      doubles("volume", 1, [&P](std::size_t p, unsigned char* o) { return put(o, P.volume(p)); }));
+  blocks.push_back(
+      doubles("det_F", 1, [&P](std::size_t p, unsigned char* o) { return put(o, P.F[p].determinant()); }));
   blocks.push_back(doubles("plastic_shear_strain", 1, [&P](std::size_t p, unsigned char* o) {
     return put(o, P.state[p].plastic_shear_strain);
   }));
-  blocks.push_back({"CellData", "yielding", "UInt8", 1, 1, 1, {},
-                    [&P](std::size_t b, std::size_t e, unsigned char* out) {
-                      for (std::size_t p = b; p < e; ++p) *out++ = P.state[p].yielding;
-                    }});
+  blocks.push_back(
+      {"CellData", "yielding", "UInt8", 1, 1, 1, {}, [&P](std::size_t b, std::size_t e, unsigned char* out) {
+         for (std::size_t p = b; p < e; ++p) *out++ = P.state[p].yielding;
+       }});
   blocks.push_back(integers("material_id", "Int16", P.material));
   blocks.push_back(integers("body_id", "Int16", P.body));
 
   if (extra.smoothed_stress) {
     const std::vector<Sym3>& s = *extra.smoothed_stress;
     blocks.push_back(doubles(
-        "smoothed_stress", 6, [&s](std::size_t p, unsigned char* o) { return put_sym3(o, s[p]); },
-        voigt));
-    blocks.push_back(doubles("smoothed_p", 1, [&s](std::size_t p, unsigned char* o) {
-      return put(o, mean_stress(s[p]));
-    }));
-    blocks.push_back(doubles("smoothed_q", 1, [&s](std::size_t p, unsigned char* o) {
-      return put(o, deviatoric_stress(s[p]));
-    }));
+        "smoothed_stress", 6, [&s](std::size_t p, unsigned char* o) { return put_sym3(o, s[p]); }, voigt));
+    blocks.push_back(doubles("smoothed_p", 1,
+                             [&s](std::size_t p, unsigned char* o) { return put(o, mean_stress(s[p])); }));
+    blocks.push_back(doubles(
+        "smoothed_q", 1, [&s](std::size_t p, unsigned char* o) { return put(o, deviatoric_stress(s[p])); }));
   }
   add_post_blocks<D>(blocks, P, extra);
   return blocks;
@@ -123,17 +130,18 @@ template <int D> std::vector<Block> make_blocks(const Particles<D>& P, const Par
 template <class T>
 void check_optional(const std::vector<T>* v, const char* name, std::size_t n) {
   if (v && v->size() != n)
-    throw std::invalid_argument(fmt::format(
-        "write_particles_vtu: {} has {} entries for {} particles", name, v->size(), n));
+    throw std::invalid_argument(
+        fmt::format("write_particles_vtu: {} has {} entries for {} particles", name, v->size(), n));
 }
 
-template <int D> void check_sizes(const Particles<D>& P, const ParticleFields& extra) {
+template <int D>
+void check_sizes(const Particles<D>& P, const ParticleFields& extra) {
   const std::size_t n = P.size();
   P.for_each_field([&](const auto& f, const auto& a) {  // every field of the list
     if (a.size() != n && !(f.optional && a.empty()))
       throw std::invalid_argument(fmt::format(
-          "write_particles_vtu: particle arrays differ in size ({} has {} entries for {} particles)",
-          f.name, a.size(), n));
+          "write_particles_vtu: particle arrays differ in size ({} has {} entries for {} particles)", f.name,
+          a.size(), n));
   });
   check_optional(extra.smoothed_stress, "smoothed_stress", n);
   check_optional(extra.elastic_F, "elastic_F", n);
@@ -141,9 +149,9 @@ template <int D> void check_sizes(const Particles<D>& P, const ParticleFields& e
   if (extra.strength)
     for (std::size_t p = 0; p < n; ++p)
       if (P.material[p] < 0 || static_cast<std::size_t>(P.material[p]) >= extra.strength->size())
-        throw std::invalid_argument(fmt::format(
-            "write_particles_vtu: particle {} has material {} but strength lists {} materials", p,
-            P.material[p], extra.strength->size()));
+        throw std::invalid_argument(
+            fmt::format("write_particles_vtu: particle {} has material {} but strength lists {} materials", p,
+                        P.material[p], extra.strength->size()));
 }
 
 std::string xml_header(const std::vector<Block>& blocks, std::size_t n, std::size_t corners) {

@@ -16,18 +16,17 @@
 
 namespace skred {
 
-inline LawResult evaluate(const Material& m, const Sym3& stress, const Sym3& deps,
-                          const PointState& state, bool want_tangent) {
+inline LawResult evaluate(const Material& m, const Sym3& stress, const Sym3& deps, const PointState& state,
+                          bool want_tangent) {
   switch (m.model) {
     case Model::LinearElastic:
       return elastic_evaluate(m.elastic_constants, stress, deps, state, want_tangent);
     case Model::MohrCoulomb:
     case Model::Tresca:
-      return mohr_coulomb_evaluate(m.elastic_constants, m.mohr_coulomb_constants, stress, deps,
-                                   state, want_tangent);
+      return mohr_coulomb_evaluate(m.elastic_constants, m.mohr_coulomb_constants, stress, deps, state,
+                                   want_tangent);
     case Model::VonMises:
-      return von_mises_evaluate(m.elastic_constants, m.von_mises, stress, deps, state,
-                                want_tangent);
+      return von_mises_evaluate(m.elastic_constants, m.von_mises, stress, deps, state, want_tangent);
   }
   return {};
 }

@@ -31,10 +31,10 @@ struct Material {
   Model model = Model::LinearElastic;
   double density = 0.0;  // rho_0 [kg/m^3]
   ElasticParams elastic;
-  ElasticConstants elastic_constants;  // derived from `elastic` by prepare()
-  MohrCoulombParams mohr_coulomb;       // MohrCoulomb and Tresca (friction = dilation = 0)
+  ElasticConstants elastic_constants;           // derived from `elastic` by prepare()
+  MohrCoulombParams mohr_coulomb;               // MohrCoulomb and Tresca (friction = dilation = 0)
   MohrCoulombConstants mohr_coulomb_constants;  // derived by prepare()
-  VonMisesParams von_mises;             // VonMises
+  VonMisesParams von_mises;                     // VonMises
 
   // Computes the derived constants; call after setting the parameters.
   void prepare() {
@@ -86,8 +86,7 @@ struct Material {
     case Model::MohrCoulomb:
     case Model::Tresca:
       return mohr_coulomb_update(m.elastic_constants, m.mohr_coulomb_constants, stress, deps, state);
-    case Model::VonMises:
-      return von_mises_update(m.elastic_constants, m.von_mises, stress, deps, state);
+    case Model::VonMises: return von_mises_update(m.elastic_constants, m.von_mises, stress, deps, state);
   }
   return Sym3::Zero();
 }

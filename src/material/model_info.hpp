@@ -31,8 +31,8 @@ inline constexpr double kInf = std::numeric_limits<double>::infinity();
 inline constexpr double kMaxStress = 1e12;
 
 struct ModelInfo {
-  const char* name;         // as written in the scenario file, e.g. "mohr-coulomb"
-  const char* description;  // one line
+  const char* name;                   // as written in the scenario file, e.g. "mohr-coulomb"
+  const char* description;            // one line
   std::span<const ParamSpec> params;  // the model's own keys (besides density, young, poisson)
 };
 

@@ -21,7 +21,7 @@ namespace skred {
 using Vec3 = Eigen::Vector3d;
 
 struct Principal {
-  Vec3 values;  // ascending: values[0] = sigma_1 <= values[1] = sigma_2 <= values[2] = sigma_3
+  Vec3 values;   // ascending: values[0] = sigma_1 <= values[1] = sigma_2 <= values[2] = sigma_3
   Mat3 vectors;  // orthonormal columns, column i is the direction of values[i]
 };
 
@@ -30,8 +30,8 @@ namespace detail {
 // In-plane 2 x 2 block [[a, b], [b, d]]: eigenvalues lo <= hi and the unit direction (cx, cy) of
 // hi (the direction of lo is (-cy, cx)). The eigenvector formula is chosen per sign of a - d so
 // that it involves no cancellation.
-[[gnu::always_inline]] inline void eig2(double a, double d, double b, double& lo, double& hi,
-                                        double& cx, double& cy) {
+[[gnu::always_inline]] inline void eig2(double a, double d, double b, double& lo, double& hi, double& cx,
+                                        double& cy) {
   const double m = 0.5 * (a + d), h = 0.5 * (a - d);
   const double r = std::sqrt(h * h + b * b);  // stresses in Pa: no overflow concern
   lo = m - r;
@@ -43,7 +43,13 @@ namespace detail {
   }
   // (A - hi I) v = 0: v = (h + r, b) if h >= 0, v = (b, r - h) if h < 0.
   double x, y;
-  if (h >= 0.0) { x = h + r; y = b; } else { x = b; y = r - h; }
+  if (h >= 0.0) {
+    x = h + r;
+    y = b;
+  } else {
+    x = b;
+    y = r - h;
+  }
   const double n = std::sqrt(x * x + y * y);
   cx = x / n;
   cy = y / n;
@@ -51,9 +57,18 @@ namespace detail {
 
 // Sorts three (value, slot) pairs ascending with three compare-swaps.
 [[gnu::always_inline]] inline void sort3(double (&v)[3], int (&k)[3]) {
-  if (v[1] < v[0]) { std::swap(v[0], v[1]); std::swap(k[0], k[1]); }
-  if (v[2] < v[1]) { std::swap(v[1], v[2]); std::swap(k[1], k[2]); }
-  if (v[1] < v[0]) { std::swap(v[0], v[1]); std::swap(k[0], k[1]); }
+  if (v[1] < v[0]) {
+    std::swap(v[0], v[1]);
+    std::swap(k[0], k[1]);
+  }
+  if (v[2] < v[1]) {
+    std::swap(v[1], v[2]);
+    std::swap(k[1], k[2]);
+  }
+  if (v[1] < v[0]) {
+    std::swap(v[0], v[1]);
+    std::swap(k[0], k[1]);
+  }
 }
 
 }  // namespace detail
@@ -71,7 +86,8 @@ struct PlanePrincipal {
 
   // Sum over the three slots of values[i] times the dyad of slot i's direction, as a Voigt
   // vector V: Sym3, or the four plane-strain components [xx, yy, zz, xy].
-  template <class V> [[gnu::always_inline]] V rebuild(const double (&by_slot)[3]) const {
+  template <class V>
+  [[gnu::always_inline]] V rebuild(const double (&by_slot)[3]) const {
     const double c2 = r > 0.0 ? h / r : 1.0, s2 = r > 0.0 ? b / r : 0.0;
     const double xx = 0.5 * (1.0 + c2), yy = 0.5 * (1.0 - c2), xy = 0.5 * s2;
     const double lo = by_slot[0], hi = by_slot[1];
@@ -84,7 +100,8 @@ struct PlanePrincipal {
   }
 };
 
-template <class V> [[gnu::always_inline]] inline PlanePrincipal plane_principal(const V& s) {
+template <class V>
+[[gnu::always_inline]] inline PlanePrincipal plane_principal(const V& s) {
   PlanePrincipal p;
   const double m = 0.5 * (s[0] + s[1]);
   p.h = 0.5 * (s[0] - s[1]);
@@ -93,7 +110,9 @@ template <class V> [[gnu::always_inline]] inline PlanePrincipal plane_principal(
   p.v[0] = m - p.r;
   p.v[1] = m + p.r;
   p.v[2] = s[2];
-  p.slot[0] = 0; p.slot[1] = 1; p.slot[2] = 2;
+  p.slot[0] = 0;
+  p.slot[1] = 1;
+  p.slot[2] = 2;
   detail::sort3(p.v, p.slot);
   return p;
 }

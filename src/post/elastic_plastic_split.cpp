@@ -20,8 +20,7 @@ Sym3 elastic_strain_from_F(const Mat3& Fe) {
   return to_voigt(Fe - Mat3::Identity());  // Post eq. 75 (to_voigt symmetrises)
 }
 
-Sym3 stress_from_elastic_F(const Sym3& sigma_initial, const Mat3& Fe,
-                           const ElasticConstants& elastic) {
+Sym3 stress_from_elastic_F(const Sym3& sigma_initial, const Mat3& Fe, const ElasticConstants& elastic) {
   // Post eq. 76: d_sigma = E : eps_e; eq. 77: sigma = sigma_initial + d_sigma.
   return sigma_initial + elastic_increment(elastic, elastic_strain_from_F(Fe));
 }

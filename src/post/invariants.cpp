@@ -44,8 +44,7 @@ double relative_yield(const Sym3& s, double friction, double cohesion) {
   const PrincipalStresses ps = principal_stresses(s);
   // Post eq. 66 with eq. 45's sin(phi): radius over available radius at the same centre.
   const double radius = 0.5 * (ps.s3 - ps.s1);
-  const double available =
-      cohesion * std::cos(friction) - 0.5 * (ps.s1 + ps.s3) * std::sin(friction);
+  const double available = cohesion * std::cos(friction) - 0.5 * (ps.s1 + ps.s3) * std::sin(friction);
   if (available <= 0.0) return std::numeric_limits<double>::infinity();
   return radius / available;
 }

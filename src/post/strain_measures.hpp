@@ -9,7 +9,10 @@
 namespace skred {
 
 // The 3D deformation gradient of a D-dimensional one (plane strain: F_zz = 1, no coupling).
-template <int D> inline Mat3 deformation3(const Mat<D>& F) { return embed3<D>(F, 1.0); }
+template <int D>
+inline Mat3 deformation3(const Mat<D>& F) {
+  return embed3<D>(F, 1.0);
+}
 
 // Engineering (small) strain eps = (F^T + F)/2 - I (Post eq. 63). Not objective: a rigid
 // rotation by theta gives eps_xx = eps_yy = cos(theta) - 1 instead of 0.

@@ -34,7 +34,8 @@ namespace {
 
 // One step, preceded by a sort of the points by cell when the step number is a multiple of
 // `every` (the rule of run_simulation, docs/method.md "Point order").
-template <int D> StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
+template <int D>
+StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
   if (every > 0 && solver.steps() % every == 0 && P.sort_by_cell(solver.grid())) solver.particles_changed();
   return solver.step();
 }
@@ -52,8 +53,10 @@ void add_phases(BenchResult& res, const PhaseTimer& before, const PhaseTimer& af
     if (s <= 0.0) continue;
     auto it = std::find_if(res.phase_seconds.begin(), res.phase_seconds.end(),
                            [&](const auto& e) { return e.first == phase_name(p); });
-    if (it == res.phase_seconds.end()) res.phase_seconds.emplace_back(phase_name(p), s);
-    else it->second += s;
+    if (it == res.phase_seconds.end())
+      res.phase_seconds.emplace_back(phase_name(p), s);
+    else
+      it->second += s;
   }
 }
 
@@ -68,9 +71,10 @@ std::string column_text(const BenchOptions& opt) {
   const std::string z = d3 ? fmt::format(", {}", kSlabCells * h) : "", z0 = d3 ? ", 0.0" : "";
   // One body, or its lower and upper halves in contact with mu = tan(30 deg) (--bodies 2).
   auto body = [&](const char* name, double y0, double y1) {
-    return fmt::format("[[body]]\nname = \"{}\"\nmaterial = \"soil\"\nparticles_per_cell = 2\n"
-                       "shape = \"{}\"\nmin = [0.0, {}{}]\nmax = [2.0, {}{}]\n",
-                       name, d3 ? "box" : "rectangle", y0, z0, y1, z);
+    return fmt::format(
+        "[[body]]\nname = \"{}\"\nmaterial = \"soil\"\nparticles_per_cell = 2\n"
+        "shape = \"{}\"\nmin = [0.0, {}{}]\nmax = [2.0, {}{}]\n",
+        name, d3 ? "box" : "rectangle", y0, z0, y1, z);
   };
   const std::string bodies =
       opt.bodies == 2 ? body("lower", 0.0, 2.0) + body("upper", 2.0, 4.0) +
@@ -104,11 +108,13 @@ quadrature_points = {6}
 scheme = "usf"
 time_step = 1e-4
 end_time = 1.0
-)", h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
+)",
+                     h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
                      d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points, bodies);
 }
 
-template <int D> BenchResult run_column(const BenchOptions& opt) {
+template <int D>
+BenchResult run_column(const BenchOptions& opt) {
   const ScenarioOf<D> s = std::get<ScenarioOf<D>>(parse_any_scenario(column_text(opt), "bench-column"));
   BenchResult res;
   for (int r = 0; r < opt.repeats; ++r) {
@@ -130,8 +136,9 @@ template <int D> BenchResult run_column(const BenchOptions& opt) {
     res.particles = static_cast<long>(P.size());
     res.nodes = static_cast<long>(grid.node_count());
     res.updates_per_second.push_back(static_cast<double>(P.size()) * solver.steps() / sec);
-    res.runout = runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]),
-                           s.cell_size, 0.5 * s.cell_size).x_max;
+    res.runout =
+        runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]), s.cell_size, 0.5 * s.cell_size)
+            .x_max;
     res.yielding = solver.totals().yielding;
     add_phases(res, before_phases, solver.phase_times());
   }

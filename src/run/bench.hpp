@@ -23,7 +23,7 @@ struct BenchOptions {
   std::string problem = "block";  // "block" or "column"
   int refine = 1;                 // column: cells per 0.05 m (particles grow as refine^2)
   int dim = 2;                    // column: 3 for the 3D slab
-  long particles = 200000;  // approximate number of material points
+  long particles = 200000;        // approximate number of material points
   int steps = 100;
   int repeats = 5;
   int threads = 1;
@@ -32,7 +32,7 @@ struct BenchOptions {
   StressScheme scheme = StressScheme::Averaged;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
   long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
-  int bodies = 1;                 // column: 2 for two halves in frictional contact
+  int bodies = 1;                // column: 2 for two halves in frictional contact
 };
 
 struct BenchResult {

@@ -26,20 +26,49 @@ extern "C" void request_stop(int sig) {
 }
 bool g_watching = false;  // watch_stop_signals() was called
 
-template <class A> void archive_row(A& a, SeriesRow& r) {
-  a(r.step); a(r.time); a(r.kinetic_energy); a(r.strain_energy); a(r.gravity_work);
-  a(r.plastic_dissipation); a(r.friction_work); a(r.transfer_dissipation); a(r.mean_speed); a(r.max_speed); a(r.momentum_x); a(r.momentum_y);
-  a(r.num_particles); a(r.stage); a(r.runout); a(r.yielding_points); a(r.momentum_z);
+template <class A>
+void archive_row(A& a, SeriesRow& r) {
+  a(r.step);
+  a(r.time);
+  a(r.kinetic_energy);
+  a(r.strain_energy);
+  a(r.gravity_work);
+  a(r.plastic_dissipation);
+  a(r.friction_work);
+  a(r.transfer_dissipation);
+  a(r.mean_speed);
+  a(r.max_speed);
+  a(r.momentum_x);
+  a(r.momentum_y);
+  a(r.num_particles);
+  a(r.stage);
+  a(r.runout);
+  a(r.yielding_points);
+  a(r.momentum_z);
   a(r.contact_work);
 }
 
 // The run's state besides the particles, in payload order.
-template <class A, int D> void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
-  a(c.time); a(c.steps); a(c.ramp_start); a(c.gravity_ramp_time);
-  a(c.energy.strain_energy); a(c.energy.gravity_work); a(c.energy.plastic_dissipation);
-  a(c.energy.contact_work); a(c.energy.friction_work); a(c.energy.transfer_dissipation);
-  a(at.stage); a(at.in_stage); a(at.stage_first_step); a(at.stage_start);
-  a(at.next_output); a(at.next_series); a(at.frame_times); a(at.checkpoint_every);
+template <class A, int D>
+void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
+  a(c.time);
+  a(c.steps);
+  a(c.ramp_start);
+  a(c.gravity_ramp_time);
+  a(c.energy.strain_energy);
+  a(c.energy.gravity_work);
+  a(c.energy.plastic_dissipation);
+  a(c.energy.contact_work);
+  a(c.energy.friction_work);
+  a(c.energy.transfer_dissipation);
+  a(at.stage);
+  a(at.in_stage);
+  a(at.stage_first_step);
+  a(at.stage_start);
+  a(at.next_output);
+  a(at.next_series);
+  a(at.frame_times);
+  a(at.checkpoint_every);
   std::uint64_t n = at.finished.size();
   a(n);
   at.finished.resize(n);
@@ -67,8 +96,12 @@ std::uint64_t scenario_hash(const std::string& source) {
 
 template <int D>
 Checkpointing<D>::Checkpointing(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt)
-    : s_(s), file_(checkpoint_file(outdir)), restart_(opt.restart), every_(opt.checkpoint_every),
-      stop_at_(opt.stop_at_step), signals_(opt.handle_signals) {
+    : s_(s),
+      file_(checkpoint_file(outdir)),
+      restart_(opt.restart),
+      every_(opt.checkpoint_every),
+      stop_at_(opt.stop_at_step),
+      signals_(opt.handle_signals) {
   if (!signals_) return;
   if (!g_watching) g_stop_requested = 0;  // a signal since watch_stop_signals() still counts
   struct sigaction sa {};
@@ -78,15 +111,16 @@ Checkpointing<D>::Checkpointing(const ScenarioOf<D>& s, const fs::path& outdir, 
   sigaction(SIGTERM, &sa, &old_term_);
 }
 
-template <int D> Checkpointing<D>::~Checkpointing() {
+template <int D>
+Checkpointing<D>::~Checkpointing() {
   if (!signals_) return;
   sigaction(SIGINT, &old_int_, nullptr);
   sigaction(SIGTERM, &old_term_, nullptr);
 }
 
 template <int D>
-void Checkpointing<D>::write(const Particles<D>& P, const ExplicitSolver<D>& solver,
-                          RunProgress<D>& at, const SeriesWriter& series) {
+void Checkpointing<D>::write(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+                             const SeriesWriter& series) {
   std::ostringstream os(std::ios::binary);
   ByteWriter w{os};
   SolverClock c = solver.clock();
@@ -120,7 +154,7 @@ void load_checkpoint(const fs::path& file, const ScenarioOf<D>& s, Particles<D>&
 
 template <int D>
 bool Checkpointing<D>::restore(Particles<D>& P, ExplicitSolver<D>& solver, RunProgress<D>& at,
-                            SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
+                               SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
   if (restart_.empty()) return false;
   SolverClock c;
   std::vector<SeriesRow> rows;
@@ -137,8 +171,8 @@ bool Checkpointing<D>::restore(Particles<D>& P, ExplicitSolver<D>& solver, RunPr
 }
 
 template <int D>
-bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>& solver,
-                               RunProgress<D>& at, const SeriesWriter& series) {
+bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+                                  const SeriesWriter& series) {
   if (g_stop_requested || solver.steps() == stop_at_) {
     write(P, solver, at, series);
     return true;
@@ -148,8 +182,8 @@ bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>
 }
 
 template <int D>
-void Checkpointing<D>::at_end(const Particles<D>& P, const ExplicitSolver<D>& solver,
-                           RunProgress<D>& at, const SeriesWriter& series) {
+void Checkpointing<D>::at_end(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+                              const SeriesWriter& series) {
   if (every_ > 0) write(P, solver, at, series);
 }
 

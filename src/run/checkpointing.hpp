@@ -17,16 +17,17 @@
 namespace skred {
 
 // Where a run stands between two steps, beyond the particles and the solver.
-template <int D> struct RunProgress {
+template <int D>
+struct RunProgress {
   std::uint64_t stage = 0;    // the current stage (the number of stages once all are done)
   bool in_stage = false;      // the current stage has begun: stage_* and tracker are live
   long stage_first_step = 0;  // solver step at which the current stage began
   double stage_start = 0.0;   // and its time
   double next_output = 0.0, next_series = 0.0;
-  std::vector<double> frame_times;       // time of every frame written so far
-  std::vector<StageMeasures> finished;   // measures of the finished stages
-  StageTracker<D> tracker;               // of the current stage
-  long checkpoint_every = 0;             // as the run was started (a resume keeps it)
+  std::vector<double> frame_times;      // time of every frame written so far
+  std::vector<StageMeasures> finished;  // measures of the finished stages
+  StageTracker<D> tracker;              // of the current stage
+  long checkpoint_every = 0;            // as the run was started (a resume keeps it)
 };
 
 // Catches SIGINT/SIGTERM from now on (for the command line, before the scenario is read and
@@ -45,7 +46,8 @@ template <int D>
 void load_checkpoint(const std::filesystem::path& file, const ScenarioOf<D>& s, Particles<D>& P,
                      SolverClock& clock, RunProgress<D>& at, std::vector<SeriesRow>& series);
 
-template <int D> class Checkpointing {
+template <int D>
+class Checkpointing {
  public:
   // Installs the SIGINT/SIGTERM handlers when opt.handle_signals (restored on destruction).
   Checkpointing(const ScenarioOf<D>& s, const std::filesystem::path& outdir, const RunOptions& opt);
@@ -74,7 +76,8 @@ template <int D> class Checkpointing {
   std::filesystem::path file_, restart_;
   long every_ = 0, stop_at_ = -1;
   bool signals_ = false;
-  struct sigaction old_int_ {}, old_term_ {};
+  struct sigaction old_int_ {
+  }, old_term_{};
 };
 
 }  // namespace skred

@@ -18,8 +18,8 @@ class DensityTrigger {
   DensityTrigger(const ScenarioCommon& s, std::size_t stage) {
     for (const MaterialOverride& o : s.stages.at(stage).overrides)
       if (o.density)
-        changes_.push_back({o.material, density_at_stage_start(s, stage, o.material), *o.density,
-                            o.density_ramp_time});
+        changes_.push_back(
+            {o.material, density_at_stage_start(s, stage, o.material), *o.density, o.density_ramp_time});
   }
 
   bool empty() const { return changes_.empty(); }
@@ -32,11 +32,13 @@ class DensityTrigger {
 
   // Sets the masses for time tau into the stage: rho0 + (rho1 - rho0) (1 - cos(pi tau / T))
   // / 2, rho1 from tau = T on. True if a mass changed (the grid must be mapped afresh).
-  template <int D> bool apply(Particles<D>& p, double tau) {
+  template <int D>
+  bool apply(Particles<D>& p, double tau) {
     bool changed = false;
     for (Change& c : changes_) {
       if (c.done) continue;
-      const double r = c.ramp > 0 && tau < c.ramp ? 0.5 * (1.0 - std::cos(std::numbers::pi * tau / c.ramp)) : 1.0;
+      const double r =
+          c.ramp > 0 && tau < c.ramp ? 0.5 * (1.0 - std::cos(std::numbers::pi * tau / c.ramp)) : 1.0;
       const double rho = c.from + (c.to - c.from) * r;
       const long n = static_cast<long>(p.size());
 #pragma omp parallel for schedule(static)

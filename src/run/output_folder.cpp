@@ -25,9 +25,8 @@ bool numbered(const std::string& name, const std::string& prefix, std::size_t di
 
 bool skred_file_name(std::string name) {
   if (name.size() > 4 && name.ends_with(".tmp")) name.resize(name.size() - 4);
-  static const char* fixed[] = {"particles.pvd", "grid.pvd",       "series.csv",
-                                "summary.json",  "scenario.toml",  "checkpoint.skc",
-                                "report.html",   "sweep.csv"};
+  static const char* fixed[] = {"particles.pvd", "grid.pvd",       "series.csv",  "summary.json",
+                                "scenario.toml", "checkpoint.skc", "report.html", "sweep.csv"};
   for (const char* f : fixed)
     if (name == f) return true;
   return numbered(name, "particles_", 6, ".vtu") || numbered(name, "grid_", 6, ".vtr");
@@ -61,10 +60,10 @@ void prepare_output_folder(const fs::path& dir, bool overwrite, const fs::path& 
   std::vector<fs::path> files = run_files(dir);
   std::erase_if(files, [&](const fs::path& f) { return !keep.empty() && fs::equivalent(f, keep, ec); });
   if (!files.empty() && !overwrite)
-    throw std::runtime_error(fmt::format(
-        "'{}' holds an earlier run ({} of skred's files, e.g. {}); add --overwrite to replace it "
-        "or choose another folder",
-        dir.string(), files.size(), files.front().lexically_relative(dir).string()));
+    throw std::runtime_error(
+        fmt::format("'{}' holds an earlier run ({} of skred's files, e.g. {}); add --overwrite to replace it "
+                    "or choose another folder",
+                    dir.string(), files.size(), files.front().lexically_relative(dir).string()));
   for (const fs::path& f : files)
     if (!fs::remove(f, ec) && ec)
       throw std::runtime_error(fmt::format("cannot remove '{}': {}", f.string(), ec.message()));

@@ -31,7 +31,8 @@ namespace skred {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
+template <int D>
+SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   SolverSettings<D> st;
   st.interpolation = s.interpolation;
   st.quadrature_points = s.quadrature_points;
@@ -57,7 +58,8 @@ template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   return st;
 }
 
-template <int D> GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
+template <int D>
+GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
   GridGeometry<D> grid;
   grid.origin = s.origin;
   grid.h = s.cell_size;
@@ -75,8 +77,8 @@ std::string hms(double seconds) {
 }
 
 template <int D>
-SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t, long particles,
-                     int stage, double runout) {
+SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t, long particles, int stage,
+                     double runout) {
   const auto& e = solver.energy();
   SeriesRow r{};
   r.step = solver.steps();
@@ -114,8 +116,7 @@ void copy_scenario(const std::string& source, const fs::path& outdir) {
 // The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
 // smoothed_stress() call, and its entry in grid.pvd (post).
 template <int D>
-void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame,
-                      PvdWriter& index) {
+void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame, PvdWriter& index) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
   write_grid_vtr(outdir / name, solver.grid(),
                  GridNodeFieldsOf<D>{solver.node_mass(), solver.node_velocity(), solver.node_stress()});
@@ -141,7 +142,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   std::vector<Mat3> elastic_F;
   std::vector<Sym3> stress_from_Fe;
   SeriesWriter series(outdir / "series.csv", D == 3,  // 3D: with momentum_z
-                      solver.contact_on());            // contact: with contact_work
+                      solver.contact_on());           // contact: with contact_work
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
@@ -160,8 +161,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     for (std::size_t p = 0; p < particles.size(); ++p) {
       elastic_F[p] = embed3<D>(particles.Fe[p], 1.0);
       const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
-      stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)),
-                                                elastic_F[p], mat.elastic_constants);
+      stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)), elastic_F[p],
+                                                mat.elastic_constants);
     }
     extra.elastic_F = &elastic_F;
     extra.stress_from_elastic_F = &stress_from_Fe;
@@ -174,7 +175,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   // The instability detector (run/stability.hpp): a step above the stable limit stops the run
   // before it starts; afterwards every series row and every frame is checked.
   StabilityWatch<D> watch(s, dt, solver.totals().mass);
-  StepStatus unstable;  // ok, or the point and reason found by the detector
+  StepStatus unstable;     // ok, or the point and reason found by the detector
   long unstable_step = 0;  // the step after which it was found
   bool left_grid = false;
   auto stop_unstable = [&](std::string reason, long p) {
@@ -210,10 +211,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       at.in_stage = true;
       at.stage_first_step = solver.steps();
       at.stage_start = solver.time();
-      at.tracker = StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy,
-                                   st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
-                                   s.cells[0] * s.cell_size, s.origin[D - 1],
-                                   D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+      at.tracker =
+          StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy, st.rest_speed,
+                          st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size, s.origin[D - 1],
+                          D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
     }
     const long first_step = at.stage_first_step;
     const double stage_start = at.stage_start;
@@ -239,8 +240,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     std::string ended_by = unstable.ok ? "duration" : "unstable";
     while (unstable.ok && solver.steps() - first_step < stage_steps) {
       // Point order and point changes between steps (docs/method.md, "Point order").
-      if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 &&
-          particles.sort_by_cell(solver.grid()))
+      if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 && particles.sort_by_cell(solver.grid()))
         solver.particles_changed();
       if constexpr (D == 2)  // the test hook that adds and removes points (2D runs)
         if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
@@ -282,7 +282,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         const double elapsed = std::chrono::duration<double>(now - start).count();
         const double frac = static_cast<double>(solver.steps()) / total_steps;
         const double pups = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
-        fmt::print(stderr, "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
+        fmt::print(stderr,
+                   "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
                    tty ? "\r" : "", k + 1, st.name, solver.steps(), t, 100 * frac,
                    hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest) ? "" : "\n");
         std::fflush(stderr);
@@ -323,9 +324,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
               : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
                             s.bodies[particles.body[p]].name, particles.x[p][0], particles.x[p][1],
                             D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "");
-    res.message = left_grid ? fmt::format("stopped at step {} (t = {:.6g} s){} left the grid (its state is "
-                                          "sound: enlarge the grid or close its sides)",
-                                          unstable_step, solver.time(), where)
+    res.message = left_grid ? fmt::format(
+                                  "stopped at step {} (t = {:.6g} s){} left the grid (its state is "
+                                  "sound: enlarge the grid or close its sides)",
+                                  unstable_step, solver.time(), where)
                             : fmt::format("unstable at step {} (t = {:.6g} s){}: {}", unstable_step,
                                           solver.time(), where, status.reason);
     write_frame();  // the last state, for diagnosis

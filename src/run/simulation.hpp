@@ -14,7 +14,7 @@ namespace skred {
 
 struct RunOptions {
   int threads = 1;
-  bool progress = true;  // progress line on stderr
+  bool progress = true;          // progress line on stderr
   long sort_every = kSortEvery;  // 0: never sort
   // Checkpoints (run/checkpointing.hpp): OUTDIR/checkpoint.skc every N steps and at the end
   // (0: none, except on a signal); continue from `restart` when set; on SIGINT/SIGTERM write a
@@ -41,10 +41,12 @@ struct RunResult {
   std::vector<StageMeasures> stages;  // slide measures per stage run
 };
 
-template <int D> SolverSettings<D> solver_settings(const ScenarioOf<D>& s);
+template <int D>
+SolverSettings<D> solver_settings(const ScenarioOf<D>& s);
 
 // The background grid of a scenario (origin, cell size, cells per axis).
-template <int D> GridGeometry<D> scenario_grid(const ScenarioOf<D>& s);
+template <int D>
+GridGeometry<D> scenario_grid(const ScenarioOf<D>& s);
 
 // Runs a 2D or 3D scenario (the driver is the same template; 3D adds momentum_z to
 // series.csv and the runout along z to summary.json).

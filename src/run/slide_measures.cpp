@@ -10,14 +10,16 @@ namespace {
 // A point's current half-size l0 det(F)^(1/d), as GIMP sizes its domain (Thesis eq. 3.23):
 // the material a point stands for, not the corners of its voxel, so a voxel sheared into a
 // needle does not reach metres beyond the material.
-template <int D> Vec<D> half_size(const Particles<D>& P, std::size_t p) {
+template <int D>
+Vec<D> half_size(const Particles<D>& P, std::size_t p) {
   const double J = P.F[p].determinant();
   return P.half0[p] * std::pow(std::max(J, 0.0), 1.0 / D);
 }
 
 }  // namespace
 
-template <int D> MaterialExtent material_extent(const Particles<D>& P) {
+template <int D>
+MaterialExtent material_extent(const Particles<D>& P) {
   double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
   double z_min = D == 3 ? INFINITY : 0.0, z_max = D == 3 ? -INFINITY : 0.0;
   const long n = static_cast<long>(P.size());
@@ -38,12 +40,19 @@ template <int D> MaterialExtent material_extent(const Particles<D>& P) {
 }
 
 template <int D>
-StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time,
-                              double kinetic_energy, double rest_speed, double rest_time,
-                              double x0, double width, double length, double z0, double z_length)
-    : start_(material_extent(P)), kinetic_start_(kinetic_energy), rest_speed_(rest_speed),
-      rest_time_(rest_time), threshold_(0.5 * width), x0_(x0), width_(width), length_(length),
-      z0_(z0), z_length_(z_length) {
+StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
+                              double rest_speed, double rest_time, double x0, double width, double length,
+                              double z0, double z_length)
+    : start_(material_extent(P)),
+      kinetic_start_(kinetic_energy),
+      rest_speed_(rest_speed),
+      rest_time_(rest_time),
+      threshold_(0.5 * width),
+      x0_(x0),
+      width_(width),
+      length_(length),
+      z0_(z0),
+      z_length_(z_length) {
   profile_ = surface_profile(P, x0_, width_, bins());
   if constexpr (D == 3) profile_z_ = surface_profile(P, z0_, width_, bins_z(), 2);
   m_.name = std::move(name);
@@ -52,7 +61,8 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time,
   for (std::size_t p = 0; p < P.size(); ++p) P.plastic_ref[p] = P.state[p].plastic_shear_strain;
 }
 
-template <int D> bool StageTracker<D>::observe(double time, double mean_speed) {
+template <int D>
+bool StageTracker<D>::observe(double time, double mean_speed) {
   if (mean_speed > m_.peak_mean_speed) {
     m_.peak_mean_speed = mean_speed;
     m_.peak_time = time - m_.start_time;
@@ -69,8 +79,7 @@ template <int D> bool StageTracker<D>::observe(double time, double mean_speed) {
 }
 
 template <int D>
-std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins,
-                                   int axis) {
+std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis) {
   std::vector<double> top(static_cast<std::size_t>(bins), -INFINITY);
   const int a = axis;
   for (std::size_t p = 0; p < P.size(); ++p) {
@@ -83,8 +92,8 @@ std::vector<double> surface_profile(const Particles<D>& P, double x0, double wid
   return top;
 }
 
-Runout runout_of(const std::vector<double>& before, const std::vector<double>& after,
-                 double width, double threshold) {
+Runout runout_of(const std::vector<double>& before, const std::vector<double>& after, double width,
+                 double threshold) {
   Runout r;
   const int n = static_cast<int>(before.size());
   // The connected deposit: the run of columns holding material around the highest one (the
@@ -95,36 +104,40 @@ Runout runout_of(const std::vector<double>& before, const std::vector<double>& a
   int first = peak, last = peak;
   while (first > 0 && std::isfinite(after[first - 1])) --first;
   while (last < n - 1 && std::isfinite(after[last + 1])) ++last;
-  const auto raised = [&](int b) {
-    return b >= first && b <= last && after[b] > before[b] + threshold;
-  };
+  const auto raised = [&](int b) { return b >= first && b <= last && after[b] > before[b] + threshold; };
   for (int dir : {+1, -1}) {
     // Tip: the outermost column the deposit has raised; toe: the outermost column, inward of
     // the tip, whose original surface stood above the original surface at the tip.
     int tip = -1;
     for (int k = 0; k < n; ++k) {
       const int b = dir > 0 ? n - 1 - k : k;
-      if (raised(b)) { tip = b; break; }
+      if (raised(b)) {
+        tip = b;
+        break;
+      }
     }
     if (tip < 0) continue;
     int toe = tip;
     for (int b = tip; b >= 0 && b < n; b -= dir)
-      if (before[b] > before[tip] + threshold) { toe = b; break; }
+      if (before[b] > before[tip] + threshold) {
+        toe = b;
+        break;
+      }
     const double advance = std::abs(tip - toe) * width;
     (dir > 0 ? r.x_max : r.x_min) = advance;
   }
   return r;
 }
 
-template <int D> double StageTracker<D>::runout(const Particles<D>& P) const {
+template <int D>
+double StageTracker<D>::runout(const Particles<D>& P) const {
   const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
   return std::max(r.x_min, r.x_max);
 }
 
 template <int D>
-StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long steps,
-                                      double kinetic_energy, double gravity_work,
-                                      double strain_energy, double plastic_dissipation,
+StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
+                                      double gravity_work, double strain_energy, double plastic_dissipation,
                                       const std::string& ended_by) const {
   StageMeasures m = m_;
   const MaterialExtent e = material_extent(P);
@@ -136,8 +149,7 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
   m.runout_x_max = r.x_max;
   m.runout = std::max(r.x_min, r.x_max);
   if constexpr (D == 3) {
-    const Runout z = runout_of(profile_z_, surface_profile(P, z0_, width_, bins_z(), 2), width_,
-                               threshold_);
+    const Runout z = runout_of(profile_z_, surface_profile(P, z0_, width_, bins_z(), 2), width_, threshold_);
     m.runout_z_min = z.x_min;
     m.runout_z_max = z.x_max;
   }

@@ -17,15 +17,15 @@ namespace skred {
 struct MaterialExtent {
   double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0, z_min = 0.0, z_max = 0.0;
 };
-template <int D> MaterialExtent material_extent(const Particles<D>& P);
+template <int D>
+MaterialExtent material_extent(const Particles<D>& P);
 
 // Top of the material in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D): the
 // highest x_p[1] + l_p over the points whose domain x_p +- l_p reaches the column, l_p =
 // l0 det(F_p)^(1/d) (-inf where there is none). In 3D a column
 // is a slice across the whole domain (for axis 0, every z; for axis 2, every x).
 template <int D>
-std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins,
-                                    int axis = 0);
+std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis = 0);
 
 // Runout from the surface profiles before and after, towards +x and -x: the tip is the
 // outermost column of the connected deposit (the run of non-empty columns around the highest
@@ -35,31 +35,49 @@ std::vector<double> surface_profile(const Particles<D>& P, double x0, double wid
 struct Runout {
   double x_min = 0.0, x_max = 0.0;
 };
-Runout runout_of(const std::vector<double>& before, const std::vector<double>& after,
-                 double width, double threshold);
+Runout runout_of(const std::vector<double>& before, const std::vector<double>& after, double width,
+                 double threshold);
 
 // Reads or writes a stage's measures through `a` (see StageTracker::archive).
-template <class A> void archive_measures(A& a, StageMeasures& m) {
-  a(m.name); a(m.start_time); a(m.end_time); a(m.steps); a(m.ended_by); a(m.runout_x_min);
-  a(m.runout_x_max); a(m.runout); a(m.max_displacement); a(m.height_start); a(m.height_end);
-  a(m.peak_mean_speed); a(m.peak_time); a(m.final_mean_speed); a(m.gravity_work);
-  a(m.kinetic_energy_change); a(m.strain_energy); a(m.plastic_dissipation); a(m.plastic_volume);
-  a(m.plastic_points); a(m.stop_time);
+template <class A>
+void archive_measures(A& a, StageMeasures& m) {
+  a(m.name);
+  a(m.start_time);
+  a(m.end_time);
+  a(m.steps);
+  a(m.ended_by);
+  a(m.runout_x_min);
+  a(m.runout_x_max);
+  a(m.runout);
+  a(m.max_displacement);
+  a(m.height_start);
+  a(m.height_end);
+  a(m.peak_mean_speed);
+  a(m.peak_time);
+  a(m.final_mean_speed);
+  a(m.gravity_work);
+  a(m.kinetic_energy_change);
+  a(m.strain_energy);
+  a(m.plastic_dissipation);
+  a(m.plastic_volume);
+  a(m.plastic_points);
+  a(m.stop_time);
 }
 
 // Follows one stage: record the start, observe the mean speed as the run goes, finish.
 // In 3D the runout is measured along x as in 2D (`runout`, `runout_x_min/max`), and along z
 // the same way from profiles across z (`runout_z_min/max`).
-template <int D> class StageTracker {
+template <int D>
+class StageTracker {
  public:
   // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length]
   // (3D: also over [z0, z0 + z_length] along z). Records every point's plastic shear strain
   // in P.plastic_ref (a particle field, so it follows the points through every change of
   // their number or order).
   StageTracker() = default;  // to be filled by archive() (checkpoint restart)
-  StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
-               double rest_speed, double rest_time, double x0, double width, double length,
-               double z0 = 0.0, double z_length = 0.0);
+  StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy, double rest_speed,
+               double rest_time, double x0, double width, double length, double z0 = 0.0,
+               double z_length = 0.0);
   // Records a sample of the mean speed at `time`; true once the rest criterion is met.
   bool observe(double time, double mean_speed);
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
@@ -71,12 +89,26 @@ template <int D> class StageTracker {
 
   // Reads or writes the tracker's whole state through `a` (see run/checkpointing.cpp):
   // a(value) for every member.
-  template <class A> void archive(A& a) {
+  template <class A>
+  void archive(A& a) {
     archive_measures(a, m_);
-    a(start_.x_min); a(start_.x_max); a(start_.y_min); a(start_.y_max);
-    a(kinetic_start_); a(rest_speed_); a(rest_time_); a(threshold_); a(x0_); a(width_); a(length_);
-    a(z0_); a(z_length_); a(profile_z_);
-    a(profile_); a(quiet_since_); a(samples_);
+    a(start_.x_min);
+    a(start_.x_max);
+    a(start_.y_min);
+    a(start_.y_max);
+    a(kinetic_start_);
+    a(rest_speed_);
+    a(rest_time_);
+    a(threshold_);
+    a(x0_);
+    a(width_);
+    a(length_);
+    a(z0_);
+    a(z_length_);
+    a(profile_z_);
+    a(profile_);
+    a(quiet_since_);
+    a(samples_);
   }
 
  private:
@@ -89,7 +121,7 @@ template <int D> class StageTracker {
   std::vector<double> profile_z_;  // 3D: along z
   int bins() const { return std::max(1, static_cast<int>(std::lround(length_ / width_))); }
   int bins_z() const { return std::max(1, static_cast<int>(std::lround(z_length_ / width_))); }
-  std::optional<double> quiet_since_;  // time the mean speed last fell below rest_speed
+  std::optional<double> quiet_since_;               // time the mean speed last fell below rest_speed
   std::vector<std::pair<double, double>> samples_;  // (time, mean speed)
 };
 

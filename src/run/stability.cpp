@@ -1,7 +1,7 @@
 #include "run/stability.hpp"
 
-#include <Eigen/LU>
 #include <fmt/format.h>
+#include <Eigen/LU>
 
 #include <cmath>
 
@@ -26,13 +26,17 @@ StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double tota
   floor_ = 1e-9 * total_mass * c_ * c_;
 }
 
-template <int D> std::string StabilityWatch<D>::unusable_step() const {
+template <int D>
+std::string StabilityWatch<D>::unusable_step() const {
   if (std::isfinite((c_ + v0_) * dt_ / h_) && dt_ > 0.0) return {};
-  return fmt::format("time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
-                     "not finite)", dt_, c_, v0_);
+  return fmt::format(
+      "time step {:.6g} s is not usable (c = {:.6g} m/s, initial speed v0 = {:.6g} m/s: "
+      "not finite)",
+      dt_, c_, v0_);
 }
 
-template <int D> std::string StabilityWatch<D>::step_above_limit() const {
+template <int D>
+std::string StabilityWatch<D>::step_above_limit() const {
   const double courant = (c_ + v0_) * dt_ / h_;
   if (!(courant > kStableCourant * (1.0 + 1e-9))) return {};
   return fmt::format(
@@ -41,7 +45,8 @@ template <int D> std::string StabilityWatch<D>::step_above_limit() const {
       dt_, courant, kStableCourant, c_, fastest_material_, v0_, h_, kStableCourant * h_ / (c_ + v0_));
 }
 
-template <int D> void StabilityWatch<D>::begin_stage(double kinetic_energy) {
+template <int D>
+void StabilityWatch<D>::begin_stage(double kinetic_energy) {
   k0_ = kinetic_energy;
   max_gravity_work_ = 0.0;
   max_released_ = 0.0;
@@ -49,8 +54,8 @@ template <int D> void StabilityWatch<D>::begin_stage(double kinetic_energy) {
 
 template <int D>
 std::string StabilityWatch<D>::check(const ParticleTotals<D>& t, const EnergyTotals& e) {
-  const double sums[] = {t.kinetic_energy, t.max_speed, t.mean_speed, t.momentum.norm(),
-                         e.strain_energy, e.gravity_work, e.plastic_dissipation};
+  const double sums[] = {t.kinetic_energy, t.max_speed,    t.mean_speed,         t.momentum.norm(),
+                         e.strain_energy,  e.gravity_work, e.plastic_dissipation};
   for (double x : sums)
     if (!std::isfinite(x)) return "non-finite speed or energy";
   if (t.max_speed > speed_bound_)
@@ -61,17 +66,21 @@ std::string StabilityWatch<D>::check(const ParticleTotals<D>& t, const EnergyTot
   const double gained = t.kinetic_energy - k0_ + e.strain_energy + e.plastic_dissipation - e.gravity_work;
   const double supplied = k0_ + max_gravity_work_ + max_released_;
   if (gained <= kEnergyGrowthTolerance * supplied + floor_) return {};
-  return fmt::format("energy grew by {:.4g} J beyond the {:.4g} J supplied since the stage start "
-                     "(kinetic {:.4g} J, stored {:.4g} J, dissipated {:.4g} J, gravity work {:.4g} J)",
-                     gained, supplied, t.kinetic_energy, e.strain_energy, e.plastic_dissipation,
-                     e.gravity_work);
+  return fmt::format(
+      "energy grew by {:.4g} J beyond the {:.4g} J supplied since the stage start "
+      "(kinetic {:.4g} J, stored {:.4g} J, dissipated {:.4g} J, gravity work {:.4g} J)",
+      gained, supplied, t.kinetic_energy, e.strain_energy, e.plastic_dissipation, e.gravity_work);
 }
 
 namespace {
-template <class M> bool finite(const M& m) { return m.allFinite(); }
+template <class M>
+bool finite(const M& m) {
+  return m.allFinite();
+}
 }  // namespace
 
-template <int D> long first_non_finite_point(const Particles<D>& P) {
+template <int D>
+long first_non_finite_point(const Particles<D>& P) {
   const long n = static_cast<long>(P.size());
   long bad = n;
 #pragma omp parallel for reduction(min : bad)
@@ -80,7 +89,8 @@ template <int D> long first_non_finite_point(const Particles<D>& P) {
   return bad < n ? bad : -1;
 }
 
-template <int D> long offending_point(const Particles<D>& P) {
+template <int D>
+long offending_point(const Particles<D>& P) {
   const long bad = first_non_finite_point(P);
   if (bad >= 0 || P.size() == 0) return bad;
   long fastest = 0;

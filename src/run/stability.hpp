@@ -17,7 +17,8 @@ inline constexpr double kEnergyGrowthTolerance = 0.5;
 // The largest stable (c + v0) dt / h, the bound the scenario key solver.cfl has.
 inline constexpr double kStableCourant = 1.0;
 
-template <int D> class StabilityWatch {
+template <int D>
+class StabilityWatch {
  public:
   StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass);
 
@@ -48,9 +49,11 @@ template <int D> class StabilityWatch {
 
 // The first point with a non-finite position, velocity, F or stress, or -1 (a frame of it
 // would hold non-finite output).
-template <int D> long first_non_finite_point(const Particles<D>& P);
+template <int D>
+long first_non_finite_point(const Particles<D>& P);
 // The point to name for an instability: the first non-finite one, else the fastest.
-template <int D> long offending_point(const Particles<D>& P);
+template <int D>
+long offending_point(const Particles<D>& P);
 // Whether point p, sound otherwise (finite state, det F > 0, speed within `speed_bound`),
 // lies outside the grid or within a cell of its edge: it left the grid.
 template <int D>

@@ -14,9 +14,11 @@ namespace skred {
 namespace fs = std::filesystem;
 
 std::string sweep_header(const std::string& key) {
-  return fmt::format("{},status,folder,steps,simulated_time,wall_seconds,runout,runout_x_min,"
-                     "runout_x_max,height_end,peak_mean_speed,final_mean_speed,stop_time,"
-                     "gravity_work,plastic_dissipation,plastic_volume\n", key);
+  return fmt::format(
+      "{},status,folder,steps,simulated_time,wall_seconds,runout,runout_x_min,"
+      "runout_x_max,height_end,peak_mean_speed,final_mean_speed,stop_time,"
+      "gravity_work,plastic_dissipation,plastic_volume\n",
+      key);
 }
 
 namespace {
@@ -24,11 +26,10 @@ namespace {
 void write_table(const fs::path& file, const std::string& key, const std::vector<SweepRow>& rows) {
   std::string text = sweep_header(key);
   for (const SweepRow& r : rows)
-    fmt::format_to(std::back_inserter(text), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
-                   r.value, r.status, r.folder, r.steps, r.simulated_time, r.wall_seconds, r.runout,
-                   r.runout_x_min, r.runout_x_max, r.height_end, r.peak_mean_speed,
-                   r.final_mean_speed, r.stop_time, r.gravity_work, r.plastic_dissipation,
-                   r.plastic_volume);
+    fmt::format_to(std::back_inserter(text), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", r.value,
+                   r.status, r.folder, r.steps, r.simulated_time, r.wall_seconds, r.runout, r.runout_x_min,
+                   r.runout_x_max, r.height_end, r.peak_mean_speed, r.final_mean_speed, r.stop_time,
+                   r.gravity_work, r.plastic_dissipation, r.plastic_volume);
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

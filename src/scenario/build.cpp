@@ -11,7 +11,8 @@ namespace {
 // Calls f(point) for every sub-cell centre of the body's bounding-box cells that lies inside
 // the shape, cells in row-major order (x fastest, then y, then z), then the sub-cells of a
 // cell in the same order. Stops early when f returns false.
-template <int D, class F> void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
+template <int D, class F>
+void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
   // With body_overlap = "later-wins" a point a later body claims is that body's only.
   std::size_t later = s.bodies.size();
   if (s.later_body_wins && &body >= s.bodies.data() && &body < s.bodies.data() + s.bodies.size())
@@ -56,32 +57,35 @@ template <int D, class F> void for_each_point(const ScenarioOf<D>& s, const Body
 
 }  // namespace
 
-template <int D> std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
+template <int D>
+std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
   std::size_t n = 0;
   for_each_point(s, b, [&](const Vec<D>&) { return ++n, true; });
   return n;
 }
 
-template <int D> bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
+template <int D>
+bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
   bool any = false;
   for_each_point(s, b, [&](const Vec<D>&) { return any = true, false; });
   return any;
 }
 
-template <int D> Particles<D> build_particles(const ScenarioOf<D>& s) {
+template <int D>
+Particles<D> build_particles(const ScenarioOf<D>& s) {
   if (s.bodies.size() > static_cast<std::size_t>(kMaxIds) ||
       s.materials.size() > static_cast<std::size_t>(kMaxIds))
-    throw ScenarioError(fmt::format("{}: at most {} bodies and {} materials are supported",
-                                    s.source, kMaxIds, kMaxIds));
+    throw ScenarioError(
+        fmt::format("{}: at most {} bodies and {} materials are supported", s.source, kMaxIds, kMaxIds));
   std::vector<std::size_t> counts;
   std::size_t total = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     counts.push_back(count_points(s, s.bodies[i]));
     if (counts.back() == 0)
-      throw ScenarioError(fmt::format(
-          "{}: key 'body[{}].shape': body '{}' contains no material point on this grid "
-          "(cell size {} m, {} points per cell); enlarge the shape or refine the grid",
-          s.source, i, s.bodies[i].name, s.cell_size, s.bodies[i].particles_per_cell));
+      throw ScenarioError(
+          fmt::format("{}: key 'body[{}].shape': body '{}' contains no material point on this grid "
+                      "(cell size {} m, {} points per cell); enlarge the shape or refine the grid",
+                      s.source, i, s.bodies[i].name, s.cell_size, s.bodies[i].particles_per_cell));
     total += counts.back();
   }
   Particles<D> p;

@@ -15,12 +15,15 @@ namespace skred {
 // thickness), volume0 = (h/n)^D, half0 = h/2n on every axis. Bodies are filled in order,
 // cells in row-major order (x fastest, then y, then z), and the sub-cells of a cell in the
 // same order. Throws ScenarioError if a body receives no point.
-template <int D> Particles<D> build_particles(const ScenarioOf<D>& s);
+template <int D>
+Particles<D> build_particles(const ScenarioOf<D>& s);
 
 // Number of material points build_particles gives body `b` on the grid of `s`.
-template <int D> std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
+template <int D>
+std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
 // True if body `b` receives at least one point (cheaper than count_points).
-template <int D> bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
+template <int D>
+bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
 
 // Point-in-shape test with half-open rules: a point on a rectangle's or polygon's low (left,
 // bottom) edge is inside and on its high edge is outside, so shapes sharing an edge never
@@ -30,7 +33,10 @@ bool shape_contains(const Shape& shape, const Vec<2>& x);
 bool shape_contains(const Shape3& shape, const Vec<3>& x);
 
 // Axis-aligned bounding box of a shape.
-template <int D> struct ShapeBox { Vec<D> lo, hi; };
+template <int D>
+struct ShapeBox {
+  Vec<D> lo, hi;
+};
 ShapeBox<2> bounding_box(const Shape& shape);
 ShapeBox<3> bounding_box(const Shape3& shape);
 
@@ -42,6 +48,7 @@ double layer_area(const Layer& l);
 
 // Short multi-line human summary (grid, materials, bodies, gravity, boundaries, solver and
 // output settings), as printed by `skred check`. Ends with a newline.
-template <int D> std::string describe(const ScenarioOf<D>& s);
+template <int D>
+std::string describe(const ScenarioOf<D>& s);
 
 }  // namespace skred

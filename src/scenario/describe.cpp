@@ -42,12 +42,10 @@ std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
     if (o.friction) t += fmt::format(" friction {:.4g} deg", *o.friction * 180.0 / M_PI);
     if (o.cohesion) t += fmt::format(" cohesion {} Pa", *o.cohesion);
     if (o.dilation) t += fmt::format(" dilation {:.4g} deg", *o.dilation * 180.0 / M_PI);
-    if (o.density)
-      t += fmt::format(" density {} kg/m^3 (over {} s)", *o.density, o.density_ramp_time);
+    if (o.density) t += fmt::format(" density {} kg/m^3 (over {} s)", *o.density, o.density_ramp_time);
   }
   if (st.rest_speed > 0)
-    t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed,
-                     st.rest_time);
+    t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed, st.rest_time);
   return t;
 }
 
@@ -87,8 +85,8 @@ std::string shape_summary(const Shape3& shape) {
                              vec(sh.axis), sh.radius, sh.length);
         } else {
           return fmt::format("polygon with {} vertices, area {} m^2, extruded over z {} to {}",
-                             sh.section.vertices.size(), std::abs(polygon_area(sh.section)),
-                             sh.z_min, sh.z_max);
+                             sh.section.vertices.size(), std::abs(polygon_area(sh.section)), sh.z_min,
+                             sh.z_max);
         }
       },
       shape);
@@ -101,7 +99,8 @@ std::string boundary_summary(const BoundarySide& b) {
 
 }  // namespace
 
-template <int D> std::string describe(const ScenarioOf<D>& s) {
+template <int D>
+std::string describe(const ScenarioOf<D>& s) {
   std::string out;
   auto line = [&out](const std::string& text) { out += text + '\n'; };
   line(fmt::format("scenario: {}{}", s.source, s.title.empty() ? "" : " (\"" + s.title + "\")"));
@@ -110,20 +109,21 @@ template <int D> std::string describe(const ScenarioOf<D>& s) {
     cells += fmt::format("{}{}", d ? " x " : "", s.cells[static_cast<std::size_t>(d)]);
     extent += fmt::format("{}{}", d ? " x " : "", s.cells[static_cast<std::size_t>(d)] * s.cell_size);
   }
-  line(fmt::format("grid{}: {} cells of {} m, origin {}, extent {} m", D == 3 ? " (3D)" : "",
-                   cells, s.cell_size, vec(s.origin), extent));
+  line(fmt::format("grid{}: {} cells of {} m, origin {}, extent {} m", D == 3 ? " (3D)" : "", cells,
+                   s.cell_size, vec(s.origin), extent));
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)
-    line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}{}", m.name,
-                     to_string(m.model), m.density, m.elastic.young, m.elastic.poisson,
-                     strength_summary(m)));
+    line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}{}", m.name, to_string(m.model),
+                     m.density, m.elastic.young, m.elastic.poisson, strength_summary(m)));
   line(fmt::format("bodies ({}):", s.bodies.size()));
   for (const auto& b : s.bodies) {
     const std::string mat = b.material >= 0 && static_cast<std::size_t>(b.material) < s.materials.size()
                                 ? s.materials[static_cast<std::size_t>(b.material)].name
                                 : "?";
     line(fmt::format("  {}: {}, material {}, {} points per cell, velocity {} m/s{}", b.name,
-                     shape_summary(b.shape), mat, D == 3 ? fmt::format("{0}x{0}x{0}", b.particles_per_cell) : fmt::format("{0}x{0}", b.particles_per_cell),
+                     shape_summary(b.shape), mat,
+                     D == 3 ? fmt::format("{0}x{0}x{0}", b.particles_per_cell)
+                            : fmt::format("{0}x{0}", b.particles_per_cell),
                      vec(b.velocity), b.rigid ? ", rigid" : ""));
   }
   for (const ContactPair& c : s.contacts)  // Paper III §C.2.7
@@ -134,24 +134,27 @@ template <int D> std::string describe(const ScenarioOf<D>& s) {
     case K0Rule::None: break;
     case K0Rule::Poisson: line("initial stress: K0 = nu / (1 - nu) from the overburden"); break;
     case K0Rule::Jaky: line("initial stress: K0 = 1 - sin(phi) from the overburden"); break;
-    case K0Rule::Value: line(fmt::format("initial stress: K0 = {} from the overburden", s.initial_stress.k0)); break;
+    case K0Rule::Value:
+      line(fmt::format("initial stress: K0 = {} from the overburden", s.initial_stress.k0));
+      break;
   }
   line(fmt::format("stages ({}):", s.stages.size()));
   for (const auto& st : s.stages) line(stage_summary(s, st));
   static const char* const names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   std::string sides;
   for (int k = 0; k < 2 * D; ++k)
-    sides += fmt::format("{}{} {}", k ? ", " : "", names[k], boundary_summary(s.boundaries[static_cast<std::size_t>(k)]));
+    sides += fmt::format("{}{} {}", k ? ", " : "", names[k],
+                         boundary_summary(s.boundaries[static_cast<std::size_t>(k)]));
   line("boundaries: " + sides);
   std::string interp = to_string(s.interpolation);
   if (s.interpolation == Interpolation::GimpQuadrature)
     interp += fmt::format(" ({} points per direction)", s.quadrature_points);
   const std::string step = s.time_step > 0.0 ? fmt::format("time step {} s", s.time_step)
                                              : fmt::format("time step from CFL {}", s.cfl);
-  line(fmt::format("solver: {} interpolation, {} scheme, end time {} s, {}", interp,
-                   to_string(s.scheme), s.end_time, step));
-  line(fmt::format("output: particle frames every {} s, series rows every {} s",
-                   s.output_interval, s.series_interval));
+  line(fmt::format("solver: {} interpolation, {} scheme, end time {} s, {}", interp, to_string(s.scheme),
+                   s.end_time, step));
+  line(fmt::format("output: particle frames every {} s, series rows every {} s", s.output_interval,
+                   s.series_interval));
   return out;
 }
 

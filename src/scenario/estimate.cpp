@@ -20,10 +20,14 @@ double measure(const Shape& shape) {
   return std::visit(
       [](const auto& sh) -> double {
         using T = std::decay_t<decltype(sh)>;
-        if constexpr (std::is_same_v<T, Rectangle>) return (sh.max - sh.min).prod();
-        else if constexpr (std::is_same_v<T, Disc>) return M_PI * sh.radius * sh.radius;
-        else if constexpr (std::is_same_v<T, Layer>) return layer_area(sh);
-        else return std::abs(polygon_area(sh));
+        if constexpr (std::is_same_v<T, Rectangle>)
+          return (sh.max - sh.min).prod();
+        else if constexpr (std::is_same_v<T, Disc>)
+          return M_PI * sh.radius * sh.radius;
+        else if constexpr (std::is_same_v<T, Layer>)
+          return layer_area(sh);
+        else
+          return std::abs(polygon_area(sh));
       },
       shape);
 }
@@ -32,33 +36,40 @@ double measure(const Shape3& shape) {
   return std::visit(
       [](const auto& sh) -> double {
         using T = std::decay_t<decltype(sh)>;
-        if constexpr (std::is_same_v<T, Box>) return (sh.max - sh.min).prod();
-        else if constexpr (std::is_same_v<T, Sphere>) return 4.0 / 3.0 * M_PI * std::pow(sh.radius, 3);
-        else if constexpr (std::is_same_v<T, Cylinder>) return M_PI * sh.radius * sh.radius * sh.length;
-        else return std::abs(polygon_area(sh.section)) * (sh.z_max - sh.z_min);
+        if constexpr (std::is_same_v<T, Box>)
+          return (sh.max - sh.min).prod();
+        else if constexpr (std::is_same_v<T, Sphere>)
+          return 4.0 / 3.0 * M_PI * std::pow(sh.radius, 3);
+        else if constexpr (std::is_same_v<T, Cylinder>)
+          return M_PI * sh.radius * sh.radius * sh.length;
+        else
+          return std::abs(polygon_area(sh.section)) * (sh.z_max - sh.z_min);
       },
       shape);
 }
 
 // Bytes a material point holds: its fields (core/particles.hpp) and its stored weighting
 // functions (about 2 x 4 values per axis and node row).
-template <int D> double bytes_per_point() {
+template <int D>
+double bytes_per_point() {
   std::size_t bytes = 0;
-  Particles<D>().for_each_field([&](const auto& f, const auto&) {
-    bytes += sizeof(typename std::decay_t<decltype(f)>::value_type);
-  });
+  Particles<D>().for_each_field(
+      [&](const auto& f, const auto&) { bytes += sizeof(typename std::decay_t<decltype(f)>::value_type); });
   return static_cast<double>(bytes) + 64.0 * D;
 }
 
 // Grid fields per node (docs/method.md: 120 B in 2D, 176 B in 3D with every scheme's arrays)
 // plus one scatter buffer of the second thread.
-template <int D> constexpr double kBytesPerNode = D == 2 ? 152.0 : 208.0;
+template <int D>
+constexpr double kBytesPerNode = D == 2 ? 152.0 : 208.0;
 // A particle frame (VTU) per point: every field as Float64, voxel corners included.
-template <int D> constexpr double kFrameBytesPerPoint = D == 2 ? 840.0 : 1100.0;
+template <int D>
+constexpr double kFrameBytesPerPoint = D == 2 ? 840.0 : 1100.0;
 
 }  // namespace
 
-template <int D> double stable_time_step(const ScenarioOf<D>& s) {
+template <int D>
+double stable_time_step(const ScenarioOf<D>& s) {
   double c = 0.0;  // the fastest P-wave speed of every density a stage gives a material
   for (std::size_t k = 0; k <= s.stages.size(); ++k)
     for (std::size_t m = 0; m < s.materials.size(); ++m) {
@@ -67,17 +78,18 @@ template <int D> double stable_time_step(const ScenarioOf<D>& s) {
       c = std::max(c, mat.wave_speed());
     }
   double v = 0.0;
-  for (const BodyOf<D>& b : s.bodies)
-    v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());
+  for (const BodyOf<D>& b : s.bodies) v = std::max(v, b.velocity.norm() + b.velocity_sine.amplitude.norm());
   return s.cell_size / (c + v);
 }
 
-template <int D> double scenario_time_step(const ScenarioOf<D>& s) {
+template <int D>
+double scenario_time_step(const ScenarioOf<D>& s) {
   if (s.time_step > 0.0) return s.time_step;
   return s.cfl * stable_time_step(s);
 }
 
-template <int D> ScenarioSize estimate_size(const ScenarioOf<D>& s) {
+template <int D>
+ScenarioSize estimate_size(const ScenarioOf<D>& s) {
   ScenarioSize z;
   for (const BodyOf<D>& b : s.bodies)
     z.points += measure(b.shape) * std::pow(b.particles_per_cell / s.cell_size, D);

@@ -11,9 +11,11 @@ namespace skred {
 
 // The time step of a scenario: the fixed one, or cfl * h / (fastest P-wave speed + fastest
 // initial particle speed).
-template <int D> double scenario_time_step(const ScenarioOf<D>& s);
+template <int D>
+double scenario_time_step(const ScenarioOf<D>& s);
 // The largest stable explicit step, h / (c + v0): the CFL limit (cfl = 1) of every kernel.
-template <int D> double stable_time_step(const ScenarioOf<D>& s);
+template <int D>
+double stable_time_step(const ScenarioOf<D>& s);
 
 struct ScenarioSize {
   double points = 0;        // material points (shape area or volume times points per unit)
@@ -24,7 +26,8 @@ struct ScenarioSize {
   double frames = 0;        // particle frames written
   double output_bytes() const { return frame_bytes * frames; }
 };
-template <int D> ScenarioSize estimate_size(const ScenarioOf<D>& s);
+template <int D>
+ScenarioSize estimate_size(const ScenarioOf<D>& s);
 
 // Memory this machine offers a process: physical memory, or the cgroup limit when lower.
 double available_memory_bytes();

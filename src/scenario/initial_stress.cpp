@@ -9,8 +9,8 @@ double k0_of(const InitialStress& is, const Material& m) {
   const double nu = m.elastic.poisson;
   switch (is.rule) {
     case K0Rule::None: return 0.0;
-    case K0Rule::Poisson: return nu / (1.0 - nu);                      // Thesis eq. 5.7
-    case K0Rule::Jaky:                                                  // Post eq. 51
+    case K0Rule::Poisson: return nu / (1.0 - nu);  // Thesis eq. 5.7
+    case K0Rule::Jaky:                             // Post eq. 51
       return m.model == Model::MohrCoulomb ? 1.0 - std::sin(m.mohr_coulomb.friction) : nu / (1.0 - nu);
     case K0Rule::Value: return is.k0;
   }
@@ -24,8 +24,8 @@ void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P) {
   if (s.initial_stress.rule == K0Rule::None || P.size() == 0) return;
   const double g = std::abs(s.gravity[1]);
   const std::size_t n = P.size();
-  constexpr int H = D == 2 ? 1 : 2;               // horizontal axes
-  constexpr int axis[2] = {0, 2};                 // x, then z
+  constexpr int H = D == 2 ? 1 : 2;  // horizontal axes
+  constexpr int axis[2] = {0, 2};    // x, then z
   double b = INFINITY;
   for (std::size_t p = 0; p < n; ++p) b = std::min(b, 2.0 * P.half0[p][0]);
   const auto column = [&](int h, double x) {

@@ -12,7 +12,8 @@ namespace skred {
 // plus half its own), sigma_xx = sigma_zz = K0 sigma_yy, no shear. The weight above a point
 // is summed over the points of every body whose voxel covers its x (3D: x and z) position,
 // so layered bodies of different densities are handled. Does nothing when the rule is None.
-template <int D> void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P);
+template <int D>
+void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P);
 
 // K0 of a material under a rule (Poisson: nu/(1-nu); Jaky: 1 - sin(phi) for Mohr-Coulomb,
 // nu/(1-nu) otherwise; Value: the given number).

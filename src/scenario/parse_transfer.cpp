@@ -6,8 +6,7 @@ namespace skred::scenario_detail {
 void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
   const auto V = [](VelocityTransfer x) { return std::pair{to_string(x), x}; };
   s.velocity_transfer = t.choice<VelocityTransfer>(
-      "velocity_transfer",
-      {V(VelocityTransfer::Flip), V(VelocityTransfer::Xpic), V(VelocityTransfer::Apic)},
+      "velocity_transfer", {V(VelocityTransfer::Flip), V(VelocityTransfer::Xpic), V(VelocityTransfer::Apic)},
       VelocityTransfer::Flip);
   s.xpic_order = static_cast<int>(t.integer("xpic_order"));
   if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)

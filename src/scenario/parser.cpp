@@ -5,8 +5,8 @@
 #include <algorithm>
 #include <cctype>
 #include <cerrno>
-#include <cstdlib>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -14,9 +14,9 @@
 
 #include "scenario/build.hpp"
 #include "scenario/estimate.hpp"
-#include "scenario/scenario.hpp"
 #include "scenario/parse_transfer.hpp"
 #include "scenario/parser_detail.hpp"
+#include "scenario/scenario.hpp"
 #include "scenario/toml_reader.hpp"
 
 namespace skred {
@@ -58,12 +58,12 @@ int material_index(const TableReader& t, std::string_view key, const ScenarioCom
 namespace {
 
 using scenario_detail::fail;
+using scenario_detail::kDeg;
 using scenario_detail::Location;
 using scenario_detail::location_of;
+using scenario_detail::material_index;
 using scenario_detail::Range;
 using scenario_detail::TableReader;
-using scenario_detail::kDeg;
-using scenario_detail::material_index;
 
 // The strength keys of the model (Thesis eq. 5.1-5.4; Paper III §C.3.2; Acosta §3.2), read
 // against the model's declared parameters (src/material/<model>/info.hpp).
@@ -82,7 +82,8 @@ void parse_strength(const TableReader& t, Material& m) {
         t.fail_at("cohesion", "a Mohr-Coulomb material needs friction > 0 or cohesion > 0");
       if (p.number("dilation") > phi_deg)
         p.fail_at("dilation", fmt::format("the dilation angle must not exceed the friction angle "
-                                          "{} deg", phi_deg));
+                                          "{} deg",
+                                          phi_deg));
       mc.dilation = p.number("dilation") * kDeg;
       if (t.has("tension_cutoff")) mc.tension_cutoff = p.number("tension_cutoff");
       if (t.has("initial_void_ratio") != t.has("max_void_ratio"))
@@ -97,16 +98,14 @@ void parse_strength(const TableReader& t, Material& m) {
       }
       return;
     }
-    case Model::Tresca:
-      m.mohr_coulomb.cohesion = p.number("cohesion");
-      return;
+    case Model::Tresca: m.mohr_coulomb.cohesion = p.number("cohesion"); return;
     case Model::VonMises: {
       VonMisesParams& vm = m.von_mises;
       vm.cohesion_peak = p.number("cohesion");
       vm.cohesion_residual = p.number_or("residual_cohesion", vm.cohesion_peak);
       if (vm.cohesion_residual > vm.cohesion_peak)
-        t.fail_at("residual_cohesion", fmt::format("must be <= cohesion {}, got {}",
-                                                   vm.cohesion_peak, vm.cohesion_residual));
+        t.fail_at("residual_cohesion",
+                  fmt::format("must be <= cohesion {}, got {}", vm.cohesion_peak, vm.cohesion_residual));
       vm.softening_modulus = p.number("softening_modulus");
       return;
     }
@@ -116,20 +115,19 @@ void parse_strength(const TableReader& t, Material& m) {
 void parse_materials(const TableReader& root, ScenarioCommon& s) {
   const auto tables = root.array_of_tables("material");
   if (tables.empty())
-    fail(s.source, root.where("material"), "material",
-         "at least one [[material]] table is required");
+    fail(s.source, root.where("material"), "material", "at least one [[material]] table is required");
   std::map<std::string, Location> seen;
   for (const auto& t : tables) {
     Material m;
     m.name = t.string("name");
     if (m.name.empty()) t.fail_at("name", "must not be empty");
     if (const auto it = seen.find(m.name); it != seen.end())
-      t.fail_at("name", fmt::format("duplicate material name \"{}\" (first defined on line {})",
-                                    m.name, it->second.line));
+      t.fail_at("name", fmt::format("duplicate material name \"{}\" (first defined on line {})", m.name,
+                                    it->second.line));
     seen.emplace(m.name, t.where("name"));
     const auto M = [](Model x) { return std::pair{to_string(x), x}; };
-    m.model = t.choice<Model>("model", {M(Model::LinearElastic), M(Model::MohrCoulomb),
-                                        M(Model::Tresca), M(Model::VonMises)});
+    m.model = t.choice<Model>(
+        "model", {M(Model::LinearElastic), M(Model::MohrCoulomb), M(Model::Tresca), M(Model::VonMises)});
     parse_strength(t, m);
     m.density = t.number("density");
     m.elastic.young = t.number("young");
@@ -141,19 +139,19 @@ void parse_materials(const TableReader& root, ScenarioCommon& s) {
 void parse_solver(const TableReader& root, ScenarioCommon& s) {
   // [solver] may be left out when [[stage]] tables give the end time.
   static const toml::table empty;
-  const TableReader t = root.table("solver", !root.has("stage"))
-                            .value_or(TableReader(empty, "solver", s.source));
+  const TableReader t =
+      root.table("solver", !root.has("stage")).value_or(TableReader(empty, "solver", s.source));
   t.allow_declared();
   const auto I = [](Interpolation i) { return std::pair{to_string(i), i}; };
-  s.interpolation = t.choice<Interpolation>(
-      "interpolation", {I(Interpolation::Linear), I(Interpolation::Gimp),
-                        I(Interpolation::GimpQuadrature), I(Interpolation::Bspline)},
-      Interpolation::Gimp);
+  s.interpolation = t.choice<Interpolation>("interpolation",
+                                            {I(Interpolation::Linear), I(Interpolation::Gimp),
+                                             I(Interpolation::GimpQuadrature), I(Interpolation::Bspline)},
+                                            Interpolation::Gimp);
   s.quadrature_points = static_cast<int>(t.integer("quadrature_points"));
   const auto S = [](StressScheme x) { return std::pair{to_string(x), x}; };
-  s.scheme = t.choice<StressScheme>(
-      "scheme", {S(StressScheme::USF), S(StressScheme::USL), S(StressScheme::Averaged)},
-      StressScheme::Averaged);
+  s.scheme = t.choice<StressScheme>("scheme",
+                                    {S(StressScheme::USF), S(StressScheme::USL), S(StressScheme::Averaged)},
+                                    StressScheme::Averaged);
   // With [[stage]] tables the stage durations give the end time (parse_stages).
   if (root.has("stage")) {
     if (t.has("end_time"))
@@ -195,7 +193,8 @@ MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s, d
   if (!mc && (t.has("friction") || t.has("dilation")))
     t.fail_at(t.has("friction") ? "friction" : "dilation",
               fmt::format("material \"{}\" is {}; only mohr-coulomb has a friction or dilation "
-                          "angle", m.name, to_string(m.model)));
+                          "angle",
+                          m.name, to_string(m.model)));
   if (!m.plastic() && t.has("cohesion"))
     t.fail_at("cohesion", fmt::format("material \"{}\" is linear-elastic and has no cohesion", m.name));
   if (t.has("friction")) o.friction = t.number("friction") * kDeg;
@@ -210,12 +209,11 @@ MaterialOverride parse_override(const TableReader& t, const ScenarioCommon& s, d
     t.fail_at("density_ramp_time", "only allowed together with density");
   o.density_ramp_time = t.number("density_ramp_time");
   if (o.density_ramp_time > duration)
-    t.fail_at("density_ramp_time", fmt::format("the ramp ({} s) is longer than the stage ({} s)",
-                                               o.density_ramp_time, duration));
+    t.fail_at("density_ramp_time",
+              fmt::format("the ramp ({} s) is longer than the stage ({} s)", o.density_ramp_time, duration));
   const double phi = o.friction.value_or(m.mohr_coulomb.friction);
   if (o.dilation.value_or(m.mohr_coulomb.dilation) > phi + 1e-12)
-    t.fail_at(o.dilation ? "dilation" : "friction",
-              "the dilation angle must not exceed the friction angle");
+    t.fail_at(o.dilation ? "dilation" : "friction", "the dilation angle must not exceed the friction angle");
   if (mc && phi == 0.0 && o.cohesion.value_or(m.mohr_coulomb.cohesion) == 0.0)
     t.fail_at(o.cohesion ? "cohesion" : "friction", "the material would have no strength left");
   return o;
@@ -275,16 +273,16 @@ void parse_output(const TableReader& root, ScenarioCommon& s) {
     s.output_interval = o->number_or("interval", s.output_interval);
     if (s.end_time / s.output_interval > kMaxFrames)
       o->fail_at("interval", fmt::format("gives {:.3g} particle frames over {} s; at most {:.0f} are "
-                                         "allowed", s.end_time / s.output_interval, s.end_time,
-                                         kMaxFrames));
+                                         "allowed",
+                                         s.end_time / s.output_interval, s.end_time, kMaxFrames));
   }
   s.series_interval = s.output_interval / 10.0;
   if (o) {
     s.series_interval = o->number_or("series_interval", s.series_interval);
     if (s.end_time / s.series_interval > kMaxSeriesRows)
       o->fail_at("series_interval", fmt::format("gives {:.3g} rows of series.csv over {} s; at most "
-                                                "{:.0f} are allowed", s.end_time / s.series_interval,
-                                                s.end_time, kMaxSeriesRows));
+                                                "{:.0f} are allowed",
+                                                s.end_time / s.series_interval, s.end_time, kMaxSeriesRows));
   }
 }
 
@@ -322,10 +320,12 @@ void check_key_depth(std::string_view text, const std::string& source) {
       i = std::min(text.size(), j + end.size()) - 1;
     } else if (c == '.') {
       if (++dots >= kMaxKeyParts)
-        throw ScenarioError(fmt::format("{}:{}:{}: syntax error: a dotted key with more than {} "
-                                        "parts", source, line, column, kMaxKeyParts));
-    } else if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ||
-                 c == ' ' || c == '\t' || c == '+')) {
+        throw ScenarioError(
+            fmt::format("{}:{}:{}: syntax error: a dotted key with more than {} "
+                        "parts",
+                        source, line, column, kMaxKeyParts));
+    } else if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == ' ' ||
+                 c == '\t' || c == '+')) {
       dots = 0;
     }
   }
@@ -337,8 +337,8 @@ toml::table parse_toml(const std::string& text, const std::string& source) {
     return toml::parse(std::string_view(text), std::string_view(source));
   } catch (const toml::parse_error& e) {
     const Location at = location_of(e.source(), Location{1, 1});
-    throw ScenarioError(fmt::format("{}:{}:{}: syntax error: {}", source, at.line, at.column,
-                                    e.description()));
+    throw ScenarioError(
+        fmt::format("{}:{}:{}: syntax error: {}", source, at.line, at.column, e.description()));
   }
 }
 
@@ -351,7 +351,8 @@ int dimension_of(const toml::table& doc) {
 }
 
 // [splitting] and the bodies' `split` keys (Thesis §3.4).
-template <int D> void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
   bool any = false;
   for (const auto& b : s.bodies) any = any || b.split;
   const auto t = root.table("splitting", false);
@@ -367,8 +368,8 @@ template <int D> void parse_splitting(const TableReader& root, ScenarioOf<D>& s)
   sp.reference_after = static_cast<int>(r.integer("reference_after"));
   double points = 0;
   for (const auto& b : s.bodies) points += static_cast<double>(count_points(s, b));
-  sp.max_points = r.has("max_points") ? static_cast<long>(r.integer("max_points"))
-                                      : static_cast<long>(10 * points);
+  sp.max_points =
+      r.has("max_points") ? static_cast<long>(r.integer("max_points")) : static_cast<long>(10 * points);
   for (const auto& b : s.bodies) sp.body_splits.push_back(b.split ? 1 : 0);
 }
 
@@ -377,7 +378,8 @@ constexpr double kMaxSteps = 1e9;
 
 // The time step against the stable explicit step (Thesis §2.2: dt <= h / c) and the number
 // of steps it gives.
-template <int D> void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
+template <int D>
+void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
   const auto solver = root.table("solver", false);
   const double stable = stable_time_step(s);
   if (s.time_step > stable && !s.allow_unstable_time_step)
@@ -385,13 +387,15 @@ template <int D> void check_time_step(const TableReader& root, const ScenarioOf<
                     fmt::format("{} s exceeds the stable time step h / (c + v0) = {:.4g} s (cell "
                                 "size {} m, fastest P-wave speed {:.4g} m/s, fastest initial "
                                 "speed v0): the run would blow up. Lower it, use cfl instead, or "
-                                "set allow_unstable_time_step = true", s.time_step, stable,
-                                s.cell_size, s.cell_size / stable));
+                                "set allow_unstable_time_step = true",
+                                s.time_step, stable, s.cell_size, s.cell_size / stable));
   const double dt = scenario_time_step(s);
   const double steps = s.end_time / dt;
   if (!(steps <= kMaxSteps)) {
-    const std::string why = fmt::format("the run would take {:.3g} time steps of {:.4g} s over {} s; "
-                                        "at most {:.0e} are allowed", steps, dt, s.end_time, kMaxSteps);
+    const std::string why = fmt::format(
+        "the run would take {:.3g} time steps of {:.4g} s over {} s; "
+        "at most {:.0e} are allowed",
+        steps, dt, s.end_time, kMaxSteps);
     if (s.time_step > 0) solver->fail_at("time_step", why);
     if (root.has("stage")) {
       const auto stages = root.array_of_tables("stage");
@@ -401,7 +405,8 @@ template <int D> void check_time_step(const TableReader& root, const ScenarioOf<
   }
 }
 
-template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) {
+template <int D>
+ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) {
   const TableReader root(doc, "", source);
   root.allow_declared();
   ScenarioOf<D> s;
@@ -409,8 +414,10 @@ template <int D> ScenarioOf<D> parse_document(const toml::table& doc, const std:
   s.title = root.string("title", std::string());
   scenario_detail::parse_grid<D>(root, s);
   parse_materials(root, s);
-  if constexpr (D == 2) scenario_detail::parse_ground(root, s);
-  else if (root.has("ground")) root.fail_at("ground", "layered ground is 2D only for now");
+  if constexpr (D == 2)
+    scenario_detail::parse_ground(root, s);
+  else if (root.has("ground"))
+    root.fail_at("ground", "layered ground is 2D only for now");
   s.later_body_wins = root.choice<bool>("body_overlap", {{"error", false}, {"later-wins", true}}, false);
   scenario_detail::parse_bodies<D>(root, s);
   scenario_detail::check_overlaps<D>(root, s);
@@ -438,8 +445,10 @@ AnyScenario parse_any_document(const toml::table& doc, const std::string& source
 Scenario as_2d(AnyScenario any) {
   if (auto* s = std::get_if<Scenario>(&any)) return std::move(*s);
   const Scenario3& s = std::get<Scenario3>(any);
-  throw ScenarioError(fmt::format("{}: key 'grid.size': this is a 3D scenario ([grid] size has 3 "
-                                  "components); this command takes 2D scenarios only", s.source));
+  throw ScenarioError(
+      fmt::format("{}: key 'grid.size': this is a 3D scenario ([grid] size has 3 "
+                  "components); this command takes 2D scenarios only",
+                  s.source));
 }
 
 }  // namespace
@@ -462,9 +471,7 @@ AnyScenario parse_any_scenario(const std::string& text, const std::string& sourc
 
 std::string read_scenario_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
-  if (!in)
-    throw ScenarioError(fmt::format("{}: cannot open scenario file: {}", path,
-                                    std::strerror(errno)));
+  if (!in) throw ScenarioError(fmt::format("{}: cannot open scenario file: {}", path, std::strerror(errno)));
   std::ostringstream text;
   text << in.rdbuf();
   if (in.bad()) throw ScenarioError(fmt::format("{}: cannot read scenario file", path));

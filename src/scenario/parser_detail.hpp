@@ -20,49 +20,62 @@ inline const char* axis_name(int d) { return d == 0 ? "x" : d == 1 ? "y" : "z"; 
 int material_index(const TableReader& t, std::string_view key, const ScenarioCommon& s);
 
 // High corner of the grid and the tolerance for "inside the grid" tests.
-template <int D> Vec<D> grid_high(const ScenarioOf<D>& s) {
+template <int D>
+Vec<D> grid_high(const ScenarioOf<D>& s) {
   Vec<D> hi = s.origin;
   for (int d = 0; d < D; ++d) hi[d] += s.cell_size * s.cells[static_cast<std::size_t>(d)];
   return hi;
 }
-template <int D> double grid_tolerance(const ScenarioOf<D>& s) {
+template <int D>
+double grid_tolerance(const ScenarioOf<D>& s) {
   return 1e-9 * (grid_high(s) - s.origin).maxCoeff();
 }
-template <int D> bool inside_grid(const ScenarioOf<D>& s, const Vec<D>& x) {
+template <int D>
+bool inside_grid(const ScenarioOf<D>& s, const Vec<D>& x) {
   const double tol = grid_tolerance(s);
   return (x.array() >= s.origin.array() - tol).all() && (x.array() <= grid_high(s).array() + tol).all();
 }
-template <int D> std::string grid_bounds(const ScenarioOf<D>& s) {
+template <int D>
+std::string grid_bounds(const ScenarioOf<D>& s) {
   const Vec<D> hi = grid_high(s);
   std::string t;
   for (int d = 0; d < D; ++d) t += fmt::format("{}[{}, {}]", d ? " x " : "", s.origin[d], hi[d]);
   return t;
 }
-template <int D> std::string point_text(const Vec<D>& x) {
-  if constexpr (D == 2) return fmt::format("({}, {})", x[0], x[1]);
-  else return fmt::format("({}, {}, {})", x[0], x[1], x[2]);
+template <int D>
+std::string point_text(const Vec<D>& x) {
+  if constexpr (D == 2)
+    return fmt::format("({}, {})", x[0], x[1]);
+  else
+    return fmt::format("({}, {}, {})", x[0], x[1], x[2]);
 }
 // Checks that point x lies within the grid; `what` names it in the message.
 template <int D>
-void check_inside(const TableReader& t, std::string_view key, const ScenarioOf<D>& s,
-                  const Vec<D>& x, const std::string& what) {
+void check_inside(const TableReader& t, std::string_view key, const ScenarioOf<D>& s, const Vec<D>& x,
+                  const std::string& what) {
   if (!inside_grid(s, x))
     t.fail_at(key, fmt::format("{} {} lies outside the grid {}", what, point_text<D>(x), grid_bounds(s)));
 }
 
 // The geometric tables, in the dimension of the scenario.
-template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s);
-template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
-template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
-template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
+template <int D>
+void parse_grid(const TableReader& root, ScenarioOf<D>& s);
+template <int D>
+void parse_bodies(const TableReader& root, ScenarioOf<D>& s);
+template <int D>
+void parse_gravity(const TableReader& root, ScenarioOf<D>& s);
+template <int D>
+void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
 // The [[contact]] tables (parser_contact.cpp), after the bodies.
-template <int D> void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
+template <int D>
+void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
 
 // Layered ground (parser_ground.cpp): the [ground] surface, a "layer" body's profiles, and
 // the check that no two bodies claim the same points (unless the later one wins).
 void parse_ground(const TableReader& root, Scenario& s);
 Layer parse_layer(const TableReader& b, const Scenario& s);
-template <int D> void check_overlaps(const TableReader& root, const ScenarioOf<D>& s);
+template <int D>
+void check_overlaps(const TableReader& root, const ScenarioOf<D>& s);
 
 // A 3D body's shape (box, extruded polygon, cylinder, sphere) from its [[body]] table.
 Shape3 parse_shape3(const TableReader& b, const Scenario3& s);

@@ -14,8 +14,8 @@ constexpr int kMaxCells = 100000;
 Shape parse_rectangle(const TableReader& b, const Scenario& s) {
   Rectangle r{b.vec<2>("min"), b.vec<2>("max")};
   if (!(r.max[0] > r.min[0] && r.max[1] > r.min[1]))
-    b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components",
-                                 r.max[0], r.max[1], r.min[0], r.min[1]));
+    b.fail_at("max", fmt::format("max ({}, {}) must exceed min ({}, {}) in both components", r.max[0],
+                                 r.max[1], r.min[0], r.min[1]));
   check_inside(b, "min", s, r.min, "min corner");
   check_inside(b, "max", s, r.max, "max corner");
   return r;
@@ -31,8 +31,8 @@ Shape parse_disc(const TableReader& b, const Scenario& s) {
   const Vec<2> r = Vec<2>::Constant(c.radius);
   if (!inside_grid(s, Vec<2>(c.center - r)) || !inside_grid(s, Vec<2>(c.center + r)))
     b.fail_at("radius", fmt::format("the disc of radius {} around ({}, {}) extends outside the "
-                                    "grid {}", c.radius, c.center[0], c.center[1],
-                                    grid_bounds(s)));
+                                    "grid {}",
+                                    c.radius, c.center[0], c.center[1], grid_bounds(s)));
   return c;
 }
 
@@ -85,7 +85,8 @@ Polygon parse_vertices(const TableReader& b, const Vec<2>& lo, const Vec<2>& hi,
   return p;
 }
 
-template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
   const TableReader g = *root.table("grid", true);
   g.allow_declared();
   s.origin = g.vec_or<D>("origin", Vec<D>::Zero());
@@ -94,29 +95,32 @@ template <int D> void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
   for (int d = 0; d < D; ++d) {
     const double ratio = size[d] / h;
     if (ratio < 0.5)
-      g.fail_at("cell_size", fmt::format("cell_size {} is larger than the grid size {} along {}",
-                                         h, size[d], axis_name(d)));
+      g.fail_at("cell_size", fmt::format("cell_size {} is larger than the grid size {} along {}", h, size[d],
+                                         axis_name(d)));
     if (ratio > kMaxCells + 0.5)
-      g.fail_at("cell_size", fmt::format("gives {:.0f} cells along {}; at most {} are allowed",
-                                         ratio, axis_name(d), kMaxCells));
+      g.fail_at("cell_size", fmt::format("gives {:.0f} cells along {}; at most {} are allowed", ratio,
+                                         axis_name(d), kMaxCells));
     const double n = std::round(ratio);
     if (std::abs(n * h - size[d]) > 1e-9 * size[d])
       g.fail_at("size", fmt::format("the {} extent {} is not a whole multiple of cell_size {} "
-                                    "({} cells)", axis_name(d), size[d], h, ratio));
+                                    "({} cells)",
+                                    axis_name(d), size[d], h, ratio));
     s.cells[static_cast<std::size_t>(d)] = static_cast<int>(n);
   }
   s.cell_size = h;
 }
 
-template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
   const auto tables = root.array_of_tables("body");
-  if (tables.empty())
-    fail(s.source, root.where("body"), "body", "at least one [[body]] table is required");
+  if (tables.empty()) fail(s.source, root.where("body"), "body", "at least one [[body]] table is required");
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const TableReader& t = tables[i];
     BodyOf<D> b;
-    if constexpr (D == 2) b.shape = parse_shape2(t, s);
-    else b.shape = parse_shape3(t, s);
+    if constexpr (D == 2)
+      b.shape = parse_shape2(t, s);
+    else
+      b.shape = parse_shape3(t, s);
     b.name = t.string("name", fmt::format("body-{}", i));
     b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell"));
@@ -134,13 +138,14 @@ template <int D> void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     if (!has_points(s, b))
       t.fail_at("shape", fmt::format("body \"{}\" contains no material point: it covers no "
                                      "sub-cell centre (spacing {} m); enlarge it, refine the grid "
-                                     "or raise particles_per_cell", b.name,
-                                     s.cell_size / b.particles_per_cell));
+                                     "or raise particles_per_cell",
+                                     b.name, s.cell_size / b.particles_per_cell));
     s.bodies.push_back(std::move(b));
   }
 }
 
-template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_gravity(const TableReader& root, ScenarioOf<D>& s) {
   const auto g = root.table("gravity", false);
   if (!g) return;
   g->allow_declared();
@@ -151,29 +156,28 @@ template <int D> void parse_gravity(const TableReader& root, ScenarioOf<D>& s) {
 namespace {
 
 BoundarySide parse_side(const TableReader& bt, std::string_view side) {
-  constexpr const char* allowed =
-      "\"free\", \"fixed\", \"roller\", { type = \"friction\", friction = MU }";
+  constexpr const char* allowed = "\"free\", \"fixed\", \"roller\", { type = \"friction\", friction = MU }";
   const toml::node& n = *bt.find(side);
   if (n.is_string()) {
-    const Choices<BoundaryKind> choices = {{"free", BoundaryKind::Free},
-                                           {"fixed", BoundaryKind::Fixed},
-                                           {"roller", BoundaryKind::Roller}};
+    const Choices<BoundaryKind> choices = {
+        {"free", BoundaryKind::Free}, {"fixed", BoundaryKind::Fixed}, {"roller", BoundaryKind::Roller}};
     const std::string v = bt.string(side);
     if (v == to_string(BoundaryKind::Friction))
-      bt.fail_at(side, "\"friction\" needs a coefficient: write { type = \"friction\", "
-                       "friction = 0.6 }");
+      bt.fail_at(side,
+                 "\"friction\" needs a coefficient: write { type = \"friction\", "
+                 "friction = 0.6 }");
     for (const auto& [name, kind] : choices)
       if (v == name) return BoundarySide{kind, 0.0};
     bt.fail_at(side, fmt::format("unknown value \"{}\"; allowed values: {}", v, allowed));
   }
   if (!n.is_table()) bt.fail_type(side, "a string or an inline table { type = ... }");
   const TableReader t = bt.table(side, true)->follows("boundary.side");
-  const BoundaryKind kind = t.choice<BoundaryKind>(
-      "type", {{"free", BoundaryKind::Free}, {"fixed", BoundaryKind::Fixed},
-               {"roller", BoundaryKind::Roller}, {"friction", BoundaryKind::Friction}});
+  const BoundaryKind kind = t.choice<BoundaryKind>("type", {{"free", BoundaryKind::Free},
+                                                            {"fixed", BoundaryKind::Fixed},
+                                                            {"roller", BoundaryKind::Roller},
+                                                            {"friction", BoundaryKind::Friction}});
   if (kind != BoundaryKind::Friction) {
-    if (t.has("friction"))
-      t.fail_at("friction", "only allowed together with type = \"friction\"");
+    if (t.has("friction")) t.fail_at("friction", "only allowed together with type = \"friction\"");
     t.allow_only({"type"});
     return BoundarySide{kind, 0.0};
   }
@@ -183,11 +187,14 @@ BoundarySide parse_side(const TableReader& bt, std::string_view side) {
 
 }  // namespace
 
-template <int D> void parse_boundary(const TableReader& root, ScenarioOf<D>& s) {
+template <int D>
+void parse_boundary(const TableReader& root, ScenarioOf<D>& s) {
   const auto b = root.table("boundary", false);
   if (!b) return;
-  if constexpr (D == 2) b->allow_only({"x_min", "x_max", "y_min", "y_max"});
-  else b->allow_declared();
+  if constexpr (D == 2)
+    b->allow_only({"x_min", "x_max", "y_min", "y_max"});
+  else
+    b->allow_declared();
   const char* sides[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   for (std::size_t k = 0; k < 2 * D; ++k)
     if (b->has(sides[k])) s.boundaries[k] = parse_side(*b, sides[k]);

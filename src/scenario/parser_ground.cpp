@@ -66,8 +66,8 @@ Profile read_profile_csv(const TableReader& t, std::string_view key, const Scena
     t.fail_at(key, fmt::format("cannot open profile file '{}': {}", path.string(), std::strerror(errno)));
   const std::string file = path.string();
   const auto fail_line = [&](int line, const std::string& why) {
-    throw ScenarioError(fmt::format("{}:{}: {} (profile '{}' of {}:{})", file, line, why,
-                                    t.key(key), s.source, t.where(key).line));
+    throw ScenarioError(fmt::format("{}:{}: {} (profile '{}' of {}:{})", file, line, why, t.key(key),
+                                    s.source, t.where(key).line));
   };
   Profile p;
   std::vector<int> lines;
@@ -113,20 +113,21 @@ Profile read_profile(const TableReader& t, std::string_view key, const Scenario&
   if (!arr) t.fail_type(key, "a CSV file name or an array of [x, y] points");
   Profile p;
   for (std::size_t k = 0; k < arr->size(); ++k)
-    p.points.push_back(node_vec2(*arr->get(k), t.source(), fmt::format("{}[{}]", t.key(key), k),
-                                 t.where(key)));
+    p.points.push_back(
+        node_vec2(*arr->get(k), t.source(), fmt::format("{}[{}]", t.key(key), k), t.where(key)));
   if (p.points.size() < 2)
     t.fail_at(key, fmt::format("a profile needs at least 2 points, got {}", p.points.size()));
   check_profile(p, s, [&](std::size_t k, const std::string& why) {
-    fail(t.source(), location_of(arr->get(k)->source(), t.where(key)),
-         fmt::format("{}[{}]", t.key(key), k), why);
+    fail(t.source(), location_of(arr->get(k)->source(), t.where(key)), fmt::format("{}[{}]", t.key(key), k),
+         why);
   });
   return p;
 }
 
 // Area where bodies a and b both claim points, sampled at the finer of their point spacings
 // on the sub-cell centres build_particles uses (so shared edges never count).
-template <int D> double overlap_measure(const ScenarioOf<D>& s, const BodyOf<D>& a, const BodyOf<D>& b) {
+template <int D>
+double overlap_measure(const ScenarioOf<D>& s, const BodyOf<D>& a, const BodyOf<D>& b) {
   const ShapeBox<D> ba = bounding_box(a.shape), bb = bounding_box(b.shape);
   const Vec<D> lo = ba.lo.cwiseMax(bb.lo), hi = ba.hi.cwiseMin(bb.hi);
   if (!((hi.array() > lo.array()).all())) return 0.0;
@@ -181,18 +182,20 @@ Layer parse_layer(const TableReader& b, const Scenario& s) {
   return l;
 }
 
-template <int D> void check_overlaps(const TableReader& root, const ScenarioOf<D>& s) {
+template <int D>
+void check_overlaps(const TableReader& root, const ScenarioOf<D>& s) {
   if (s.later_body_wins) return;
   const auto tables = root.array_of_tables("body");
   for (std::size_t j = 1; j < s.bodies.size(); ++j)
     for (std::size_t i = 0; i < j; ++i) {
       const double area = overlap_measure(s, s.bodies[i], s.bodies[j]);
       if (area > 0)
-        tables[j].fail_at("shape", fmt::format(
-            "body \"{}\" overlaps body \"{}\" (line {}) over about {:.4g} m^{}: both would get "
-            "material points there (double the mass). Reshape them, or set body_overlap = "
-            "\"later-wins\" to give the overlap to the later body", s.bodies[j].name,
-            s.bodies[i].name, tables[i].where().line, area, D));
+        tables[j].fail_at(
+            "shape",
+            fmt::format("body \"{}\" overlaps body \"{}\" (line {}) over about {:.4g} m^{}: both would get "
+                        "material points there (double the mass). Reshape them, or set body_overlap = "
+                        "\"later-wins\" to give the overlap to the later body",
+                        s.bodies[j].name, s.bodies[i].name, tables[i].where().line, area, D));
     }
 }
 

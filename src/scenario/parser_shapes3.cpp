@@ -11,8 +11,8 @@ namespace {
 Shape3 parse_box(const TableReader& b, const Scenario3& s) {
   Box r{b.vec<3>("min"), b.vec<3>("max")};
   if (!(r.max.array() > r.min.array()).all())
-    b.fail_at("max", fmt::format("max {} must exceed min {} in every component",
-                                 point_text<3>(r.max), point_text<3>(r.min)));
+    b.fail_at("max", fmt::format("max {} must exceed min {} in every component", point_text<3>(r.max),
+                                 point_text<3>(r.min)));
   check_inside(b, "min", s, r.min, "min corner");
   check_inside(b, "max", s, r.max, "max corner");
   return r;
@@ -22,19 +22,19 @@ Shape3 parse_extruded(const TableReader& b, const Scenario3& s) {
   const Vec<3> hi = grid_high(s);
   const double tol = grid_tolerance(s);
   ExtrudedPolygon e;
-  e.section = parse_vertices(b, s.origin.head<2>(), hi.head<2>(), tol,
-                             fmt::format("[{}, {}] x [{}, {}] (x-y)", s.origin[0], hi[0],
-                                         s.origin[1], hi[1]));
+  e.section =
+      parse_vertices(b, s.origin.head<2>(), hi.head<2>(), tol,
+                     fmt::format("[{}, {}] x [{}, {}] (x-y)", s.origin[0], hi[0], s.origin[1], hi[1]));
   e.z_min = b.number("z_min");
   e.z_max = b.number("z_max");
   if (e.z_min < s.origin[2] - tol || e.z_min > hi[2] + tol)
-    b.fail_at("z_min", fmt::format("z_min {} lies outside the grid's z range [{}, {}]", e.z_min,
-                                   s.origin[2], hi[2]));
+    b.fail_at("z_min",
+              fmt::format("z_min {} lies outside the grid's z range [{}, {}]", e.z_min, s.origin[2], hi[2]));
   if (!(e.z_max > e.z_min))
     b.fail_at("z_max", fmt::format("z_max {} must exceed z_min {}", e.z_max, e.z_min));
   if (e.z_max > hi[2] + tol)
-    b.fail_at("z_max", fmt::format("z_max {} lies outside the grid's z range [{}, {}]", e.z_max,
-                                   s.origin[2], hi[2]));
+    b.fail_at("z_max",
+              fmt::format("z_max {} lies outside the grid's z range [{}, {}]", e.z_max, s.origin[2], hi[2]));
   return e;
 }
 
@@ -55,7 +55,8 @@ Shape3 parse_cylinder(const TableReader& b, const Scenario3& s) {
   if (!inside_grid(s, Vec<3>(c.center - half)) || !inside_grid(s, Vec<3>(c.center + half)))
     b.fail_at(b.has("length") ? "length" : "radius",
               fmt::format("the cylinder of radius {} and length {} around {} extends outside the "
-                          "grid {}", c.radius, c.length, point_text<3>(c.center), grid_bounds(s)));
+                          "grid {}",
+                          c.radius, c.length, point_text<3>(c.center), grid_bounds(s)));
   return c;
 }
 
@@ -64,8 +65,8 @@ Shape3 parse_sphere(const TableReader& b, const Scenario3& s) {
   check_inside(b, "center", s, c.center, "centre");
   const Vec<3> r = Vec<3>::Constant(c.radius);
   if (!inside_grid(s, Vec<3>(c.center - r)) || !inside_grid(s, Vec<3>(c.center + r)))
-    b.fail_at("radius", fmt::format("the sphere of radius {} around {} extends outside the grid {}",
-                                    c.radius, point_text<3>(c.center), grid_bounds(s)));
+    b.fail_at("radius", fmt::format("the sphere of radius {} around {} extends outside the grid {}", c.radius,
+                                    point_text<3>(c.center), grid_bounds(s)));
   return c;
 }
 

@@ -21,9 +21,16 @@
 namespace skred {
 
 // 2D shapes (plane strain, in the x-y plane).
-struct Rectangle { Vec<2> min, max; };
-struct Polygon { std::vector<Vec<2>> vertices; };
-struct Disc { Vec<2> center; double radius = 0.0; };
+struct Rectangle {
+  Vec<2> min, max;
+};
+struct Polygon {
+  std::vector<Vec<2>> vertices;
+};
+struct Disc {
+  Vec<2> center;
+  double radius = 0.0;
+};
 // A profile y(x): a polyline with strictly increasing x (a surveyed cross-section, a line
 // taken from a DEM), linear between its points.
 struct Profile {
@@ -39,7 +46,9 @@ struct Layer {
 using Shape = std::variant<Rectangle, Polygon, Disc, Layer>;
 
 // 3D shapes (y vertical, x and z horizontal).
-struct Box { Vec<3> min, max; };
+struct Box {
+  Vec<3> min, max;
+};
 // A polygon in the x-y plane extruded along z over [z_min, z_max).
 struct ExtrudedPolygon {
   Polygon section;
@@ -52,14 +61,19 @@ struct Cylinder {
   Vec<3> axis = Vec<3>::UnitY();
   double radius = 0.0, length = 0.0;
 };
-struct Sphere { Vec<3> center; double radius = 0.0; };
+struct Sphere {
+  Vec<3> center;
+  double radius = 0.0;
+};
 using Shape3 = std::variant<Box, ExtrudedPolygon, Cylinder, Sphere>;
 
-template <int D> using ShapeOf = std::conditional_t<D == 2, Shape, Shape3>;
+template <int D>
+using ShapeOf = std::conditional_t<D == 2, Shape, Shape3>;
 
 // A sine-shaped initial velocity added to the body's uniform one (for mode shapes such as
 // reference R1): v(x) += amplitude sin(2 pi (x[axis] - origin) / wavelength).
-template <int D> struct SineVelocityOf {
+template <int D>
+struct SineVelocityOf {
   Vec<D> amplitude = Vec<D>::Zero();  // [m/s]
   double wavelength = 0.0;            // [m]; 0: none
   int axis = 0;                       // 0: along x, 1: along y, 2: along z (3D)
@@ -67,14 +81,15 @@ template <int D> struct SineVelocityOf {
 };
 using SineVelocity = SineVelocityOf<2>;
 
-template <int D> struct BodyOf {
+template <int D>
+struct BodyOf {
   std::string name;
   ShapeOf<D> shape;
-  int material = 0;              // index into Scenario::materials
-  int particles_per_cell = 2;    // n: n^D material points per grid cell
-  Vec<D> velocity = Vec<D>::Zero();  // initial velocity
+  int material = 0;                      // index into Scenario::materials
+  int particles_per_cell = 2;            // n: n^D material points per grid cell
+  Vec<D> velocity = Vec<D>::Zero();      // initial velocity
   SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
-  bool split = false;  // its points split when they deform too much (Thesis §3.4)
+  bool split = false;                    // its points split when they deform too much (Thesis §3.4)
   // A rigid body moves with the constant `velocity` (zero: fixed), has no stress update and
   // takes part in contact (Paper III §C.2.7) as a partner of infinite mass.
   bool rigid = false;
@@ -103,19 +118,18 @@ struct MaterialOverride {
   // A trigger (Paper III §C.3: rainfall makes the clay heavier): the density the material's
   // points reach, over density_ramp_time from the stage start. Unlike the strength changes
   // it stays for the later stages.
-  std::optional<double> density;  // [kg/m^3]
+  std::optional<double> density;   // [kg/m^3]
   double density_ramp_time = 0.0;  // [s]; 0: at once
 };
-
 
 // One stage of a staged analysis, run on the particles the previous stage left behind.
 // Displacements, gravity work, strain energy and dissipation are measured from its start.
 struct Stage {
   std::string name;
-  double duration = 0.0;           // [s]; the stage ends at this time at the latest
-  double gravity_ramp_time = 0.0;  // sine ramp of Thesis eq. 4.13 from the stage start; 0: at once
-  bool elastic = false;            // hold every material linear elastic (equilibrium stage)
-  double strength_reduction = 1.0; // c and tan(phi) divided by this factor
+  double duration = 0.0;            // [s]; the stage ends at this time at the latest
+  double gravity_ramp_time = 0.0;   // sine ramp of Thesis eq. 4.13 from the stage start; 0: at once
+  bool elastic = false;             // hold every material linear elastic (equilibrium stage)
+  double strength_reduction = 1.0;  // c and tan(phi) divided by this factor
   std::vector<MaterialOverride> overrides;
   // The stage also ends once the mean speed (Thesis eq. 5.12) has stayed below rest_speed
   // for rest_time seconds (after the gravity ramp). rest_speed = 0 disables this.
@@ -151,7 +165,7 @@ struct ScenarioCommon {
   double time_step = 0.0;  // fixed time step; 0 means "from the CFL number"
   double cfl = 0.3;
   bool allow_unstable_time_step = false;  // a time_step above the stable step only warns
-  double pic_fraction = 0.0;  // PIC share of the particle velocity update (0: pure FLIP)
+  double pic_fraction = 0.0;              // PIC share of the particle velocity update (0: pure FLIP)
   // Where bodies overlap: an error (false) or the later body's points only (true).
   bool later_body_wins = false;
   // Material-point splitting (Thesis §3.4; [splitting] and the bodies' `split` key);
@@ -171,7 +185,8 @@ struct ScenarioCommon {
 
 // A scenario in D dimensions (2: plane strain in x-y; 3: x, y, z with y vertical). The
 // dimension is that of [grid] size (docs/scenario.md).
-template <int D> struct ScenarioOf : ScenarioCommon {
+template <int D>
+struct ScenarioOf : ScenarioCommon {
   static constexpr int dimension = D;
   // Background grid (Thesis §2.1): origin of the low corner, cells per axis (cell_size above).
   Vec<D> origin = Vec<D>::Zero();

@@ -15,13 +15,13 @@ namespace skred::schema {
 namespace {
 
 // Physical limits shared by many keys.
-constexpr double kMaxLength = 1e7;   // m: coordinates and extents
-constexpr double kMinCell = 1e-6;    // m
-constexpr double kMaxTime = 1e7;     // s: durations, intervals, ramps
+constexpr double kMaxLength = 1e7;      // m: coordinates and extents
+constexpr double kMinCell = 1e-6;       // m
+constexpr double kMaxTime = 1e7;        // s: durations, intervals, ramps
 constexpr double kMinTimeStep = 1e-12;  // s
 constexpr double kMaxTimeStep = 1e3;    // s
-constexpr double kMaxSpeed = 1e4;    // m/s: initial velocities, rest speed
-constexpr double kMaxGravity = 1e3;  // m/s^2 per component (100 g)
+constexpr double kMaxSpeed = 1e4;       // m/s: initial velocities, rest speed
+constexpr double kMaxGravity = 1e3;     // m/s^2 per component (100 g)
 
 constexpr Range kCoordinate = Range::closed(-kMaxLength, kMaxLength);
 constexpr Range kVelocity = Range::closed(-kMaxSpeed, kMaxSpeed);
@@ -31,10 +31,11 @@ std::vector<Key> keys_of(std::span<const ParamSpec> params) {
   std::vector<Key> keys;
   for (const ParamSpec& p : params) {
     Default d = value(p.default_value);
-    if (p.required) d = required();
-    else if (!std::isfinite(p.default_value)) d = none();
-    keys.push_back({p.key, Type::Number, p.unit, d, Range{p.min, p.max, p.min_open, p.max_open},
-                    "", p.doc});
+    if (p.required)
+      d = required();
+    else if (!std::isfinite(p.default_value))
+      d = none();
+    keys.push_back({p.key, Type::Number, p.unit, d, Range{p.min, p.max, p.min_open, p.max_open}, "", p.doc});
   }
   return keys;
 }
@@ -46,237 +47,470 @@ std::vector<Key> concat(std::vector<Key> a, const std::vector<Key>& b) {
 
 std::vector<Section> make_sections() {
   std::vector<Section> s;
-  s.push_back({"", "top-level", {
-      {.name = "title", .type = Type::String, .def = derived("\"\""),
-       .doc = "any text; used in summaries and output metadata"},
-      {.name = "grid", .type = Type::Table, .doc = "the background grid"},
-      {.name = "material", .type = Type::Tables, .doc = "at least one material"},
-      {.name = "body", .type = Type::Tables, .doc = "at least one body"},
-      {.name = "contact", .type = Type::Tables, .def = none("bodies bonded"),
-       .doc = "frictional contact between pairs of bodies (Paper III §C.2.7)"},
-      {.name = "body_overlap", .type = Type::Choice, .def = derived("\"error\""),
-       .choices = "error|later-wins",
-       .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
-              "later body (in file order) keeps the points there"},
-      {.name = "ground", .type = Type::Table, .def = none(), .doc = "the ground surface profile (2D)"},
-      {.name = "splitting", .type = Type::Table, .def = none(),
-       .doc = "constants of material-point splitting (Thesis §3.4) for the bodies with `split`"},
-      {.name = "initial_stress", .type = Type::Table, .def = none(), .doc = "K0 initial stress"},
-      {.name = "gravity", .type = Type::Table, .def = none(), .doc = "no gravity without it"},
-      {.name = "boundary", .type = Type::Table, .def = none(), .doc = "all sides free without it"},
-      {.name = "solver", .type = Type::Table, .def = derived("required without [[stage]]"),
-       .doc = "interpolation, scheme, time step"},
-      {.name = "stage", .type = Type::Tables, .def = none(), .doc = "a staged analysis"},
-      {.name = "output", .type = Type::Table, .def = none(), .doc = "output intervals"},
-  }});
-  s.push_back({"grid", "grid", {
-      {.name = "origin", .type = Type::Vector, .unit = "m", .def = derived("[0, 0]"),
-       .range = kCoordinate, .doc = "the low corner of the grid"},
-      {.name = "size", .type = Type::Vector, .unit = "m",
-       .range = Range::positive(kMaxLength), .doc = "the extent along each axis"},
-      {.name = "cell_size", .unit = "m", .range = Range::closed(kMinCell, kMaxLength),
-       .doc = "h: cells are squares (cubes in 3D); see below"},
-  }});
-  s.push_back({"material", "material", concat({
-      {.name = "name", .type = Type::String, .doc = "non-empty; unique among materials"},
-      {.name = "model", .type = Type::Choice,
-       .choices = "linear-elastic|mohr-coulomb|tresca|von-mises",
-       .doc = "the constitutive model; each adds its own keys, below"},
-  }, keys_of(kElasticParamSpecs))});
+  s.push_back(
+      {"",
+       "top-level",
+       {
+           {.name = "title",
+            .type = Type::String,
+            .def = derived("\"\""),
+            .doc = "any text; used in summaries and output metadata"},
+           {.name = "grid", .type = Type::Table, .doc = "the background grid"},
+           {.name = "material", .type = Type::Tables, .doc = "at least one material"},
+           {.name = "body", .type = Type::Tables, .doc = "at least one body"},
+           {.name = "contact",
+            .type = Type::Tables,
+            .def = none("bodies bonded"),
+            .doc = "frictional contact between pairs of bodies (Paper III §C.2.7)"},
+           {.name = "body_overlap",
+            .type = Type::Choice,
+            .def = derived("\"error\""),
+            .choices = "error|later-wins",
+            .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
+                   "later body (in file order) keeps the points there"},
+           {.name = "ground", .type = Type::Table, .def = none(), .doc = "the ground surface profile (2D)"},
+           {.name = "splitting",
+            .type = Type::Table,
+            .def = none(),
+            .doc = "constants of material-point splitting (Thesis §3.4) for the bodies with `split`"},
+           {.name = "initial_stress", .type = Type::Table, .def = none(), .doc = "K0 initial stress"},
+           {.name = "gravity", .type = Type::Table, .def = none(), .doc = "no gravity without it"},
+           {.name = "boundary", .type = Type::Table, .def = none(), .doc = "all sides free without it"},
+           {.name = "solver",
+            .type = Type::Table,
+            .def = derived("required without [[stage]]"),
+            .doc = "interpolation, scheme, time step"},
+           {.name = "stage", .type = Type::Tables, .def = none(), .doc = "a staged analysis"},
+           {.name = "output", .type = Type::Table, .def = none(), .doc = "output intervals"},
+       }});
+  s.push_back({"grid",
+               "grid",
+               {
+                   {.name = "origin",
+                    .type = Type::Vector,
+                    .unit = "m",
+                    .def = derived("[0, 0]"),
+                    .range = kCoordinate,
+                    .doc = "the low corner of the grid"},
+                   {.name = "size",
+                    .type = Type::Vector,
+                    .unit = "m",
+                    .range = Range::positive(kMaxLength),
+                    .doc = "the extent along each axis"},
+                   {.name = "cell_size",
+                    .unit = "m",
+                    .range = Range::closed(kMinCell, kMaxLength),
+                    .doc = "h: cells are squares (cubes in 3D); see below"},
+               }});
+  s.push_back({"material", "material",
+               concat(
+                   {
+                       {.name = "name", .type = Type::String, .doc = "non-empty; unique among materials"},
+                       {.name = "model",
+                        .type = Type::Choice,
+                        .choices = "linear-elastic|mohr-coulomb|tresca|von-mises",
+                        .doc = "the constitutive model; each adds its own keys, below"},
+                   },
+                   keys_of(kElasticParamSpecs))});
   s.push_back({"material (mohr-coulomb)", "material-mohr-coulomb", keys_of(kMohrCoulombInfo.params)});
   s.push_back({"material (tresca)", "material-tresca", keys_of(kTrescaInfo.params)});
   s.push_back({"material (von-mises)", "material-von-mises", keys_of(kVonMisesInfo.params)});
-  s.push_back({"body", "body", {
-      {.name = "name", .type = Type::String, .def = derived("\"body-I\" (I: the body's index)"),
-       .doc = "names the body in messages and output"},
-      {.name = "material", .type = Type::String, .doc = "the `name` of a [[material]]"},
-      {.name = "particles_per_cell", .type = Type::Integer, .def = value(2),
-       .range = Range::closed(1, 8), .doc = "n: n x n points per grid cell (n^3 in 3D)"},
-      {.name = "velocity", .type = Type::Vector, .unit = "m/s", .def = derived("0"),
-       .range = kVelocity, .doc = "initial velocity of every point"},
-      {.name = "velocity_sine", .type = Type::Table, .def = none(),
-       .doc = "adds a sine mode to the initial velocity (body.velocity_sine, below)"},
-      {.name = "rigid", .type = Type::Boolean, .def = derived("false"),
-       .doc = "a rigid body: moves with its constant `velocity` (0: fixed), no stress update, a "
-              "contact partner of infinite mass"},
-      {.name = "split", .type = Type::Boolean, .def = derived("false"),
-       .doc = "true: the body's points split when they deform too much (Thesis §3.4; [splitting])"},
-      {.name = "shape", .type = Type::Choice,
-       .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",
-       .doc = "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere; "
-              "each adds its own keys, below"},
-  }});
-  s.push_back({"body.velocity_sine", "body-velocity-sine", {
-      {.name = "amplitude", .type = Type::Vector, .unit = "m/s", .range = kVelocity,
-       .doc = "a: adds a sin(2 pi (x[axis] - X0) / W) to the initial velocity"},
-      {.name = "wavelength", .unit = "m", .range = Range::positive(kMaxLength), .doc = "W"},
-      {.name = "axis", .type = Type::Choice, .def = derived("\"x\""), .choices = "x|y|z",
-       .doc = "the coordinate the sine runs along (z in 3D only)"},
-      {.name = "origin", .unit = "m", .def = value(0), .range = kCoordinate, .doc = "X0"},
-  }});
-  s.push_back({"body (rectangle)", "body-rectangle", {
-      {.name = "min", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the low corner"},
-      {.name = "max", .type = Type::Vector, .unit = "m", .range = kCoordinate,
-       .doc = "the high corner, greater than `min` in both components"},
-  }});
-  s.push_back({"body (polygon)", "body-polygon", {
-      {.name = "vertices", .type = Type::Points, .unit = "m", .range = kCoordinate,
-       .doc = "[[x, y], ...]: at least 3 vertices, non-zero area, either orientation"},
-  }});
-  s.push_back({"body (disc)", "body-disc", {
-      {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
-      {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
-  }});
-  s.push_back({"ground", "ground", {
-      {.name = "surface", .type = Type::Profile, .unit = "m",
-       .doc = "the ground surface y(x); every layer lies below it"},
-  }});
-  s.push_back({"body (layer)", "body-layer", {
-      {.name = "top", .type = Type::Profile, .unit = "m", .def = derived("the ground surface"),
-       .doc = "the layer's upper boundary y(x), clipped to the ground surface"},
-      {.name = "bottom", .type = Type::Profile, .unit = "m", .def = derived("the grid's bottom"),
-       .doc = "its lower boundary y(x); the layer is bottom(x) <= y < top(x) where every "
-              "profile is defined (it pinches out where bottom >= top)"},
-  }});
-  s.push_back({"body (box)", "body-box", {
-      {.name = "min", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the low corner"},
-      {.name = "max", .type = Type::Vector, .unit = "m", .range = kCoordinate,
-       .doc = "the high corner, greater than `min` in every component"},
-  }});
-  s.push_back({"body (extruded polygon)", "body-extruded", {
-      {.name = "vertices", .type = Type::Points, .unit = "m", .range = kCoordinate,
-       .doc = "the x-y section: [[x, y], ...], at least 3 vertices, non-zero area"},
-      {.name = "z_min", .unit = "m", .range = kCoordinate, .doc = "the extrusion's low z"},
-      {.name = "z_max", .unit = "m", .range = kCoordinate, .doc = "its high z, > z_min"},
-  }});
-  s.push_back({"body (cylinder)", "body-cylinder", {
-      {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate,
-       .doc = "the centre of the axis segment"},
-      {.name = "axis", .type = Type::Vector, .unit = "-", .def = derived("[0, 1, 0]"),
-       .range = Range::closed(-1e6, 1e6), .doc = "the axis direction (normalised; not zero)"},
-      {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
-      {.name = "length", .unit = "m", .range = Range::positive(kMaxLength),
-       .doc = "the length along the axis"},
-  }});
-  s.push_back({"body (sphere)", "body-sphere", {
-      {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
-      {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
-  }});
-  s.push_back({"contact", "contact", {
-      {.name = "bodies", .type = Type::BodyPair,
-       .doc = "the pair in contact; \"all\": every pair of bodies"},
-      {.name = "friction", .unit = "-", .range = Range::non_negative(10.0),
-       .doc = "the Coulomb coefficient mu of the pair (0: frictionless)"},
-  }});
-  s.push_back({"splitting", "splitting", {
-      {.name = "alpha", .unit = "-", .def = value(2.0), .range = Range::closed(1.1, 100.0),
-       .doc = "split when a diagonal component of F_split exceeds alpha (Thesis eq. 3.25)"},
-      {.name = "beta", .unit = "-", .def = value(0.5), .range = Range::closed(0.01, 0.9),
-       .doc = "... or falls below beta"},
-      {.name = "gamma", .unit = "-", .def = value(1.0), .range = Range::closed(0.1, 100.0),
-       .doc = "... or an off-diagonal component exceeds gamma in magnitude"},
-      {.name = "reference_after", .type = Type::Integer, .def = value(4), .range = Range::closed(1, 20),
-       .doc = "a point split this many times gets the reference split of Thesis §3.4.2"},
-      {.name = "max_points", .type = Type::Integer, .def = derived("10 x the initial points"),
-       .range = Range::closed(1, 1e9), .doc = "no point splits once the run holds this many"},
-  }});
-  s.push_back({"initial_stress", "initial-stress", {
-      {.name = "k0", .type = Type::K0, .range = Range::closed(0.0, 10.0), .choices = "poisson|jaky",
-       .doc = "\"poisson\": K0 = nu/(1 - nu) (Thesis eq. 5.7); \"jaky\": K0 = 1 - sin(phi) "
-              "(Post eq. 51; materials without friction use nu/(1 - nu)); or a number"},
-  }});
-  s.push_back({"gravity", "gravity", {
-      {.name = "acceleration", .type = Type::Vector, .unit = "m/s^2", .def = derived("0"),
-       .range = Range::closed(-kMaxGravity, kMaxGravity), .doc = "g, for example [0, -9.81]"},
-      {.name = "ramp_time", .unit = "s", .def = value(0), .range = Range::non_negative(kMaxTime),
-       .doc = "sine ramp of Thesis eq. 4.13; 0: full gravity from the first step"},
-  }});
-  s.push_back({"boundary", "boundary", {
-      {.name = "x_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall x = origin_x"},
-      {.name = "x_max", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall x = origin_x + Lx"},
-      {.name = "y_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall y = origin_y"},
-      {.name = "y_max", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall y = origin_y + Ly"},
-      {.name = "z_min", .type = Type::Side, .def = derived("\"free\""), .doc = "3D only: z = origin_z"},
-      {.name = "z_max", .type = Type::Side, .def = derived("\"free\""), .doc = "3D only: z = origin_z + Lz"},
-  }});
-  s.push_back({"boundary.side", "boundary-side", {
-      {.name = "type", .type = Type::Choice, .choices = "free|fixed|roller|friction",
-       .doc = "free: no constraint; fixed: no-slip; roller: free slip; friction: Coulomb friction "
-              "(Thesis eq. 5.8-5.11)"},
-      {.name = "friction", .unit = "-", .def = derived("required with type = \"friction\""),
-       .range = Range::non_negative(10.0), .doc = "the coefficient mu; only with type = \"friction\""},
-  }});
-  s.push_back({"solver", "solver", {
-      {.name = "interpolation", .type = Type::Choice, .def = derived("\"gimp\""),
-       .choices = "linear|gimp|gimp-quadrature|bspline",
-       .doc = "the weighting functions (Thesis §2.2, §3.3)"},
-      {.name = "quadrature_points", .type = Type::Integer, .def = value(2), .range = Range::closed(1, 3),
-       .doc = "points per direction for \"gimp-quadrature\" (Thesis eq. 3.16-3.22); ignored otherwise"},
-      {.name = "scheme", .type = Type::Choice, .def = derived("\"averaged\""),
-       .choices = "usf|usl|averaged", .doc = "the stress update scheme (Thesis §4.4)"},
-      {.name = "end_time", .unit = "s", .def = derived("required without [[stage]]"),
-       .range = Range::positive(kMaxTime),
-       .doc = "not allowed with [[stage]] tables: their durations add up to the end time"},
-      {.name = "time_step", .unit = "s", .def = none("from `cfl`"),
-       .range = Range::closed(kMinTimeStep, kMaxTimeStep),
-       .doc = "a fixed time step; must not exceed the stable step h / c (see below)"},
-      {.name = "cfl", .unit = "-", .def = value(0.3), .range = Range{0.0, 1.0, true, false},
-       .doc = "dt = cfl h / (c + v0), c the fastest P-wave speed, v0 the fastest initial speed"},
-      {.name = "allow_unstable_time_step", .type = Type::Boolean, .def = derived("false"),
-       .doc = "true accepts a `time_step` above the stable step with a warning"},
-      {.name = "velocity_transfer", .type = Type::Choice, .def = derived("\"flip\""),
-       .choices = "flip|xpic|apic",
-       .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
-              "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
-              "al. 2015); xpic and apic not with [[contact]] yet"},
-      {.name = "xpic_order", .type = Type::Integer, .def = value(2), .range = Range::closed(1, 20),
-       .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
-              "over the points"},
-      {.name = "pic_fraction", .unit = "-", .def = value(0), .range = Range::closed(0.0, 1.0),
-       .doc = "PIC share a of the particle velocity update: v_p = (1 - a) v_FLIP + a sum N_ip "
-              "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56; \"flip\" only"},
-  }});
-  s.push_back({"stage", "stage", {
-      {.name = "name", .type = Type::String, .def = derived("\"stage-I\""), .doc = "any"},
-      {.name = "duration", .unit = "s", .range = Range::positive(kMaxTime),
-       .doc = "the stage ends at this time at the latest"},
-      {.name = "gravity_ramp_time", .unit = "s", .def = value(0), .range = Range::non_negative(kMaxTime),
-       .doc = "<= duration; sine ramp of Thesis eq. 4.13 from the stage start; 0: full gravity"},
-      {.name = "elastic", .type = Type::Boolean, .def = derived("false"),
-       .doc = "true holds every material linear elastic (an equilibrium stage)"},
-      {.name = "strength_reduction", .unit = "-", .def = value(1), .range = Range::closed(1.0, 100.0),
-       .doc = "c, tan(phi) and tan(psi) are divided by it"},
-      {.name = "material", .type = Type::Tables, .def = none(),
-       .doc = "strength changes for this stage (stage.material, below)"},
-      {.name = "rest_speed", .unit = "m/s", .def = value(0), .range = Range::non_negative(kMaxSpeed),
-       .doc = "0: off; the stage also ends once the mean speed (Thesis eq. 5.12) has stayed "
-              "below it for `rest_time`"},
-      {.name = "rest_time", .unit = "s", .def = derived("required with rest_speed"),
-       .range = Range::positive(kMaxTime), .doc = "see `rest_speed`"},
-  }});
-  s.push_back({"stage.material", "stage-material", {
-      {.name = "name", .type = Type::String, .doc = "the `name` of a [[material]]"},
-      {.name = "friction", .unit = "deg", .def = none("the material's"), .range = Range{0.0, 90.0, false, true},
-       .doc = "phi; mohr-coulomb only"},
-      {.name = "cohesion", .unit = "Pa", .def = none("the material's"), .range = Range::non_negative(1e12),
-       .doc = "c (> 0 for tresca and von-mises, whose residual cohesion it scales too)"},
-      {.name = "dilation", .unit = "deg", .def = none("the material's"), .range = Range{0.0, 90.0, false, true},
-       .doc = "psi <= phi; mohr-coulomb only"},
-      {.name = "density", .unit = "kg/m^3", .def = none("unchanged"), .range = Range::closed(1e-3, 1e6),
-       .doc = "a trigger (Paper III §C.3, rainfall): the points' density becomes this, over "
-              "`density_ramp_time`, and stays so in later stages"},
-      {.name = "density_ramp_time", .unit = "s", .def = value(0), .range = Range::non_negative(kMaxTime),
-       .doc = "<= the stage duration; the density follows (1 - cos(pi t / T)) / 2 from the "
-              "stage start; 0: at once"},
-  }});
-  s.push_back({"output", "output", {
-      {.name = "interval", .unit = "s", .def = derived("end_time / 20"),
-       .range = Range::positive(kMaxTime),
-       .doc = "simulated time between particle frames; at most 100000 frames"},
-      {.name = "series_interval", .unit = "s", .def = derived("interval / 10"),
-       .range = Range::positive(kMaxTime),
-       .doc = "simulated time between rows of series.csv; at most 10^7 rows"},
-  }});
+  s.push_back(
+      {"body",
+       "body",
+       {
+           {.name = "name",
+            .type = Type::String,
+            .def = derived("\"body-I\" (I: the body's index)"),
+            .doc = "names the body in messages and output"},
+           {.name = "material", .type = Type::String, .doc = "the `name` of a [[material]]"},
+           {.name = "particles_per_cell",
+            .type = Type::Integer,
+            .def = value(2),
+            .range = Range::closed(1, 8),
+            .doc = "n: n x n points per grid cell (n^3 in 3D)"},
+           {.name = "velocity",
+            .type = Type::Vector,
+            .unit = "m/s",
+            .def = derived("0"),
+            .range = kVelocity,
+            .doc = "initial velocity of every point"},
+           {.name = "velocity_sine",
+            .type = Type::Table,
+            .def = none(),
+            .doc = "adds a sine mode to the initial velocity (body.velocity_sine, below)"},
+           {.name = "rigid",
+            .type = Type::Boolean,
+            .def = derived("false"),
+            .doc = "a rigid body: moves with its constant `velocity` (0: fixed), no stress update, a "
+                   "contact partner of infinite mass"},
+           {.name = "split",
+            .type = Type::Boolean,
+            .def = derived("false"),
+            .doc = "true: the body's points split when they deform too much (Thesis §3.4; [splitting])"},
+           {.name = "shape",
+            .type = Type::Choice,
+            .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",
+            .doc = "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere; "
+                   "each adds its own keys, below"},
+       }});
+  s.push_back({"body.velocity_sine",
+               "body-velocity-sine",
+               {
+                   {.name = "amplitude",
+                    .type = Type::Vector,
+                    .unit = "m/s",
+                    .range = kVelocity,
+                    .doc = "a: adds a sin(2 pi (x[axis] - X0) / W) to the initial velocity"},
+                   {.name = "wavelength", .unit = "m", .range = Range::positive(kMaxLength), .doc = "W"},
+                   {.name = "axis",
+                    .type = Type::Choice,
+                    .def = derived("\"x\""),
+                    .choices = "x|y|z",
+                    .doc = "the coordinate the sine runs along (z in 3D only)"},
+                   {.name = "origin", .unit = "m", .def = value(0), .range = kCoordinate, .doc = "X0"},
+               }});
+  s.push_back(
+      {"body (rectangle)",
+       "body-rectangle",
+       {
+           {.name = "min", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the low corner"},
+           {.name = "max",
+            .type = Type::Vector,
+            .unit = "m",
+            .range = kCoordinate,
+            .doc = "the high corner, greater than `min` in both components"},
+       }});
+  s.push_back({"body (polygon)",
+               "body-polygon",
+               {
+                   {.name = "vertices",
+                    .type = Type::Points,
+                    .unit = "m",
+                    .range = kCoordinate,
+                    .doc = "[[x, y], ...]: at least 3 vertices, non-zero area, either orientation"},
+               }});
+  s.push_back(
+      {"body (disc)",
+       "body-disc",
+       {
+           {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
+           {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+       }});
+  s.push_back({"ground",
+               "ground",
+               {
+                   {.name = "surface",
+                    .type = Type::Profile,
+                    .unit = "m",
+                    .doc = "the ground surface y(x); every layer lies below it"},
+               }});
+  s.push_back({"body (layer)",
+               "body-layer",
+               {
+                   {.name = "top",
+                    .type = Type::Profile,
+                    .unit = "m",
+                    .def = derived("the ground surface"),
+                    .doc = "the layer's upper boundary y(x), clipped to the ground surface"},
+                   {.name = "bottom",
+                    .type = Type::Profile,
+                    .unit = "m",
+                    .def = derived("the grid's bottom"),
+                    .doc = "its lower boundary y(x); the layer is bottom(x) <= y < top(x) where every "
+                           "profile is defined (it pinches out where bottom >= top)"},
+               }});
+  s.push_back(
+      {"body (box)",
+       "body-box",
+       {
+           {.name = "min", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the low corner"},
+           {.name = "max",
+            .type = Type::Vector,
+            .unit = "m",
+            .range = kCoordinate,
+            .doc = "the high corner, greater than `min` in every component"},
+       }});
+  s.push_back({"body (extruded polygon)",
+               "body-extruded",
+               {
+                   {.name = "vertices",
+                    .type = Type::Points,
+                    .unit = "m",
+                    .range = kCoordinate,
+                    .doc = "the x-y section: [[x, y], ...], at least 3 vertices, non-zero area"},
+                   {.name = "z_min", .unit = "m", .range = kCoordinate, .doc = "the extrusion's low z"},
+                   {.name = "z_max", .unit = "m", .range = kCoordinate, .doc = "its high z, > z_min"},
+               }});
+  s.push_back({"body (cylinder)",
+               "body-cylinder",
+               {
+                   {.name = "center",
+                    .type = Type::Vector,
+                    .unit = "m",
+                    .range = kCoordinate,
+                    .doc = "the centre of the axis segment"},
+                   {.name = "axis",
+                    .type = Type::Vector,
+                    .unit = "-",
+                    .def = derived("[0, 1, 0]"),
+                    .range = Range::closed(-1e6, 1e6),
+                    .doc = "the axis direction (normalised; not zero)"},
+                   {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+                   {.name = "length",
+                    .unit = "m",
+                    .range = Range::positive(kMaxLength),
+                    .doc = "the length along the axis"},
+               }});
+  s.push_back(
+      {"body (sphere)",
+       "body-sphere",
+       {
+           {.name = "center", .type = Type::Vector, .unit = "m", .range = kCoordinate, .doc = "the centre"},
+           {.name = "radius", .unit = "m", .range = Range::positive(kMaxLength), .doc = "the radius"},
+       }});
+  s.push_back({"contact",
+               "contact",
+               {
+                   {.name = "bodies",
+                    .type = Type::BodyPair,
+                    .doc = "the pair in contact; \"all\": every pair of bodies"},
+                   {.name = "friction",
+                    .unit = "-",
+                    .range = Range::non_negative(10.0),
+                    .doc = "the Coulomb coefficient mu of the pair (0: frictionless)"},
+               }});
+  s.push_back({"splitting",
+               "splitting",
+               {
+                   {.name = "alpha",
+                    .unit = "-",
+                    .def = value(2.0),
+                    .range = Range::closed(1.1, 100.0),
+                    .doc = "split when a diagonal component of F_split exceeds alpha (Thesis eq. 3.25)"},
+                   {.name = "beta",
+                    .unit = "-",
+                    .def = value(0.5),
+                    .range = Range::closed(0.01, 0.9),
+                    .doc = "... or falls below beta"},
+                   {.name = "gamma",
+                    .unit = "-",
+                    .def = value(1.0),
+                    .range = Range::closed(0.1, 100.0),
+                    .doc = "... or an off-diagonal component exceeds gamma in magnitude"},
+                   {.name = "reference_after",
+                    .type = Type::Integer,
+                    .def = value(4),
+                    .range = Range::closed(1, 20),
+                    .doc = "a point split this many times gets the reference split of Thesis §3.4.2"},
+                   {.name = "max_points",
+                    .type = Type::Integer,
+                    .def = derived("10 x the initial points"),
+                    .range = Range::closed(1, 1e9),
+                    .doc = "no point splits once the run holds this many"},
+               }});
+  s.push_back({"initial_stress",
+               "initial-stress",
+               {
+                   {.name = "k0",
+                    .type = Type::K0,
+                    .range = Range::closed(0.0, 10.0),
+                    .choices = "poisson|jaky",
+                    .doc = "\"poisson\": K0 = nu/(1 - nu) (Thesis eq. 5.7); \"jaky\": K0 = 1 - sin(phi) "
+                           "(Post eq. 51; materials without friction use nu/(1 - nu)); or a number"},
+               }});
+  s.push_back({"gravity",
+               "gravity",
+               {
+                   {.name = "acceleration",
+                    .type = Type::Vector,
+                    .unit = "m/s^2",
+                    .def = derived("0"),
+                    .range = Range::closed(-kMaxGravity, kMaxGravity),
+                    .doc = "g, for example [0, -9.81]"},
+                   {.name = "ramp_time",
+                    .unit = "s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxTime),
+                    .doc = "sine ramp of Thesis eq. 4.13; 0: full gravity from the first step"},
+               }});
+  s.push_back(
+      {"boundary",
+       "boundary",
+       {
+           {.name = "x_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall x = origin_x"},
+           {.name = "x_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "the wall x = origin_x + Lx"},
+           {.name = "y_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall y = origin_y"},
+           {.name = "y_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "the wall y = origin_y + Ly"},
+           {.name = "z_min", .type = Type::Side, .def = derived("\"free\""), .doc = "3D only: z = origin_z"},
+           {.name = "z_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "3D only: z = origin_z + Lz"},
+       }});
+  s.push_back(
+      {"boundary.side",
+       "boundary-side",
+       {
+           {.name = "type",
+            .type = Type::Choice,
+            .choices = "free|fixed|roller|friction",
+            .doc = "free: no constraint; fixed: no-slip; roller: free slip; friction: Coulomb friction "
+                   "(Thesis eq. 5.8-5.11)"},
+           {.name = "friction",
+            .unit = "-",
+            .def = derived("required with type = \"friction\""),
+            .range = Range::non_negative(10.0),
+            .doc = "the coefficient mu; only with type = \"friction\""},
+       }});
+  s.push_back(
+      {"solver",
+       "solver",
+       {
+           {.name = "interpolation",
+            .type = Type::Choice,
+            .def = derived("\"gimp\""),
+            .choices = "linear|gimp|gimp-quadrature|bspline",
+            .doc = "the weighting functions (Thesis §2.2, §3.3)"},
+           {.name = "quadrature_points",
+            .type = Type::Integer,
+            .def = value(2),
+            .range = Range::closed(1, 3),
+            .doc = "points per direction for \"gimp-quadrature\" (Thesis eq. 3.16-3.22); ignored otherwise"},
+           {.name = "scheme",
+            .type = Type::Choice,
+            .def = derived("\"averaged\""),
+            .choices = "usf|usl|averaged",
+            .doc = "the stress update scheme (Thesis §4.4)"},
+           {.name = "end_time",
+            .unit = "s",
+            .def = derived("required without [[stage]]"),
+            .range = Range::positive(kMaxTime),
+            .doc = "not allowed with [[stage]] tables: their durations add up to the end time"},
+           {.name = "time_step",
+            .unit = "s",
+            .def = none("from `cfl`"),
+            .range = Range::closed(kMinTimeStep, kMaxTimeStep),
+            .doc = "a fixed time step; must not exceed the stable step h / c (see below)"},
+           {.name = "cfl",
+            .unit = "-",
+            .def = value(0.3),
+            .range = Range{0.0, 1.0, true, false},
+            .doc = "dt = cfl h / (c + v0), c the fastest P-wave speed, v0 the fastest initial speed"},
+           {.name = "allow_unstable_time_step",
+            .type = Type::Boolean,
+            .def = derived("false"),
+            .doc = "true accepts a `time_step` above the stable step with a warning"},
+           {.name = "velocity_transfer",
+            .type = Type::Choice,
+            .def = derived("\"flip\""),
+            .choices = "flip|xpic|apic",
+            .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
+                   "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
+                   "al. 2015); xpic and apic not with [[contact]] yet"},
+           {.name = "xpic_order",
+            .type = Type::Integer,
+            .def = value(2),
+            .range = Range::closed(1, 20),
+            .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
+                   "over the points"},
+           {.name = "pic_fraction",
+            .unit = "-",
+            .def = value(0),
+            .range = Range::closed(0.0, 1.0),
+            .doc = "PIC share a of the particle velocity update: v_p = (1 - a) v_FLIP + a sum N_ip "
+                   "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56; \"flip\" only"},
+       }});
+  s.push_back({"stage",
+               "stage",
+               {
+                   {.name = "name", .type = Type::String, .def = derived("\"stage-I\""), .doc = "any"},
+                   {.name = "duration",
+                    .unit = "s",
+                    .range = Range::positive(kMaxTime),
+                    .doc = "the stage ends at this time at the latest"},
+                   {.name = "gravity_ramp_time",
+                    .unit = "s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxTime),
+                    .doc = "<= duration; sine ramp of Thesis eq. 4.13 from the stage start; 0: full gravity"},
+                   {.name = "elastic",
+                    .type = Type::Boolean,
+                    .def = derived("false"),
+                    .doc = "true holds every material linear elastic (an equilibrium stage)"},
+                   {.name = "strength_reduction",
+                    .unit = "-",
+                    .def = value(1),
+                    .range = Range::closed(1.0, 100.0),
+                    .doc = "c, tan(phi) and tan(psi) are divided by it"},
+                   {.name = "material",
+                    .type = Type::Tables,
+                    .def = none(),
+                    .doc = "strength changes for this stage (stage.material, below)"},
+                   {.name = "rest_speed",
+                    .unit = "m/s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxSpeed),
+                    .doc = "0: off; the stage also ends once the mean speed (Thesis eq. 5.12) has stayed "
+                           "below it for `rest_time`"},
+                   {.name = "rest_time",
+                    .unit = "s",
+                    .def = derived("required with rest_speed"),
+                    .range = Range::positive(kMaxTime),
+                    .doc = "see `rest_speed`"},
+               }});
+  s.push_back({"stage.material",
+               "stage-material",
+               {
+                   {.name = "name", .type = Type::String, .doc = "the `name` of a [[material]]"},
+                   {.name = "friction",
+                    .unit = "deg",
+                    .def = none("the material's"),
+                    .range = Range{0.0, 90.0, false, true},
+                    .doc = "phi; mohr-coulomb only"},
+                   {.name = "cohesion",
+                    .unit = "Pa",
+                    .def = none("the material's"),
+                    .range = Range::non_negative(1e12),
+                    .doc = "c (> 0 for tresca and von-mises, whose residual cohesion it scales too)"},
+                   {.name = "dilation",
+                    .unit = "deg",
+                    .def = none("the material's"),
+                    .range = Range{0.0, 90.0, false, true},
+                    .doc = "psi <= phi; mohr-coulomb only"},
+                   {.name = "density",
+                    .unit = "kg/m^3",
+                    .def = none("unchanged"),
+                    .range = Range::closed(1e-3, 1e6),
+                    .doc = "a trigger (Paper III §C.3, rainfall): the points' density becomes this, over "
+                           "`density_ramp_time`, and stays so in later stages"},
+                   {.name = "density_ramp_time",
+                    .unit = "s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxTime),
+                    .doc = "<= the stage duration; the density follows (1 - cos(pi t / T)) / 2 from the "
+                           "stage start; 0: at once"},
+               }});
+  s.push_back({"output",
+               "output",
+               {
+                   {.name = "interval",
+                    .unit = "s",
+                    .def = derived("end_time / 20"),
+                    .range = Range::positive(kMaxTime),
+                    .doc = "simulated time between particle frames; at most 100000 frames"},
+                   {.name = "series_interval",
+                    .unit = "s",
+                    .def = derived("interval / 10"),
+                    .range = Range::positive(kMaxTime),
+                    .doc = "simulated time between rows of series.csv; at most 10^7 rows"},
+               }});
   return s;
 }
 

@@ -39,19 +39,19 @@ struct Range {
 };
 
 enum class Type {
-  Number,      // a float or an integer
-  Integer,     // an integer only
+  Number,   // a float or an integer
+  Integer,  // an integer only
   Boolean,
-  String,      // free text
-  Choice,      // one of `choices`
-  Vector,      // [x, y] in 2D, [x, y, z] in 3D; `range` bounds each component
-  Points,      // an array of [x, y] pairs (polygon vertices)
-  Table,       // a sub-table, itself a section
-  Tables,      // an array of tables ([[name]]), each a section
-  K0,          // initial_stress.k0: a number or a rule name
-  Side,        // a boundary side: a string or an inline table (boundary.side)
-  Profile,     // a profile y(x): a CSV file name or inline [[x, y], ...] with x increasing
-  BodyPair,    // [name, name] of two [[body]] tables, or "all"
+  String,    // free text
+  Choice,    // one of `choices`
+  Vector,    // [x, y] in 2D, [x, y, z] in 3D; `range` bounds each component
+  Points,    // an array of [x, y] pairs (polygon vertices)
+  Table,     // a sub-table, itself a section
+  Tables,    // an array of tables ([[name]]), each a section
+  K0,        // initial_stress.k0: a number or a rule name
+  Side,      // a boundary side: a string or an inline table (boundary.side)
+  Profile,   // a profile y(x): a CSV file name or inline [[x, y], ...] with x increasing
+  BodyPair,  // [name, name] of two [[body]] tables, or "all"
 };
 const char* to_string(Type t);
 
@@ -76,7 +76,7 @@ constexpr Default derived(const char* text) { return {DefaultKind::Derived, 0.0,
 struct Key {
   const char* name;
   Type type = Type::Number;
-  const char* unit = "";      // SI unit, "-" when dimensionless, "" for non-numbers
+  const char* unit = "";  // SI unit, "-" when dimensionless, "" for non-numbers
   Default def = required();
   Range range = Range::any();
   const char* choices = "";  // Choice (and K0 rules): allowed spellings separated by '|'

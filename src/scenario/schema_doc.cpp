@@ -64,12 +64,13 @@ std::string allowed_text(const Key& k) {
 }  // namespace
 
 std::string markdown_table(const Section& s) {
-  std::string t = "| key | type | unit | default | allowed | meaning |\n"
-                  "|-----|------|------|---------|---------|---------|\n";
+  std::string t =
+      "| key | type | unit | default | allowed | meaning |\n"
+      "|-----|------|------|---------|---------|---------|\n";
   for (const Key& k : s.keys) {
     const std::string unit = *k.unit ? k.unit : "–";
-    t += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.name, to_string(k.type), unit,
-                     default_text(k), allowed_text(k), k.doc);
+    t += fmt::format("| `{}` | {} | {} | {} | {} | {} |\n", k.name, to_string(k.type), unit, default_text(k),
+                     allowed_text(k), k.doc);
   }
   return t;
 }

@@ -1,8 +1,8 @@
 // Point-in-shape tests and bounding boxes of the body shapes (2D and 3D).
 #include <algorithm>
 #include <cmath>
-#include <utility>
 #include <type_traits>
+#include <utility>
 
 #include "scenario/build.hpp"
 
@@ -50,8 +50,7 @@ std::pair<double, double> layer_span(const Layer& l) {
 bool layer_contains(const Layer& l, const Vec<2>& x) {
   const auto [lo, hi] = layer_span(l);
   if (!(x[0] >= lo && x[0] < hi)) return false;
-  return x[1] >= l.bottom.at(x[0]) && x[1] < l.top.at(x[0]) &&
-         (!l.surface || x[1] < l.surface->at(x[0]));
+  return x[1] >= l.bottom.at(x[0]) && x[1] < l.top.at(x[0]) && (!l.surface || x[1] < l.surface->at(x[0]));
 }
 
 ShapeBox<2> layer_box(const Layer& l) {
@@ -65,8 +64,8 @@ ShapeBox<2> layer_box(const Layer& l) {
 }  // namespace
 
 double Profile::at(double x) const {
-  const auto it = std::upper_bound(points.begin(), points.end(), x,
-                                   [](double v, const Vec<2>& p) { return v < p[0]; });
+  const auto it =
+      std::upper_bound(points.begin(), points.end(), x, [](double v, const Vec<2>& p) { return v < p[0]; });
   if (it == points.begin()) return points.front()[1];
   if (it == points.end()) return points.back()[1];
   const Vec<2>& a = *(it - 1);
@@ -165,9 +164,12 @@ double layer_area(const Layer& l) {
     for (std::size_t j = 0; j + 1 < cut.size(); ++j) {
       const double a = cut[j], b = cut[j + 1];
       const double ta = upper(a) - l.bottom.at(a), tb = upper(b) - l.bottom.at(b);
-      if (ta >= 0 && tb >= 0) area += 0.5 * (ta + tb) * (b - a);
-      else if (ta > 0) area += 0.5 * ta * (b - a) * ta / (ta - tb);
-      else if (tb > 0) area += 0.5 * tb * (b - a) * tb / (tb - ta);
+      if (ta >= 0 && tb >= 0)
+        area += 0.5 * (ta + tb) * (b - a);
+      else if (ta > 0)
+        area += 0.5 * ta * (b - a) * ta / (ta - tb);
+      else if (tb > 0)
+        area += 0.5 * tb * (b - a) * tb / (tb - ta);
     }
   }
   return area;

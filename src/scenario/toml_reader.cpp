@@ -13,10 +13,8 @@ Location location_of(const toml::source_region& r, Location fallback) {
   return {static_cast<int>(r.begin.line), static_cast<int>(r.begin.column)};
 }
 
-void fail(const std::string& source, Location at, const std::string& key,
-          const std::string& message) {
-  throw ScenarioError(fmt::format("{}:{}:{}: key '{}': {}", source, at.line, at.column, key,
-                                  message));
+void fail(const std::string& source, Location at, const std::string& key, const std::string& message) {
+  throw ScenarioError(fmt::format("{}:{}:{}: key '{}': {}", source, at.line, at.column, key, message));
 }
 
 const char* type_name(const toml::node& n) {
@@ -50,8 +48,7 @@ double node_number(const toml::node& n, const std::string& source, const std::st
   return v;
 }
 
-Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::string& key,
-                 Location fallback) {
+Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::string& key, Location fallback) {
   const Location at = location_of(n.source(), fallback);
   const auto* arr = n.as_array();
   if (!arr) fail(source, at, key, fmt::format("expected an array of 2 numbers, got {}", type_name(n)));
@@ -62,16 +59,19 @@ Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::stri
   return v;
 }
 
-Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key,
-                 Location fallback) {
+Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key, Location fallback) {
   const Location at = location_of(n.source(), fallback);
   const auto* arr = n.as_array();
   if (!arr)
-    fail(source, at, key, fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
-                                      "got {}", type_name(n)));
+    fail(source, at, key,
+         fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
+                     "got {}",
+                     type_name(n)));
   if (arr->size() != 3)
-    fail(source, at, key, fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
-                                      "got {} elements", arr->size()));
+    fail(source, at, key,
+         fmt::format("expected an array of 3 numbers [x, y, z] (the grid is 3D), "
+                     "got {} elements",
+                     arr->size()));
   Vec<3> v;
   for (int d = 0; d < 3; ++d) v[d] = node_number(*arr->get(d), source, key, at);
   return v;
@@ -84,9 +84,12 @@ std::string section_name(const std::string& path) {
   std::string out;
   bool in_index = false;
   for (char c : path) {
-    if (c == '[') in_index = true;
-    else if (c == ']') in_index = false;
-    else if (!in_index) out += c;
+    if (c == '[')
+      in_index = true;
+    else if (c == ']')
+      in_index = false;
+    else if (!in_index)
+      out += c;
   }
   return out;
 }
@@ -101,8 +104,11 @@ const schema::Section* find_section(const std::string& name) {
 
 TableReader::TableReader(const toml::table& table, std::string path, const std::string& source,
                          Location fallback)
-    : table_(table), path_(std::move(path)), source_(source),
-      where_(location_of(table.source(), fallback)), section_(find_section(section_name(path_))) {}
+    : table_(table),
+      path_(std::move(path)),
+      source_(source),
+      where_(location_of(table.source(), fallback)),
+      section_(find_section(section_name(path_))) {}
 
 TableReader TableReader::follows(std::string_view section) const {
   TableReader t = *this;
@@ -112,8 +118,8 @@ TableReader TableReader::follows(std::string_view section) const {
 
 const schema::Key& TableReader::spec(std::string_view name) const {
   if (!section_)
-    throw std::logic_error("table '" + path_ + "' follows no schema section (key '" +
-                           std::string(name) + "')");
+    throw std::logic_error("table '" + path_ + "' follows no schema section (key '" + std::string(name) +
+                           "')");
   return section_->at(name);
 }
 
@@ -139,14 +145,16 @@ std::int64_t TableReader::integer(std::string_view name) const {
   const schema::Key& k = spec(name);
   std::optional<std::int64_t> def;
   if (k.def.kind == schema::DefaultKind::Value) def = static_cast<std::int64_t>(k.def.value);
-  return integer(name, static_cast<std::int64_t>(k.range.lo), static_cast<std::int64_t>(k.range.hi),
-                 def);
+  return integer(name, static_cast<std::int64_t>(k.range.lo), static_cast<std::int64_t>(k.range.hi), def);
 }
 
-template <int D> Vec<D> TableReader::vec(std::string_view name) const {
+template <int D>
+Vec<D> TableReader::vec(std::string_view name) const {
   Vec<D> v;
-  if constexpr (D == 2) v = vec2(name);
-  else v = vec3(name);
+  if constexpr (D == 2)
+    v = vec2(name);
+  else
+    v = vec3(name);
   const Range r = spec(name).range;
   for (int d = 0; d < D; ++d)
     if (!r.contains(v[d]))
@@ -154,7 +162,8 @@ template <int D> Vec<D> TableReader::vec(std::string_view name) const {
   return v;
 }
 
-template <int D> Vec<D> TableReader::vec_or(std::string_view name, const Vec<D>& def) const {
+template <int D>
+Vec<D> TableReader::vec_or(std::string_view name, const Vec<D>& def) const {
   return has(name) ? vec<D>(name) : def;
 }
 

@@ -38,7 +38,8 @@ using Range = schema::Range;
 const char* type_name(const toml::node& n);
 
 // A string value from a fixed list of spellings, each mapped to an enum value.
-template <class E> using Choices = std::initializer_list<std::pair<const char*, E>>;
+template <class E>
+using Choices = std::initializer_list<std::pair<const char*, E>>;
 
 class TableReader {
  public:
@@ -81,8 +82,10 @@ class TableReader {
   double number(std::string_view name) const;
   double number_or(std::string_view name, double def) const;
   std::int64_t integer(std::string_view name) const;
-  template <int D> Vec<D> vec(std::string_view name) const;
-  template <int D> Vec<D> vec_or(std::string_view name, const Vec<D>& def) const;
+  template <int D>
+  Vec<D> vec(std::string_view name) const;
+  template <int D>
+  Vec<D> vec_or(std::string_view name, const Vec<D>& def) const;
   bool boolean_or(std::string_view name, bool def) const;
   // The key as declared in this table's schema section (std::logic_error if undeclared).
   const schema::Key& spec(std::string_view name) const;
@@ -115,13 +118,13 @@ class TableReader {
   // Fails unless `value` is a spelling the schema declares for `name` (when declared there).
   void check_choice(std::string_view name, const std::string& value) const;
 
-  template <class E> static std::vector<std::string> names_of(Choices<E> choices) {
+  template <class E>
+  static std::vector<std::string> names_of(Choices<E> choices) {
     std::vector<std::string> names;
     for (const auto& c : choices) names.emplace_back(c.first);
     return names;
   }
-  static std::string unknown_choice_message(const std::string& got,
-                                            const std::vector<std::string>& allowed);
+  static std::string unknown_choice_message(const std::string& got, const std::vector<std::string>& allowed);
 
  private:
   const toml::table& table_;
@@ -132,13 +135,10 @@ class TableReader {
 };
 
 // Reads a number from an arbitrary node (array element etc.); `key` names it in messages.
-double node_number(const toml::node& n, const std::string& source, const std::string& key,
-                   Location fallback);
+double node_number(const toml::node& n, const std::string& source, const std::string& key, Location fallback);
 // Reads an array of exactly two finite numbers from an arbitrary node.
-Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::string& key,
-                 Location fallback);
+Vec<2> node_vec2(const toml::node& n, const std::string& source, const std::string& key, Location fallback);
 // Reads an array of exactly three finite numbers (a 3D scenario's vectors).
-Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key,
-                 Location fallback);
+Vec<3> node_vec3(const toml::node& n, const std::string& source, const std::string& key, Location fallback);
 
 }  // namespace skred::scenario_detail

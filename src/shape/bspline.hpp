@@ -61,7 +61,8 @@ inline int bspline_1d(double xi, int n, double* w, double* g) {
 }
 
 // Stored without the second weight (at least 1/6 away from the walls, exact at them).
-template <int D> struct BsplineKernel : SeparableKernel<BsplineKernel<D>, D, 4, 1> {
+template <int D>
+struct BsplineKernel : SeparableKernel<BsplineKernel<D>, D, 4, 1> {
   static constexpr int S = 4;
   using typename SeparableKernel<BsplineKernel<D>, D, 4, 1>::Shape;
   static constexpr const char* name = "bspline";

@@ -12,12 +12,27 @@ namespace skred {
 // 1D GIMP weighting function and its gradient for node distance r = x_p - x_i, cell size L
 // and particle half-length l (Thesis eq. 3.14; requires l <= L/2).
 [[gnu::always_inline]] inline void gimp_1d(double r, double L, double l, double& w, double& g) {
-  if (r <= -L - l || r >= L + l) { w = 0.0; g = 0.0; }
-  else if (r <= -L + l) { const double s = L + l + r; w = s * s / (4 * L * l); g = s / (2 * L * l); }
-  else if (r <= -l) { w = 1.0 + r / L; g = 1.0 / L; }
-  else if (r <= l) { w = 1.0 - (r * r + l * l) / (2 * L * l); g = -r / (L * l); }
-  else if (r <= L - l) { w = 1.0 - r / L; g = -1.0 / L; }
-  else { const double s = L + l - r; w = s * s / (4 * L * l); g = -s / (2 * L * l); }
+  if (r <= -L - l || r >= L + l) {
+    w = 0.0;
+    g = 0.0;
+  } else if (r <= -L + l) {
+    const double s = L + l + r;
+    w = s * s / (4 * L * l);
+    g = s / (2 * L * l);
+  } else if (r <= -l) {
+    w = 1.0 + r / L;
+    g = 1.0 / L;
+  } else if (r <= l) {
+    w = 1.0 - (r * r + l * l) / (2 * L * l);
+    g = -r / (L * l);
+  } else if (r <= L - l) {
+    w = 1.0 - r / L;
+    g = -1.0 / L;
+  } else {
+    const double s = L + l - r;
+    w = s * s / (4 * L * l);
+    g = -s / (2 * L * l);
+  }
 }
 
 // Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
@@ -37,7 +52,8 @@ namespace skred {
 }
 
 // Stored without the middle weight, which is at least 1/2.
-template <int D> struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
+template <int D>
+struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   static constexpr int S = 3;
   using typename SeparableKernel<GimpKernel<D>, D, 3, 1>::Shape;
   static constexpr const char* name = "gimp";

@@ -11,27 +11,33 @@
 
 namespace skred {
 
-template <int Q> struct GaussLegendre;
-template <> struct GaussLegendre<1> {
+template <int Q>
+struct GaussLegendre;
+template <>
+struct GaussLegendre<1> {
   static constexpr double x[1] = {0.0};
   static constexpr double w[1] = {2.0};
 };
-template <> struct GaussLegendre<2> {
+template <>
+struct GaussLegendre<2> {
   static constexpr double x[2] = {-0.57735026918962576451, 0.57735026918962576451};
   static constexpr double w[2] = {1.0, 1.0};
 };
-template <> struct GaussLegendre<3> {
+template <>
+struct GaussLegendre<3> {
   static constexpr double x[3] = {-0.77459666924148337704, 0.0, 0.77459666924148337704};
   static constexpr double w[3] = {5.0 / 9.0, 8.0 / 9.0, 5.0 / 9.0};
 };
 
 // Not separable: between the phases of a step the solver keeps the start-of-step F and
 // evaluates the stencil again (x_p does not change before the end of the step).
-template <int D> struct QuadratureState {
+template <int D>
+struct QuadratureState {
   Mat<D> F;
 };
 
-template <int D, int Q> struct GimpQuadratureKernel {
+template <int D, int Q>
+struct GimpQuadratureKernel {
   // A Gauss point's two nodes per axis must lie in a block of four: the deformed voxel may
   // span at most three cells per axis.
   static constexpr int S = 4;
@@ -58,7 +64,8 @@ template <int D, int Q> struct GimpQuadratureKernel {
     Vec<D> xi_gp[NGP];
     double wt[NGP];
     std::array<int, D> lo, hi;
-    lo.fill(1 << 30); hi.fill(-(1 << 30));
+    lo.fill(1 << 30);
+    hi.fill(-(1 << 30));
     for (int k = 0; k < NGP; ++k) {
       Vec<D> dx0;
       double wk = 1.0;
@@ -91,8 +98,7 @@ template <int D, int Q> struct GimpQuadratureKernel {
     for (int k = 0; k < NGP; ++k) {
       double w1[D][2], g1[D][2];
       int off[D];
-      for (int d = 0; d < D; ++d)
-        off[d] = linear_1d(xi_gp[k][d], g.cells[d], inv_h, w1[d], g1[d]) - start[d];
+      for (int d = 0; d < D; ++d) off[d] = linear_1d(xi_gp[k][d], g.cells[d], inv_h, w1[d], g1[d]) - start[d];
       // Accumulate the Gauss point's 2^D linear weights into the block (eq. 3.18-3.19).
       for (int c = 0; c < ipow(2, D); ++c) {
         int idx = 0, mul = 1;

@@ -12,13 +12,16 @@ namespace skred {
   int c = static_cast<int>(std::floor(xi));
   if (c == cells) c = cells - 1;  // a point exactly on the high wall belongs to the last cell
   const double f = xi - c;
-  w[0] = 1.0 - f; w[1] = f;
-  g[0] = -inv_h;  g[1] = inv_h;
+  w[0] = 1.0 - f;
+  w[1] = f;
+  g[0] = -inv_h;
+  g[1] = inv_h;
   return c + GridGeometry<1>::pad;
 }
 
 // Stored without w[0] = 1 - f, as linear_1d computes it.
-template <int D> struct LinearKernel : SeparableKernel<LinearKernel<D>, D, 2, 0> {
+template <int D>
+struct LinearKernel : SeparableKernel<LinearKernel<D>, D, 2, 0> {
   static constexpr int S = 2;
   using typename SeparableKernel<LinearKernel<D>, D, 2, 0>::Shape;
   static constexpr const char* name = "linear";

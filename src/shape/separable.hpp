@@ -12,7 +12,8 @@ namespace skred {
 
 // Per axis the S 1D weighting functions and their derivatives, and the flat index of the
 // block's first node.
-template <int D, int S> struct Separable {
+template <int D, int S>
+struct Separable {
   std::size_t base = 0;
   double w[D][S];
   double g[D][S];
@@ -21,7 +22,8 @@ template <int D, int S> struct Separable {
 // Storage form of Separable between the phases of a step. The 1D functions of every kernel
 // are a partition of unity (sum w = 1, sum g = 0 on each axis), so the entry `Skip`, chosen
 // per kernel as one that never comes near zero, is not stored but recovered from the others.
-template <int D, int S, int Skip> struct PackedSeparable {
+template <int D, int S, int Skip>
+struct PackedSeparable {
   std::int64_t base = 0;
   double w[D][S - 1];
   double g[D][S - 1];
@@ -54,14 +56,15 @@ template <int D, int S, int Skip> struct PackedSeparable {
 
 // What the separable kernels share, given their shape() (CRTP): the stored form with the
 // entry Skip omitted, and the full stencil for tests and post-processing.
-template <class Kernel, int D, int S, int Skip> struct SeparableKernel {
+template <class Kernel, int D, int S, int Skip>
+struct SeparableKernel {
   using StencilT = Stencil<D, S>;
   using Shape = Separable<D, S>;
   using Packed = PackedSeparable<D, S, Skip>;
 
   static void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) { p.pack(sh); }
-  [[gnu::always_inline]] static void load(const Packed& p, const GridGeometry<D>& /*g*/,
-                                          const Vec<D>& /*x*/, const Vec<D>& /*half0*/, Shape& sh) {
+  [[gnu::always_inline]] static void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
+                                          const Vec<D>& /*half0*/, Shape& sh) {
     p.unpack(sh);
   }
   bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
@@ -69,7 +72,8 @@ template <class Kernel, int D, int S, int Skip> struct SeparableKernel {
 };
 
 // Flat-index strides of the grid axes, for walking a block of nodes.
-template <int D> struct NodeStrides {
+template <int D>
+struct NodeStrides {
   std::size_t s[D];
   explicit NodeStrides(const GridGeometry<D>& g) {
     for (int d = 0; d < D; ++d) s[d] = g.stride(d);
@@ -84,8 +88,7 @@ template <int D, int S, class Fn>
     for (int b = 0; b < S; ++b) {
       const std::size_t row = sh.base + b * st.s[1];
       const double wy = sh.w[1][b], gy = sh.g[1][b];
-      for (int a = 0; a < S; ++a)
-        fn(row + a, sh.w[0][a] * wy, Vec<2>(sh.g[0][a] * wy, sh.w[0][a] * gy));
+      for (int a = 0; a < S; ++a) fn(row + a, sh.w[0][a] * wy, Vec<2>(sh.g[0][a] * wy, sh.w[0][a] * gy));
     }
   } else {
     static_assert(D == 3, "skred supports 2D and 3D");
@@ -95,16 +98,14 @@ template <int D, int S, class Fn>
         const double wyz = sh.w[1][b] * sh.w[2][c];
         const double gy = sh.g[1][b] * sh.w[2][c], gz = sh.w[1][b] * sh.g[2][c];
         for (int a = 0; a < S; ++a)
-          fn(row + a, sh.w[0][a] * wyz,
-             Vec<3>(sh.g[0][a] * wyz, sh.w[0][a] * gy, sh.w[0][a] * gz));
+          fn(row + a, sh.w[0][a] * wyz, Vec<3>(sh.g[0][a] * wyz, sh.w[0][a] * gy, sh.w[0][a] * gz));
       }
   }
 }
 
 // The same walk over a general (non-separable) stencil.
 template <int D, int S, class Fn>
-[[gnu::always_inline]] inline void for_each_node(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                                 Fn&& fn) {
+[[gnu::always_inline]] inline void for_each_node(const Stencil<D, S>& sh, const NodeStrides<D>& st, Fn&& fn) {
   for (int k = 0; k < Stencil<D, S>::size; ++k) {
     std::size_t off = 0;
     int r = k;
@@ -187,8 +188,8 @@ template <int D, int S>
 
 // f_i += N_ip x (mass and momentum maps, eq. 2.53-2.54).
 template <int D, int S, class T>
-[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                           const T& x, T* __restrict f) {
+[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, const T& x,
+                                           T* __restrict f) {
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
       T* r = f + sh.base + b * st.s[1];
@@ -205,8 +206,8 @@ template <int D, int S, class T>
   }
 }
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                           double x, double* __restrict f) {
+[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, double x,
+                                           double* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 
@@ -243,17 +244,18 @@ template <int D, int S>
 [[gnu::always_inline]] inline Mat<D> gather_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st,
                                                      const Vec<D>* __restrict v) {
   Mat<D> out = Mat<D>::Zero();
-  for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) { out.noalias() += v[i] * g.transpose(); });
+  for_each_node(sh, st,
+                [&](std::size_t i, double, const Vec<D>& g) { out.noalias() += v[i] * g.transpose(); });
   return out;
 }
 template <int D, int S, class T>
-[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                           const T& x, T* __restrict f) {
+[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, const T& x,
+                                           T* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                           double x, double* __restrict f) {
+[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, double x,
+                                           double* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 template <int D, int S>
@@ -263,7 +265,8 @@ template <int D, int S>
 }
 
 // A separable kernel's full stencil (for tests and post-processing).
-template <int D, int S> inline void expand(const Separable<D, S>& sh, Stencil<D, S>& st) {
+template <int D, int S>
+inline void expand(const Separable<D, S>& sh, Stencil<D, S>& st) {
   st.base = sh.base;
   tensor_product<D, S>(sh.w, sh.g, st);
 }

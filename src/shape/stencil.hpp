@@ -11,17 +11,19 @@ namespace skred {
 
 constexpr int ipow(int b, int e) { return e == 0 ? 1 : b * ipow(b, e - 1); }
 
-template <int D, int S> struct Stencil {
+template <int D, int S>
+struct Stencil {
   static constexpr int size = ipow(S, D);
   static constexpr int width = S;
-  std::size_t base = 0;              // flat index of the block's first node
-  std::array<double, size> w{};      // weighting functions N_ip (Thesis eq. 2.46)
-  std::array<Vec<D>, size> grad{};   // gradient weighting functions (Thesis eq. 2.47)
+  std::size_t base = 0;             // flat index of the block's first node
+  std::array<double, size> w{};     // weighting functions N_ip (Thesis eq. 2.46)
+  std::array<Vec<D>, size> grad{};  // gradient weighting functions (Thesis eq. 2.47)
 };
 
 // Flat-index offsets of the S^D block relative to its first node; entry k has the
 // multi-index (k mod S, (k / S) mod S, ...), axis 0 fastest.
-template <int D, int S> struct StencilOffsets {
+template <int D, int S>
+struct StencilOffsets {
   std::array<std::size_t, ipow(S, D)> off{};
   explicit StencilOffsets(const GridGeometry<D>& g) {
     for (int k = 0; k < ipow(S, D); ++k) {

@@ -11,7 +11,8 @@ namespace skred {
 namespace {
 
 // End-of-step velocity at a node on `wall`, given the trial velocity without the wall.
-template <int D> Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
+template <int D>
+Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
   switch (wall.side.kind) {
     case BoundaryKind::Fixed: return Vec<D>::Zero();
     case BoundaryKind::Roller: vnew[wall.axis] = 0.0; return vnew;
@@ -26,7 +27,6 @@ template <int D> Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
 }
 
 }  // namespace
-
 
 template <int D>
 Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides) {
@@ -46,7 +46,8 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
   }
 }
 
-template <int D> void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
+template <int D>
+void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
   for (const BoundaryNode& b : nodes_) {
     Vec<D>& v = velocity[b.node];
     for (int w = 0; w < b.count; ++w) {
@@ -87,8 +88,8 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
     // the motion into the wall stopped; its tangential part the friction impulse over the
     // mean slip velocity. Where that is negative, a node that leaves the wall and is pushed
     // back within the step or whose slip reverses within it, O(dt^2), the wall takes nothing.
-    const double taken = 0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) +
-                         0.5 * dt * m * a.dot(v_k + vnew);
+    const double taken =
+        0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) + 0.5 * dt * m * a.dot(v_k + vnew);
     e.work += std::max(taken, 0.0);
     grid.acceleration[i] = (vnew - v_free) / dt;
     grid.velocity_move[i] = 0.5 * (v_k + vnew);

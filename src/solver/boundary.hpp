@@ -33,7 +33,8 @@ struct WallEnergy {
   double work = 0.0;
 };
 
-template <int D> class Boundaries {
+template <int D>
+class Boundaries {
  public:
   Boundaries() = default;
   // Sides in the order x_min, x_max, y_min, y_max[, z_min, z_max].

@@ -24,15 +24,14 @@ namespace skred {
 // tangential part that at most stops: |v| <= |v_trial| and the surface dissipates
 // (1/2) m (|v_trial|^2 - |v|^2) >= 0. In velocity terms m and dt cancel.
 template <int D>
-[[gnu::always_inline]] inline Vec<D> coulomb_contact(const Vec<D>& v_trial, const Vec<D>& n,
-                                                     double mu) {
+[[gnu::always_inline]] inline Vec<D> coulomb_contact(const Vec<D>& v_trial, const Vec<D>& n, double mu) {
   const double vn = v_trial.dot(n);  // m vn / dt = f_n
   if (vn <= 0.0) return v_trial;     // no compressive normal force: separation, no friction
   const Vec<D> vt = v_trial - vn * n;
-  const double slip = vt.norm();      // m slip / dt = |f_t|, the stick force (eq. 5.11)
-  const double limit = mu * vn;       // m limit / dt = mu f_n (eq. 5.8)
-  if (slip <= limit) return Vec<D>::Zero();        // stick (eq. 5.11)
-  return Vec<D>((1.0 - limit / slip) * vt);        // slip with full friction (eq. 5.10)
+  const double slip = vt.norm();             // m slip / dt = |f_t|, the stick force (eq. 5.11)
+  const double limit = mu * vn;              // m limit / dt = mu f_n (eq. 5.8)
+  if (slip <= limit) return Vec<D>::Zero();  // stick (eq. 5.11)
+  return Vec<D>((1.0 - limit / slip) * vt);  // slip with full friction (eq. 5.10)
 }
 
 }  // namespace skred

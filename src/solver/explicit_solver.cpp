@@ -26,8 +26,8 @@ namespace {
 // it by a fraction of a step). False if the point left the grid through a free side or its
 // velocity is not finite.
 template <int D>
-[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls,
-                                              Vec<D>& x, const Vec<D>& dx, const Vec<D>& v) {
+[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls, Vec<D>& x,
+                                              const Vec<D>& dx, const Vec<D>& v) {
   x += dx;
   for (int d = 0; d < D; ++d) x[d] = std::min(std::max(x[d], walls.lo[d]), walls.hi[d]);
   return grid.inside(x) && std::isfinite(v.sum());
@@ -42,7 +42,8 @@ template <class V>
 
 // The per-point arrays the stress update reads and writes (Thesis eq. 4.1-4.4, Post 72-73),
 // for the two phases that update stresses.
-template <int D> struct StressArrays {
+template <int D>
+struct StressArrays {
   const double* __restrict volume0;
   const std::int16_t* __restrict material;
   Mat<D>* __restrict F;
@@ -53,13 +54,18 @@ template <int D> struct StressArrays {
   bool single;  // one material: the ids need not be read
 
   StressArrays(Particles<D>& P, const std::vector<Material>& materials)
-      : volume0(P.volume0.data()), material(P.material.data()), F(P.F.data()), Fe(P.Fe.data()),
-        stress(P.stress.data()), state(P.state.data()), mats(materials.data()),
+      : volume0(P.volume0.data()),
+        material(P.material.data()),
+        F(P.F.data()),
+        Fe(P.Fe.data()),
+        stress(P.stress.data()),
+        state(P.state.data()),
+        mats(materials.data()),
         single(materials.size() == 1) {}
 
   [[gnu::always_inline]] StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
-    return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p],
-                                  state[p], F[p], Fe[p]);
+    return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
+                                  F[p], Fe[p]);
   }
 };
 
@@ -92,11 +98,11 @@ template <class Shape, int D>
 
 template <int D>
 ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
-                                  std::vector<Material> materials, SolverSettings<D> settings,
-                                  int threads)
-    : transfer_((grid.bspline_dofs = settings.interpolation == Interpolation::Bspline, grid),
-                threads),
-      particles_(particles), materials_(std::move(materials)), settings_(settings) {
+                                  std::vector<Material> materials, SolverSettings<D> settings, int threads)
+    : transfer_((grid.bspline_dofs = settings.interpolation == Interpolation::Bspline, grid), threads),
+      particles_(particles),
+      materials_(std::move(materials)),
+      settings_(settings) {
   for (Material& m : materials_) m.prepare();
   const GridGeometry<D>& g = transfer_.grid();
   boundaries_ = Boundaries<D>(g, settings_.boundaries);
@@ -122,7 +128,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   }
 }
 
-template <int D> StepStatus ExplicitSolver<D>::step() {
+template <int D>
+StepStatus ExplicitSolver<D>::step() {
   return dispatch([this](const auto& kernel) {
     return with_scheme(settings_.scheme, [&](auto scheme) {
       return step_with<std::decay_t<decltype(kernel)>, decltype(scheme)>(kernel);
@@ -130,7 +137,8 @@ template <int D> StepStatus ExplicitSolver<D>::step() {
   });
 }
 
-template <int D> StepStatus ExplicitSolver<D>::map_grid() {
+template <int D>
+StepStatus ExplicitSolver<D>::map_grid() {
   status_ = StepStatus{};
   dispatch([this](const auto& kernel) {
     if (map_mass_momentum(kernel) && (settings_.body_fields || contact_on())) map_body_fields(kernel);
@@ -143,7 +151,9 @@ template <int D> StepStatus ExplicitSolver<D>::map_grid() {
 // One step: the grid's mass and momentum of the step (mapped by the last step unless the
 // points changed since), then the scheme's phases (Thesis §4.4), which end by mapping the
 // next step's.
-template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
+template <int D>
+template <class K, class Scheme>
+StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
@@ -164,11 +174,13 @@ template <int D> template <class K, class Scheme> StepStatus ExplicitSolver<D>::
 
 // Thesis eq. 2.53-2.54: m_i = sum m_p N_ip, p_i = sum m_p v_p N_ip. The weighting functions
 // evaluated here are kept for the rest of the step.
-template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
+template <int D>
+template <class K>
+bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
   return timer_.time(Phase::MapMassMomentum, [&] {
     clear_mass_momentum();  // outside the box they are zero already
-    const long bad = p2g_mass_momentum(transfer_, kernel, particles_, fields_.mass.data(),
-                                       fields_.momentum.data());
+    const long bad =
+        p2g_mass_momentum(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data());
     if (bad >= 0) status_ = {false, bad, "material point left the grid"};
     return bad < 0;
   });
@@ -176,7 +188,9 @@ template <int D> template <class K> bool ExplicitSolver<D>::map_mass_momentum(co
 
 // Each body's m_i^b and p_i^b beside the centre-of-mass fields (Paper III §C.2.7), from the
 // weighting functions of the step.
-template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(const K& kernel) {
+template <int D>
+template <class K>
+void ExplicitSolver<D>::map_body_fields(const K& kernel) {
   timer_.time(Phase::BodyFields, [&] {
     const auto& P = particles_;
     int count = 0;
@@ -195,8 +209,7 @@ template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(cons
         f.mass[i] = 0.0;
         f.momentum[i].setZero();
       });
-      p2g_body_mass_momentum(transfer_, kernel, P, static_cast<int>(b), f.mass.data(),
-                             f.momentum.data());
+      p2g_body_mass_momentum(transfer_, kernel, P, static_cast<int>(b), f.mass.data(), f.momentum.data());
     }
     body_box_ = transfer_.box();
     if (contact_on()) clear_mass_momentum();  // unused with contact; keep them zero
@@ -206,7 +219,9 @@ template <int D> template <class K> void ExplicitSolver<D>::map_body_fields(cons
 // fn(fields, points) for each continuum whose points the phase updates: the centre-of-mass
 // fields and every point without contact; with contact each deformable body's own fields
 // and points (Paper III §C.2.7). Rigid bodies have phases of their own (contact.cpp).
-template <int D> template <class Fn> void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
+template <int D>
+template <class Fn>
+void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
   if (!contact_on()) {
     fn(static_cast<GridFields<D>&>(fields_), AllPoints{});
     return;
@@ -272,7 +287,9 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
 }
 
 // f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51) from the stresses as they are (USL).
-template <int D> template <class K> void ExplicitSolver<D>::internal_force(const K& kernel) {
+template <int D>
+template <class K>
+void ExplicitSolver<D>::internal_force(const K& kernel) {
   timer_.time(Phase::InternalForce, [&] {
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       Vec<D>* const forces = f.internal_force.data();
@@ -286,7 +303,9 @@ template <int D> template <class K> void ExplicitSolver<D>::internal_force(const
 // updated particle momenta mapped back to the grid, p~_i = sum N_ip m_p v_p^{k+1} (the double
 // mapping of USL and the averaged scheme, step 6 of §4.4). With contact, each body from and
 // into its own fields.
-template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
+template <int D>
+template <class K>
+void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
   timer_.time(Phase::VelocityRemap, [&] {
     xpic_grid_velocity(kernel);
     const GridGeometry<D>& g = grid();
@@ -304,7 +323,8 @@ template <int D> template <class K> void ExplicitSolver<D>::velocity_and_remap(c
       const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
-      Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      Mat<D>* const affine =
+          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
 #pragma omp parallel num_threads(threads()) reduction(+ : lost)
       {
@@ -360,7 +380,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
-      const Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      const Mat<D>* const affine =
+          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       double work = 0.0, dissipation = 0.0;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
@@ -384,8 +405,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           dissipation += r.dissipation;
           mdx += pmass[p] * dt * vmove;
           if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
-              !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom, span,
-                         affine ? affine + p : nullptr))
+              !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom,
+                         span, affine ? affine + p : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);
         }
@@ -402,7 +423,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
     if (contact_on()) first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
     transfer_.set_box(all);  // the next step's box
     if (contact_on()) body_box_ = transfer_.box();
-    if (first_bad != LONG_MAX) status_ = {false, first_bad, "material point became unstable or left the grid"};
+    if (first_bad != LONG_MAX)
+      status_ = {false, first_bad, "material point became unstable or left the grid"};
     return first_bad == LONG_MAX;
   });
 }
@@ -410,12 +432,16 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
 // USF's last phase: v_p^{k+1} (eq. 2.56), x_p^{k+1} (eq. 2.55, Post eq. 31) and the next
 // step's maps at x^{k+1} (eq. 2.53-2.54). With contact, each body from and into its own
 // fields.
-template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
+template <int D>
+template <class K>
+bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   return timer_.time(Phase::VelocityMoveMap, [&] {
     // m_i and p_i of this step are used up: the next step's map (XPIC first reads them)
     xpic_grid_velocity(kernel);
-    if (contact_on()) clear_body_mass_momentum();
-    else clear_mass_momentum();
+    if (contact_on())
+      clear_body_mass_momentum();
+    else
+      clear_mass_momentum();
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
@@ -425,7 +451,7 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
     double lost = 0.0;  // to the transfer
-    Extent<D> all;  // of every moved point
+    Extent<D> all;      // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
@@ -437,7 +463,8 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
-      Mat<D>* const affine = settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      Mat<D>* const affine =
+          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
       Extent<D> extent;  // of the moved points
@@ -479,13 +506,15 @@ template <int D> template <class K> bool ExplicitSolver<D>::velocity_move_and_ma
     }
     transfer_.set_box(all);  // the next step's box
     if (contact_on()) body_box_ = transfer_.box();
-    if (first_bad != LONG_MAX) status_ = {false, first_bad, "material point became unstable or left the grid"};
+    if (first_bad != LONG_MAX)
+      status_ = {false, first_bad, "material point became unstable or left the grid"};
     return first_bad == LONG_MAX;
   });
 }
 
 // The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.
-template <int D> void ExplicitSolver<D>::rigid_velocity() {
+template <int D>
+void ExplicitSolver<D>::rigid_velocity() {
   const ContactSettings<D>& c = settings_.contact;
   auto& P = particles_;
   const long n = static_cast<long>(P.size());
@@ -500,7 +529,9 @@ template <int D> void ExplicitSolver<D>::rigid_velocity() {
 // moves), then their mass and momentum mapped into their body's fields for the next step
 // (their mass gives the contact normal). `all` grows by their extent. Returns the first point
 // that left the grid, or LONG_MAX.
-template <int D> template <class K> long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
+template <int D>
+template <class K>
+long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
   const ContactSettings<D>& c = settings_.contact;
   const GridGeometry<D>& g = grid();
   const NodeStrides<D> strides = transfer_.strides();
@@ -527,8 +558,8 @@ template <int D> template <class K> long ExplicitSolver<D>::move_and_map_rigid(c
       for (long p = 0; p < n; ++p) {
         if (P.body[p] != b) continue;
         if (moving) P.x[p] += dt * vr;
-        if (!g.inside(P.x[p]) ||
-            !map_point(kernel, g, strides, P.x[p], P.half0[p], P.F[p], P.mass[p], vr, shape[p], mass, mom, span))
+        if (!g.inside(P.x[p]) || !map_point(kernel, g, strides, P.x[p], P.half0[p], P.F[p], P.mass[p], vr,
+                                            shape[p], mass, mom, span))
           bad = std::min(bad, p);
         extent.add(P.x[p]);
       }
@@ -544,7 +575,9 @@ template <int D> template <class K> long ExplicitSolver<D>::move_and_map_rigid(c
 
 // XPIC(m) (Hammerquist & Nairn 2017): the points take sum N_ip (v_i^{k+1} - p_i / m_i + v*_i),
 // i.e. FLIP without the part of v_p^k the grid cannot represent; under the velocity conditions.
-template <int D> template <class K> void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
+template <int D>
+template <class K>
+void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
   if (settings_.velocity_transfer != VelocityTransfer::Xpic) return;
   Vec<D>* const star = fields_.xpic_star.data();
   xpic_velocity(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data(),
@@ -555,7 +588,6 @@ template <int D> template <class K> void ExplicitSolver<D>::xpic_grid_velocity(c
   transfer_.for_box([&](std::size_t i) { vnext[i] = star[i] + dt * acc[i]; });
   boundaries_.constrain_velocity(fields_.velocity_next);
 }
-
 
 template class ExplicitSolver<2>;
 template class ExplicitSolver<3>;

@@ -25,7 +25,8 @@
 
 namespace skred {
 
-template <int D> struct SolverSettings {
+template <int D>
+struct SolverSettings {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
@@ -50,8 +51,8 @@ template <int D> struct SolverSettings {
 
 // Running totals kept by the solver (energy bookkeeping, Thesis eq. 4.15-4.17, 5.13).
 struct EnergyTotals {
-  double strain_energy = 0.0;        // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
-  double gravity_work = 0.0;         // sum of m_p g . d_x_p (eq. 5.13, incremental form)
+  double strain_energy = 0.0;  // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
+  double gravity_work = 0.0;   // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
   // Kinetic energy the contact phase took out of the nodal velocities (>= 0 every step;
   // Paper III §C.2.7): friction work (friction impulse times mean slip speed) plus the
@@ -78,13 +79,14 @@ struct SolverClock {
 };
 
 // Quantities summed over the particles on demand.
-template <int D> struct ParticleTotals {
+template <int D>
+struct ParticleTotals {
   double mass = 0.0;
   double kinetic_energy = 0.0;  // eq. 4.15
   Vec<D> momentum = Vec<D>::Zero();
-  double mean_speed = 0.0;      // mass-weighted mean speed, eq. 5.12
+  double mean_speed = 0.0;  // mass-weighted mean speed, eq. 5.12
   double max_speed = 0.0;
-  long yielding = 0;            // points whose last stress update was plastic
+  long yielding = 0;  // points whose last stress update was plastic
 };
 
 // Outcome of one step. A step that fails names the first offending particle.
@@ -95,11 +97,13 @@ struct StepStatus {
 };
 
 // Positions of the closed (fixed, roller, frictional) walls; +-inf on free sides.
-template <int D> struct WallBox {
+template <int D>
+struct WallBox {
   Vec<D> lo = Vec<D>::Constant(-INFINITY), hi = Vec<D>::Constant(INFINITY);
 };
 
-template <int D> class ExplicitSolver {
+template <int D>
+class ExplicitSolver {
  public:
   ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles, std::vector<Material> materials,
                  SolverSettings<D> settings, int threads);
@@ -152,9 +156,7 @@ template <int D> class ExplicitSolver {
   // Checkpoint and restart: the state to save, and restoring it with the current stage's
   // materials. The next step maps the grid afresh from the particles, which gives the same
   // points bit for bit as the fused map (test FusedMapEqualsAFreshMapEveryStep).
-  SolverClock clock() const {
-    return {time_, steps_, ramp_start_, settings_.gravity_ramp_time, energy_};
-  }
+  SolverClock clock() const { return {time_, steps_, ramp_start_, settings_.gravity_ramp_time, energy_}; }
   void restore(const SolverClock& c, std::vector<Material> materials) {
     materials_ = std::move(materials);
     for (Material& m : materials_) m.prepare();
@@ -170,27 +172,37 @@ template <int D> class ExplicitSolver {
   friend struct UpdateStressFirst;
   friend struct UpdateStressLast;
   friend struct AveragedScheme;
-  template <class K, class Scheme> StepStatus step_with(const K& kernel);
-  template <class F> decltype(auto) dispatch(F&& f) {
+  template <class K, class Scheme>
+  StepStatus step_with(const K& kernel);
+  template <class F>
+  decltype(auto) dispatch(F&& f) {
     return with_kernel<D>(settings_.interpolation, settings_.quadrature_points, f);
   }
 
   // Phases of one step (Thesis §2.2.1, §4.4), called in order by the scheme types. Each is
   // one tight parallel loop over the points or over the box of grid nodes; a phase that
   // finds a failing point sets status_ and returns false.
-  template <class K> bool map_mass_momentum(const K& kernel);          // eq. 2.53-2.54
-  template <class K> void map_body_fields(const K& kernel);            // Paper III §C.2.7
-  void nodal_velocity();                                               // eq. 2.23
-  template <class K> bool stress_update_and_internal_force(const K& kernel, double dt_stress);
-  template <class K> void internal_force(const K& kernel);             // eq. 2.51
-  void grid_update();                                                  // eq. 2.49, 5.8-5.11
-  void contact();                                                      // Paper III §C.2.7, C.36
-  template <class K> void velocity_and_remap(const K& kernel);         // eq. 2.56, §4.4 step 6
-  void remap_velocity();                                               // v~_i = p~_i / m_i
-  template <class K> bool stress_update_move_and_map(const K& kernel, double dt_stress);
-  template <class K> bool velocity_move_and_map(const K& kernel);      // eq. 2.55-2.56
+  template <class K>
+  bool map_mass_momentum(const K& kernel);  // eq. 2.53-2.54
+  template <class K>
+  void map_body_fields(const K& kernel);  // Paper III §C.2.7
+  void nodal_velocity();                  // eq. 2.23
+  template <class K>
+  bool stress_update_and_internal_force(const K& kernel, double dt_stress);
+  template <class K>
+  void internal_force(const K& kernel);  // eq. 2.51
+  void grid_update();                    // eq. 2.49, 5.8-5.11
+  void contact();                        // Paper III §C.2.7, C.36
+  template <class K>
+  void velocity_and_remap(const K& kernel);  // eq. 2.56, §4.4 step 6
+  void remap_velocity();                     // v~_i = p~_i / m_i
+  template <class K>
+  bool stress_update_move_and_map(const K& kernel, double dt_stress);
+  template <class K>
+  bool velocity_move_and_map(const K& kernel);  // eq. 2.55-2.56
   // XPIC(m): the nodal velocity the points take, into velocity_next (before m_i, p_i are cleared).
-  template <class K> void xpic_grid_velocity(const K& kernel);
+  template <class K>
+  void xpic_grid_velocity(const K& kernel);
   // The PIC share of the particle update: pic_fraction for FLIP, 1 for XPIC and APIC.
   double pic_share() const {
     return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
@@ -201,15 +213,19 @@ template <int D> class ExplicitSolver {
   void body_grid_update();
   void body_remap_velocity();
   void clear_body_mass_momentum();
-  template <class Get, class Set> ContactLoss couple_nodes(Get&& get, Set&& set);
+  template <class Get, class Set>
+  ContactLoss couple_nodes(Get&& get, Set&& set);
   // fn(fields, points, body) for each continuum: the centre-of-mass fields and every point
   // without contact; each deformable body's fields and points with it.
-  template <class Fn> void for_each_continuum(Fn&& fn);
+  template <class Fn>
+  void for_each_continuum(Fn&& fn);
   // Rigid bodies' points: velocity set, moved (if their velocity is not zero) and mapped.
   void rigid_velocity();
-  template <class K> long move_and_map_rigid(const K& kernel, Extent<D>& all);
+  template <class K>
+  long move_and_map_rigid(const K& kernel, Extent<D>& all);
 
-  template <class K> void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
+  template <class K>
+  void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
 
   Transfer<D> transfer_;
   Particles<D>& particles_;
@@ -219,16 +235,16 @@ template <int D> class ExplicitSolver {
   WallBox<D> walls_;
   GridFields<D> fields_;
   std::vector<BodyFields<D>> bodies_;
-  NodeBox<D> body_box_;  // where the body fields were last written
+  NodeBox<D> body_box_;               // where the body fields were last written
   std::vector<double> contact_sums_;  // per-thread work sums of the contact phase
   PhaseTimer timer_;
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
-  std::size_t mapped_points_ = 0;  // the number of points the map was made for
-  std::vector<double> node_mass_;          // nodal mass of the smoothing (eq. 4.18)
-  std::vector<Sym3> node_stress_;          // nodal stresses for smoothing (eq. 4.18)
-  std::vector<Vec<D>> node_velocity_;      // nodal velocities mapped with the smoothing
+  std::size_t mapped_points_ = 0;      // the number of points the map was made for
+  std::vector<double> node_mass_;      // nodal mass of the smoothing (eq. 4.18)
+  std::vector<Sym3> node_stress_;      // nodal stresses for smoothing (eq. 4.18)
+  std::vector<Vec<D>> node_velocity_;  // nodal velocities mapped with the smoothing
   double time_ = 0.0;
   double ramp_start_ = 0.0;  // time at which the gravity ramp starts
   long steps_ = 0;

@@ -9,7 +9,8 @@
 
 namespace skred {
 
-template <int D> struct GridFields {
+template <int D>
+struct GridFields {
   GridArray<double> mass;            // m_i = sum N_ip m_p (Thesis eq. 2.53)
   GridArray<Vec<D>> momentum;        // p_i = sum N_ip m_p v_p (eq. 2.54)
   GridArray<Vec<D>> velocity;        // v_i^k = p_i / m_i under the velocity conditions (eq. 2.23)
@@ -18,7 +19,7 @@ template <int D> struct GridFields {
   // update; after the boundary conditions (v_i^{k+1} - p_i / m_i) / dt, the velocity change
   // handed to the particles (eq. 2.56), so that they obey the walls too.
   GridArray<Vec<D>> acceleration;
-  GridArray<Vec<D>> velocity_move;   // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
+  GridArray<Vec<D>> velocity_move;  // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
   // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update and
   // APIC; for XPIC(m), v_i^{k+1} - p_i / m_i + v*_i (allocated only when the transfer uses it).
   GridArray<Vec<D>> velocity_next;
@@ -32,8 +33,7 @@ template <int D> struct GridFields {
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
   void resize(std::size_t n, bool pic, bool remap, bool xpic = false) {
-    for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move})
-      f->resize(n);
+    for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move}) f->resize(n);
     mass.resize(n);
     if (pic || xpic) velocity_next.resize(n);
     if (xpic) {
@@ -52,6 +52,7 @@ template <int D> struct GridFields {
 // what multi-continuum contact (Paper III §C.2.7) works on. Without contact only m_i^b and
 // p_i^b are allocated; with contact every array, each with the meaning above for body b
 // alone (f_i^int,b, a_i^b after contact, ...).
-template <int D> struct BodyFields : GridFields<D> {};
+template <int D>
+struct BodyFields : GridFields<D> {};
 
 }  // namespace skred

@@ -11,7 +11,8 @@
 namespace skred {
 
 // Thesis eq. 2.23: v_i^k = p_i / m_i, then the velocity boundary conditions.
-template <int D> void ExplicitSolver<D>::nodal_velocity() {
+template <int D>
+void ExplicitSolver<D>::nodal_velocity() {
   timer_.time(Phase::NodalVelocity, [&] {
     if (contact_on()) return body_nodal_velocity();  // each body its own (contact.cpp)
     const double* __restrict mass = fields_.mass.data();
@@ -28,7 +29,8 @@ template <int D> void ExplicitSolver<D>::nodal_velocity() {
 // v~_i = p~_i / m_i from the double mapping (USL, averaged), under the velocity boundary
 // conditions. m_i, p_i and p~_i are used up: they are cleared behind, ready for the next
 // step's map.
-template <int D> void ExplicitSolver<D>::remap_velocity() {
+template <int D>
+void ExplicitSolver<D>::remap_velocity() {
   timer_.time(Phase::RemapVelocity, [&] {
     if (contact_on()) return body_remap_velocity();  // each body its own (contact.cpp)
     double* __restrict mass = fields_.mass.data();
@@ -46,7 +48,8 @@ template <int D> void ExplicitSolver<D>::remap_velocity() {
   });
 }
 
-template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
+template <int D>
+void ExplicitSolver<D>::clear_mass_momentum() {
   transfer_.for_box([&](std::size_t i) {
     fields_.mass[i] = 0.0;
     fields_.momentum[i].setZero();
@@ -57,7 +60,8 @@ template <int D> void ExplicitSolver<D>::clear_mass_momentum() {
 // (eq. 2.52, uniform gravity); the particles move with v_i + dt/2 a_i (eq. 2.55, Post eq.
 // 31). Then the boundary conditions, including friction (eq. 5.8-5.11), on the wall nodes.
 // What the walls take is friction work (EnergyTotals).
-template <int D> void ExplicitSolver<D>::grid_update() {
+template <int D>
+void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
     const Vec<D> g = gravity_now_;
@@ -82,10 +86,10 @@ template <int D> void ExplicitSolver<D>::grid_update() {
   });
 }
 
-#define SKRED_GRID_PHASES(D)                                  \
-  template void ExplicitSolver<D>::nodal_velocity();          \
-  template void ExplicitSolver<D>::remap_velocity();          \
-  template void ExplicitSolver<D>::clear_mass_momentum();     \
+#define SKRED_GRID_PHASES(D)                              \
+  template void ExplicitSolver<D>::nodal_velocity();      \
+  template void ExplicitSolver<D>::remap_velocity();      \
+  template void ExplicitSolver<D>::clear_mass_momentum(); \
   template void ExplicitSolver<D>::grid_update();
 SKRED_GRID_PHASES(2)
 SKRED_GRID_PHASES(3)

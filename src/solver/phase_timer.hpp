@@ -12,25 +12,25 @@
 namespace skred {
 
 enum class Phase {
-  MapMassMomentum,          // p2g of m_i, p_i (eq. 2.53-2.54), when not done by the last step
-  BodyFields,               // p2g per body (Paper III §C.2.7)
-  NodalVelocity,            // v_i^k (eq. 2.23)
-  StressUpdateForce,        // stress update, then p2g of f_i^int (USF, averaged first half)
-  InternalForce,            // p2g of f_i^int from the current stresses (USL)
-  GridUpdate,               // a_i, v_i^{k+1}, boundaries (eq. 2.49, 5.8-5.11)
-  Contact,                  // contact between bodies (Paper III §C.2.7; runs with contact only)
-  VelocityRemap,            // g2p of v_p, p2g of p~_i (USL, averaged)
-  RemapVelocity,            // v~_i = p~_i / m_i (USL, averaged)
-  StressUpdateMoveMap,      // stress update, g2p of x_p, next step's p2g (USL, averaged)
-  VelocityMoveMap,          // g2p of v_p and x_p, next step's p2g (USF)
+  MapMassMomentum,      // p2g of m_i, p_i (eq. 2.53-2.54), when not done by the last step
+  BodyFields,           // p2g per body (Paper III §C.2.7)
+  NodalVelocity,        // v_i^k (eq. 2.23)
+  StressUpdateForce,    // stress update, then p2g of f_i^int (USF, averaged first half)
+  InternalForce,        // p2g of f_i^int from the current stresses (USL)
+  GridUpdate,           // a_i, v_i^{k+1}, boundaries (eq. 2.49, 5.8-5.11)
+  Contact,              // contact between bodies (Paper III §C.2.7; runs with contact only)
+  VelocityRemap,        // g2p of v_p, p2g of p~_i (USL, averaged)
+  RemapVelocity,        // v~_i = p~_i / m_i (USL, averaged)
+  StressUpdateMoveMap,  // stress update, g2p of x_p, next step's p2g (USL, averaged)
+  VelocityMoveMap,      // g2p of v_p and x_p, next step's p2g (USF)
   Count
 };
 
 inline const char* phase_name(Phase p) {
   static constexpr const char* names[] = {
-      "map_mass_momentum", "body_fields",   "nodal_velocity", "stress_update_force",
-      "internal_force",    "grid_update",   "contact",        "velocity_remap",
-      "remap_velocity",    "stress_update_move_map", "velocity_move_map"};
+      "map_mass_momentum", "body_fields", "nodal_velocity", "stress_update_force", "internal_force",
+      "grid_update",       "contact",     "velocity_remap", "remap_velocity",      "stress_update_move_map",
+      "velocity_move_map"};
   return names[static_cast<std::size_t>(p)];
 }
 
@@ -38,7 +38,8 @@ class PhaseTimer {
  public:
   static constexpr std::size_t kCount = static_cast<std::size_t>(Phase::Count);
   // fn(), its wall time added to phase p.
-  template <class Fn> decltype(auto) time(Phase p, Fn&& fn) {
+  template <class Fn>
+  decltype(auto) time(Phase p, Fn&& fn) {
     const double t0 = omp_get_wtime();
     struct Add {
       double& s;

@@ -8,7 +8,8 @@
 
 namespace skred {
 
-template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
+template <int D>
+ParticleTotals<D> ExplicitSolver<D>::totals() const {
   const auto& P = particles_;
   const long n = static_cast<long>(P.size());
   double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
@@ -19,8 +20,8 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   for (long p = 0; p < n; ++p) {
     const double m = P.mass[p], s = P.v[p].norm();
     mass += m;
-    ke += 0.5 * m * s * s;           // eq. 4.15
-    speed_mass += m * s;             // eq. 5.12
+    ke += 0.5 * m * s * s;  // eq. 4.15
+    speed_mass += m * s;    // eq. 5.12
     vmax = std::max(vmax, s);
     mom += m * P.v[p];
     yielding += P.state[p].yielding;
@@ -35,7 +36,8 @@ template <int D> ParticleTotals<D> ExplicitSolver<D>::totals() const {
   return t;
 }
 
-template <int D> void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out) {
+template <int D>
+void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out) {
   dispatch([&](const auto& kernel) { smoothed_stress_with(kernel, out); });
 }
 
@@ -76,7 +78,8 @@ void ExplicitSolver<D>::smoothed_stress_with(const K& kernel, std::vector<Sym3>&
   }
 }
 
-template <int D> void ExplicitSolver<D>::reset_reference() {
+template <int D>
+void ExplicitSolver<D>::reset_reference() {
   particles_.x_ref = particles_.x;
   energy_ = EnergyTotals{};
 }
@@ -97,10 +100,10 @@ void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double grav
   }
 }
 
-#define SKRED_RESULTS(D)                                                                      \
-  template ParticleTotals<D> ExplicitSolver<D>::totals() const;                               \
-  template void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>&);                       \
-  template void ExplicitSolver<D>::reset_reference();                                         \
+#define SKRED_RESULTS(D)                                                \
+  template ParticleTotals<D> ExplicitSolver<D>::totals() const;         \
+  template void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>&); \
+  template void ExplicitSolver<D>::reset_reference();                   \
   template void ExplicitSolver<D>::begin_stage(std::vector<Material>, double);
 SKRED_RESULTS(2)
 SKRED_RESULTS(3)

@@ -25,11 +25,11 @@
 namespace skred {
 
 struct SplitSettings {
-  double alpha = 2.0;  // F_split,kk > alpha: stretched along k (eq. 3.25)
-  double beta = 0.5;   // F_split,kk < beta: squeezed along k
-  double gamma = 1.0;  // |F_split,ij| > gamma: sheared
-  int reference_after = 4;  // splits after which the reference split of §3.4.2 is used
-  long max_points = 0;      // no split once the run holds this many points (0: no cap)
+  double alpha = 2.0;                     // F_split,kk > alpha: stretched along k (eq. 3.25)
+  double beta = 0.5;                      // F_split,kk < beta: squeezed along k
+  double gamma = 1.0;                     // |F_split,ij| > gamma: sheared
+  int reference_after = 4;                // splits after which the reference split of §3.4.2 is used
+  long max_points = 0;                    // no split once the run holds this many points (0: no cap)
   std::vector<std::uint8_t> body_splits;  // per body id: 1 if its points split
 };
 
@@ -41,7 +41,8 @@ struct SplitMode {
 };
 
 // The first criterion of eq. 3.25 that F_split (= F G) meets, in the order of the thesis.
-template <int D> SplitMode split_mode(const Mat<D>& Fs, const Mat<D>& F, const SplitSettings& s) {
+template <int D>
+SplitMode split_mode(const Mat<D>& Fs, const Mat<D>& F, const SplitSettings& s) {
   // A squeezed axis is split across the longest of the other deformed edges.
   const auto longest_other = [&](int k) {
     int best = k == 0 ? 1 : 0;
@@ -61,7 +62,8 @@ template <int D> SplitMode split_mode(const Mat<D>& Fs, const Mat<D>& F, const S
 
 // Splits every point of a splitting body that meets a criterion (once per call; the children
 // are looked at from the next call on). Returns the number of splits made.
-template <int D> long split_points(Particles<D>& P, const SplitSettings& s) {
+template <int D>
+long split_points(Particles<D>& P, const SplitSettings& s) {
   P.enable_splitting();
   const std::size_t n = P.size();
   long made = 0;

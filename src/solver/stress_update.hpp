@@ -6,7 +6,8 @@
 namespace skred {
 
 // Push-forward sigma = dF S dF^T / det(dF) (Thesis eq. 4.4).
-template <int D> [[gnu::always_inline]] inline Sym3 push_forward(const Mat<D>& dF, const Sym3& S) {
+template <int D>
+[[gnu::always_inline]] inline Sym3 push_forward(const Mat<D>& dF, const Sym3& S) {
   if constexpr (D == 2) {
     const double J = dF.determinant();
     Mat<2> s2;
@@ -32,9 +33,8 @@ struct StressUpdateResult {
 // branch; Plastic = false (d_eps_p = 0) drops the plastic terms.
 template <bool Plastic>
 [[gnu::always_inline]] inline StressUpdateResult finish_plane_update(
-    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3,
-    double p0, double p1, double p2, double p3, double volume0, PointStress<2>& stress, Mat<2>& F,
-    Mat<2>& Fe) {
+    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3, double p0,
+    double p1, double p2, double p3, double volume0, PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe) {
   const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);
   // Push-forward sigma = dF S dF^T / det dF (eq. 4.4).
   const double a00 = 1.0 + g00, a11 = 1.0 + g11;
@@ -75,9 +75,11 @@ template <bool Plastic>
 // updated by Fe <- (I + d_eps - d_eps_p) Fe (Post eq. 72-73). The trapezoidal stress work
 // splits exactly into the stored (elastic) part and the plastic dissipation.
 template <int D>
-[[gnu::always_inline]] inline StressUpdateResult update_point_stress(
-    const Material& mat, const Mat<D>& grad_v, double dt, double volume0, PointStress<D>& stress,
-    PointState& state, Mat<D>& F, Mat<D>& Fe) {
+[[gnu::always_inline]] inline StressUpdateResult update_point_stress(const Material& mat,
+                                                                     const Mat<D>& grad_v, double dt,
+                                                                     double volume0, PointStress<D>& stress,
+                                                                     PointState& state, Mat<D>& F,
+                                                                     Mat<D>& Fe) {
   if constexpr (D == 2) {
     // Plane strain written out in scalars: this runs twice per point and step.
     const double g00 = dt * grad_v(0, 0), g01 = dt * grad_v(0, 1);
@@ -85,28 +87,34 @@ template <int D>
     const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);  // d_eps (eq. 2.20)
     const double o0 = stress[0], o1 = stress[1], o2 = stress[2], o3 = stress[3];
     double p0 = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0;  // d_eps_p
-    if (mat.model == Model::LinearElastic) {  // eq. 2.5
+    if (mat.model == Model::LinearElastic) {        // eq. 2.5
       const double tr = e0 + e1, lam = mat.elastic_constants.lambda * tr;
       const double two_g = mat.elastic_constants.two_g;
       stress[0] = o0 + lam + two_g * e0;
       stress[1] = o1 + lam + two_g * e1;
       stress[2] = o2 + lam;
       stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
-      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0,
-                                        volume0, stress, F, Fe);
+      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0, volume0,
+                                        stress, F, Fe);
     } else if (mat.model == Model::MohrCoulomb || mat.model == Model::Tresca) {
-      const Eigen::Vector4d dp = mohr_coulomb_update_plane(
-          mat.elastic_constants, mat.mohr_coulomb_constants, stress, e0, e1, e3, state);
-      p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
+      const Eigen::Vector4d dp = mohr_coulomb_update_plane(mat.elastic_constants, mat.mohr_coulomb_constants,
+                                                           stress, e0, e1, e3, state);
+      p0 = dp[0];
+      p1 = dp[1];
+      p2 = dp[2];
+      p3 = dp[3];
     } else {  // von Mises, through the general interface
       Sym3 deps, full = full_stress<2>(stress);
       deps << e0, e1, 0.0, e3, 0.0, 0.0;
       const Sym3 dp = update_stress(mat, full, deps, state);
       stress = full.head<4>();
-      p0 = dp[0]; p1 = dp[1]; p2 = dp[2]; p3 = dp[3];
+      p0 = dp[0];
+      p1 = dp[1];
+      p2 = dp[2];
+      p3 = dp[3];
     }
-    return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0,
-                                     stress, F, Fe);
+    return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0, stress, F,
+                                     Fe);
   } else {
     const Mat<D> G = dt * grad_v;
     const Sym3 deps = sym_voigt<D>(G);

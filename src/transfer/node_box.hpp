@@ -17,7 +17,8 @@ namespace skred {
 inline constexpr int kMaxStencil = 4;
 
 // A box of grid nodes, per axis the first and last index (empty when hi < lo).
-template <int D> struct NodeBox {
+template <int D>
+struct NodeBox {
   std::array<int, D> lo{}, hi{};
   NodeBox() {
     for (int d = 0; d < D; ++d) hi[d] = -1;
@@ -36,7 +37,8 @@ template <int D> struct NodeBox {
 
 // The extent of the points, per axis the lowest and highest coordinate. Kept in registers in
 // the hot loops and merged across threads with reduction(merge : extent).
-template <int D> struct Extent {
+template <int D>
+struct Extent {
   Vec<D> lo = Vec<D>::Constant(INFINITY), hi = Vec<D>::Constant(-INFINITY);
   [[gnu::always_inline]] void add(const Vec<D>& x) {
     lo = lo.cwiseMin(x);
@@ -47,11 +49,11 @@ template <int D> struct Extent {
     hi = hi.cwiseMax(o.hi);
   }
 };
-#pragma omp declare reduction(merge : Extent<2>, Extent<3> : omp_out.merge(omp_in))
+#pragma omp declare reduction(merge : Extent <2>, Extent <3> : omp_out.merge(omp_in))
 
 // Sum of vectors across OpenMP threads: reduction(vsum : v).
-#pragma omp declare reduction(vsum : Vec<2> : omp_out += omp_in) initializer(omp_priv = Vec<2>::Zero())
-#pragma omp declare reduction(vsum : Vec<3> : omp_out += omp_in) initializer(omp_priv = Vec<3>::Zero())
+#pragma omp declare reduction(vsum : Vec <2> : omp_out += omp_in) initializer(omp_priv = Vec <2>::Zero())
+#pragma omp declare reduction(vsum : Vec <3> : omp_out += omp_in) initializer(omp_priv = Vec <3>::Zero())
 
 // Lowest and highest stencil base (flat node index) a thread scattered to.
 struct BaseSpan {
@@ -70,7 +72,8 @@ struct BaseSpan {
 // The nodes the stencils of points within `e` can reach: per axis from the lowest to the
 // highest point, widened by the widest stencil plus one (so that points moving less than a
 // cell within a step stay inside). Outside it the grid fields are zero and never read.
-template <int D> NodeBox<D> reach_of(const GridGeometry<D>& g, const Extent<D>& e) {
+template <int D>
+NodeBox<D> reach_of(const GridGeometry<D>& g, const Extent<D>& e) {
   NodeBox<D> box;
   for (int d = 0; d < D; ++d) {
     if (!(e.lo[d] <= e.hi[d])) return NodeBox<D>{};  // no points

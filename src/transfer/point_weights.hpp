@@ -12,10 +12,12 @@
 
 namespace skred {
 
-template <int D> class PointWeights {
+template <int D>
+class PointWeights {
  public:
   // The stored weights of kernel K for n points (resized only when n changes).
-  template <class K> typename K::Packed* get(std::size_t n) {
+  template <class K>
+  typename K::Packed* get(std::size_t n) {
     using Store = std::vector<typename K::Packed>;
     if (!std::holds_alternative<Store>(store_)) store_.template emplace<Store>();
     Store& s = std::get<Store>(store_);
@@ -28,8 +30,7 @@ template <int D> class PointWeights {
 
  private:
   std::variant<std::monostate, std::vector<typename LinearKernel<D>::Packed>,
-               std::vector<typename GimpKernel<D>::Packed>,
-               std::vector<typename BsplineKernel<D>::Packed>,
+               std::vector<typename GimpKernel<D>::Packed>, std::vector<typename BsplineKernel<D>::Packed>,
                std::vector<QuadratureState<D>>>
       store_;
 };

@@ -11,7 +11,8 @@
 
 namespace skred {
 
-template <int D> class ScatterBuffers {
+template <int D>
+class ScatterBuffers {
  public:
   ScatterBuffers() = default;
   // One buffer per thread beyond the first, each of `nodes` zero nodes. The buffers come
@@ -34,8 +35,7 @@ template <int D> class ScatterBuffers {
 
   // grid += buffers over `box` (only the part of it the buffers' blocks reached), buffers
   // cleared. `mass` may be null when only a vector field was scattered.
-  void reduce(const GridGeometry<D>& g, const NodeBox<D>& box, int threads, double* mass,
-              Vec<D>* vec) {
+  void reduce(const GridGeometry<D>& g, const NodeBox<D>& box, int threads, double* mass, Vec<D>* vec) {
     const std::size_t layer = g.stride(D - 1);  // nodes per index of the last axis
     for (auto& b : buffers_) {
       if (b.span.empty()) continue;

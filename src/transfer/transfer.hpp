@@ -14,10 +14,13 @@
 
 namespace skred {
 
-template <int D> class Transfer {
+template <int D>
+class Transfer {
  public:
   Transfer(const GridGeometry<D>& grid, int threads)
-      : grid_(grid), strides_(grid), threads_(std::max(1, threads)),
+      : grid_(grid),
+        strides_(grid),
+        threads_(std::max(1, threads)),
         scatter_(grid.node_count(), std::max(1, threads)) {}
 
   const GridGeometry<D>& grid() const { return grid_; }
@@ -28,7 +31,8 @@ template <int D> class Transfer {
   // extent); every grid phase runs over it.
   const NodeBox<D>& box() const { return box_; }
   void set_box(const Extent<D>& e) { box_ = reach_of(grid_, e); }
-  template <class Fn> void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX) const {
+  template <class Fn>
+  void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX) const {
     skred::for_box(grid_, box_, threads_, fn, last_lo, last_hi);
   }
 

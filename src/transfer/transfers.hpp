@@ -31,10 +31,10 @@ struct BodyPoints {
 template <int D, class K>
 [[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
                                              const NodeStrides<D>& strides, const Vec<D>& x,
-                                             const Vec<D>& half0, const Mat<D>& F, double m,
-                                             const Vec<D>& v, typename K::Packed& store,
-                                             double* __restrict mass, Vec<D>* __restrict mom,
-                                             BaseSpan& span, const Mat<D>* C = nullptr) {
+                                             const Vec<D>& half0, const Mat<D>& F, double m, const Vec<D>& v,
+                                             typename K::Packed& store, double* __restrict mass,
+                                             Vec<D>* __restrict mom, BaseSpan& span,
+                                             const Mat<D>* C = nullptr) {
   typename K::Shape sh;
   if (!kernel.shape(grid, x, half0, F, sh)) return false;
   kernel.store(store, sh, F);
@@ -52,8 +52,7 @@ template <int D, class K>
 // points' extent (with the points' affine velocities, if stored: APIC). Returns the first
 // point whose stencil leaves the grid, or -1.
 template <int D, class K>
-long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, double* m,
-                       Vec<D>* p) {
+long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, double* m, Vec<D>* p) {
   const Mat<D>* affine = P.affine.size() == P.size() ? P.affine.data() : nullptr;
   const long n = static_cast<long>(P.size());
   const GridGeometry<D>& grid = T.grid();
@@ -75,8 +74,8 @@ long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, d
     BaseSpan span;
 #pragma omp for schedule(static) nowait
     for (long q = 0; q < n; ++q) {
-      if (!map_point(kernel, grid, strides, x[q], half0[q], F[q], pmass[q], v[q], shape[q], mass,
-                     mom, span, affine ? affine + q : nullptr))
+      if (!map_point(kernel, grid, strides, x[q], half0[q], F[q], pmass[q], v[q], shape[q], mass, mom, span,
+                     affine ? affine + q : nullptr))
         bad = std::min(bad, q);
       extent.add(x[q]);
     }
@@ -92,8 +91,8 @@ long p2g_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, d
 // (not loaded from the stored ones, which can differ in the last bit), so that this map equals
 // the per-body map that ends a step with contact bit for bit.
 template <int D, class K>
-void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, int body,
-                            double* m, Vec<D>* p) {
+void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>& P, int body, double* m,
+                            Vec<D>* p) {
   const long n = static_cast<long>(P.size());
   ScatterBuffers<D>& S = T.scatter();
 #pragma omp parallel num_threads(T.threads())
@@ -122,8 +121,7 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
 // f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses (of
 // the points `sel` selects), into a zeroed array f.
 template <int D, class K, class Sel = AllPoints>
-void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f,
-                        Sel sel = {}) {
+void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f, Sel sel = {}) {
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
@@ -162,15 +160,14 @@ void for_each_stored_shape(Transfer<D>& T, const K& kernel, const Particles<D>& 
 
 // out_p = sum_i N_ip v_i (eq. 2.56 with a nodal field v).
 template <int D, class K>
-void g2p_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v,
-                  Vec<D>* out) {
+void g2p_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v, Vec<D>* out) {
   for_each_stored_shape(T, kernel, P, [&](long q, const auto& sh) { out[q] = gather(sh, T.strides(), v); });
 }
 
 // out_p = sum_i v_i (x) grad N_ip: the velocity gradient of eq. 2.20.
 template <int D, class K>
-void g2p_velocity_gradient(Transfer<D>& T, const K& kernel, const Particles<D>& P,
-                           const Vec<D>* v, Mat<D>* out) {
+void g2p_velocity_gradient(Transfer<D>& T, const K& kernel, const Particles<D>& P, const Vec<D>* v,
+                           Mat<D>* out) {
   for_each_stored_shape(T, kernel, P,
                         [&](long q, const auto& sh) { out[q] = gather_gradient(sh, T.strides(), v); });
 }

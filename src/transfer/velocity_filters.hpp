@@ -13,9 +13,8 @@ namespace skred {
 // B-spline).
 template <int D, class Shape>
 [[gnu::always_inline]] inline void scatter_affine(const Shape& sh, const GridGeometry<D>& g,
-                                                  const NodeStrides<D>& strides, const Vec<D>& x,
-                                                  double m, const Vec<D>& v, const Mat<D>& C,
-                                                  Vec<D>* __restrict mom) {
+                                                  const NodeStrides<D>& strides, const Vec<D>& x, double m,
+                                                  const Vec<D>& v, const Mat<D>& C, Vec<D>* __restrict mom) {
   const Vec<D> mv = m * v;
   const Mat<D> mC = m * C;
   for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {

@@ -29,7 +29,9 @@ struct ElasticConstants {
   const double lam = e.lambda, two_g = e.two_g;
   const double tr = deps[0] + deps[1] + deps[2];
   Sym3 ds = two_g * deps;
-  ds[0] += lam * tr; ds[1] += lam * tr; ds[2] += lam * tr;
+  ds[0] += lam * tr;
+  ds[1] += lam * tr;
+  ds[2] += lam * tr;
   return ds;
 }
 

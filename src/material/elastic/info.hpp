@@ -10,8 +10,7 @@ namespace skred {
 inline constexpr ParamSpec kElasticParamSpecs[] = {
     {"density", "kg/m^3", kNoDefault, 1e-3, 1e6, false, false, true, 2000.0, "mass density rho_0"},
     {"young", "Pa", kNoDefault, 1e-3, kMaxStress, false, false, true, 1e+07, "Young's modulus E"},
-    {"poisson", "-", kNoDefault, 0.0, 0.5, false, true, true, 0.3,
-     "Poisson's ratio nu, 0 <= nu < 0.5"},
+    {"poisson", "-", kNoDefault, 0.0, 0.5, false, true, true, 0.3, "Poisson's ratio nu, 0 <= nu < 0.5"},
 };
 
 inline constexpr ModelInfo kLinearElasticInfo{

@@ -34,13 +34,10 @@ inline constexpr ModelInfo kMohrCoulombInfo{
     kMohrCoulombParamSpecs};
 
 inline constexpr ModelInfo kTrescaInfo{
-    "tresca", "Tresca: Mohr-Coulomb with phi = psi = 0 and c = s_u (Thesis eq. 5.1-5.4)",
-    kTrescaParamSpecs};
+    "tresca", "Tresca: Mohr-Coulomb with phi = psi = 0 and c = s_u (Thesis eq. 5.1-5.4)", kTrescaParamSpecs};
 
 // Strength for the relative yield function (Post eq. 66): the Mohr-Coulomb envelope itself.
-inline MaterialStrength mohr_coulomb_strength(const MohrCoulombParams& p) {
-  return {p.friction, p.cohesion};
-}
+inline MaterialStrength mohr_coulomb_strength(const MohrCoulombParams& p) { return {p.friction, p.cohesion}; }
 inline MaterialStrength tresca_strength(const MohrCoulombParams& p) { return {0.0, p.cohesion}; }
 
 }  // namespace skred

@@ -15,26 +15,57 @@ using R = MohrCoulombRegion;
 void plane_gradients(int i, double sin_phi, double sin_psi, Vec3& a, Vec3& b) {
   const double sp = sin_phi, sq = sin_psi;
   switch (i) {
-    case 0: a = Vec3(-(1 - sp), 0, 1 + sp) * 0.5; b = Vec3(-(1 - sq), 0, 1 + sq) * 0.5; return;
-    case 1: a = Vec3(-(1 - sp), 1 + sp, 0) * 0.5; b = Vec3(-(1 - sq), 1 + sq, 0) * 0.5; return;
-    case 2: a = Vec3(0, -(1 - sp), 1 + sp) * 0.5; b = Vec3(0, -(1 - sq), 1 + sq) * 0.5; return;
+    case 0:
+      a = Vec3(-(1 - sp), 0, 1 + sp) * 0.5;
+      b = Vec3(-(1 - sq), 0, 1 + sq) * 0.5;
+      return;
+    case 1:
+      a = Vec3(-(1 - sp), 1 + sp, 0) * 0.5;
+      b = Vec3(-(1 - sq), 1 + sq, 0) * 0.5;
+      return;
+    case 2:
+      a = Vec3(0, -(1 - sp), 1 + sp) * 0.5;
+      b = Vec3(0, -(1 - sq), 1 + sq) * 0.5;
+      return;
     default: a = b = Vec3::Unit(5 - i); return;
   }
 }
 
 }  // namespace
 
-Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulombConstants& k,
-                                    double sin_psi, MohrCoulombRegion region) {
+Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulombConstants& k, double sin_psi,
+                                    MohrCoulombRegion region) {
   int planes[2], n = 0;
   switch (region) {
     case R::Elastic: return Mat3::Identity();
-    case R::Plane: planes[0] = 0; n = 1; break;
-    case R::Tension: planes[0] = 3; n = 1; break;
-    case R::CompressionEdge: planes[0] = 0; planes[1] = 1; n = 2; break;
-    case R::ExtensionEdge: planes[0] = 0; planes[1] = 2; n = 2; break;
-    case R::PlaneTension: planes[0] = 0; planes[1] = 3; n = 2; break;
-    case R::TensionEdge: planes[0] = 3; planes[1] = 4; n = 2; break;
+    case R::Plane:
+      planes[0] = 0;
+      n = 1;
+      break;
+    case R::Tension:
+      planes[0] = 3;
+      n = 1;
+      break;
+    case R::CompressionEdge:
+      planes[0] = 0;
+      planes[1] = 1;
+      n = 2;
+      break;
+    case R::ExtensionEdge:
+      planes[0] = 0;
+      planes[1] = 2;
+      n = 2;
+      break;
+    case R::PlaneTension:
+      planes[0] = 0;
+      planes[1] = 3;
+      n = 2;
+      break;
+    case R::TensionEdge:
+      planes[0] = 3;
+      planes[1] = 4;
+      n = 2;
+      break;
     // Apex, tension apex and the corners: the returned point is a fixed vertex.
     case R::Apex:
     case R::TensionApex:
@@ -68,9 +99,8 @@ Mat6 spectral_tangent(const Vec3& lambda, const Mat3& v, const Vec3& s, const Ma
     for (int j = 0; j < 3; ++j) {
       if (i == j) continue;
       const double dl = lambda[i] - lambda[j];
-      omega(i, j) = std::abs(dl) > 1e-10 * scale
-                        ? (s[i] - s[j]) / dl
-                        : 0.5 * (J(i, i) - J(i, j) - J(j, i) + J(j, j));
+      omega(i, j) =
+          std::abs(dl) > 1e-10 * scale ? (s[i] - s[j]) / dl : 0.5 * (J(i, i) - J(i, j) - J(j, i) + J(j, j));
     }
   Mat6 T;
   for (int c = 0; c < 6; ++c) {
@@ -82,9 +112,9 @@ Mat6 spectral_tangent(const Vec3& lambda, const Mat3& v, const Vec3& s, const Ma
   return T;
 }
 
-LawResult mohr_coulomb_evaluate(const ElasticConstants& e, const MohrCoulombConstants& k,
-                                const Sym3& stress, const Sym3& deps, const PointState& state,
-                                bool want_tangent, MohrCoulombRegion* region) {
+LawResult mohr_coulomb_evaluate(const ElasticConstants& e, const MohrCoulombConstants& k, const Sym3& stress,
+                                const Sym3& deps, const PointState& state, bool want_tangent,
+                                MohrCoulombRegion* region) {
   LawResult r;
   r.stress = stress;
   r.state = state;

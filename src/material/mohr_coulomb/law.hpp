@@ -26,8 +26,8 @@
 namespace skred {
 
 // J = d s / d lambda of the principal return in `region` (see above); the identity for Elastic.
-Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulombConstants& k,
-                                    double sin_psi, MohrCoulombRegion region);
+Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulombConstants& k, double sin_psi,
+                                    MohrCoulombRegion region);
 
 // d sigma / d sigma^tr (6 x 6, Voigt, tensor shear components) of the isotropic map
 // sigma = sum_i s_i v_i v_i^T with principal Jacobian J, trial values `lambda` (ascending) and
@@ -35,8 +35,8 @@ Mat3 mohr_coulomb_principal_tangent(const ElasticConstants& e, const MohrCoulomb
 Mat6 spectral_tangent(const Vec3& lambda, const Mat3& v, const Vec3& s, const Mat3& J);
 
 // The const law. `region` (optional) receives the return region.
-LawResult mohr_coulomb_evaluate(const ElasticConstants& e, const MohrCoulombConstants& k,
-                                const Sym3& stress, const Sym3& deps, const PointState& state,
-                                bool want_tangent, MohrCoulombRegion* region = nullptr);
+LawResult mohr_coulomb_evaluate(const ElasticConstants& e, const MohrCoulombConstants& k, const Sym3& stress,
+                                const Sym3& deps, const PointState& state, bool want_tangent,
+                                MohrCoulombRegion* region = nullptr);
 
 }  // namespace skred

@@ -46,10 +46,10 @@ namespace {
 using R = MohrCoulombRegion;
 
 struct Plane {
-  Vec3 a;     // gradient of the yield function
-  double k;   // f = a . sigma - k
-  Vec3 b;     // gradient of the plastic potential
-  Vec3 Db;    // D b
+  Vec3 a;    // gradient of the yield function
+  double k;  // f = a . sigma - k
+  Vec3 b;    // gradient of the plastic potential
+  Vec3 Db;   // D b
   double Db_norm;
 };
 
@@ -142,7 +142,12 @@ void snap(R region, const MohrCoulombConstants& k, Vec3& s) {
       // f = 0 with sigma_3 = t: sigma_1 = ((1 + sin phi) t - 2 c cos phi)/(1 - sin phi).
       const double s1 = ((1.0 + k.sin_phi) * t - 2.0 * k.c_cos_phi) / (1.0 - k.sin_phi);
       s[2] = t;
-      if (region == R::ExtensionCorner) { s[0] = s[1] = s1; } else { s[0] = s1; s[1] = t; }
+      if (region == R::ExtensionCorner) {
+        s[0] = s[1] = s1;
+      } else {
+        s[0] = s1;
+        s[1] = t;
+      }
       break;
     }
     default: break;
@@ -156,8 +161,8 @@ MohrCoulombRegion mohr_coulomb_return(const ElasticConstants& e, const MohrCoulo
   const Vec3 st = sigma;
   const bool tension = k.has_tension_cutoff();
   const double t = k.tension_cutoff;
-  const double scale = k.c_cos_phi + std::max(std::abs(st[0]), std::abs(st[2])) +
-                       (tension ? std::abs(t) : 0.0);
+  const double scale =
+      k.c_cos_phi + std::max(std::abs(st[0]), std::abs(st[2])) + (tension ? std::abs(t) : 0.0);
   const double tol = kYieldRelTol * scale;
   deps_p.setZero();
   if (mohr_coulomb_yield(k, st) <= tol && (!tension || st[2] - t <= tol)) return R::Elastic;

@@ -70,8 +70,7 @@ enum class MohrCoulombRegion : std::uint8_t {
 };
 
 // Yield function eq. 5.1 of ascending principal stresses (tension positive).
-[[gnu::always_inline]] inline double mohr_coulomb_yield(const MohrCoulombConstants& k,
-                                                        const Vec3& p) {
+[[gnu::always_inline]] inline double mohr_coulomb_yield(const MohrCoulombConstants& k, const Vec3& p) {
   return 0.5 * (p[2] - p[0]) + 0.5 * (p[0] + p[2]) * k.sin_phi - k.c_cos_phi;
 }
 inline double mohr_coulomb_yield(const MohrCoulombParams& mc, const Vec3& principal_ascending) {
@@ -97,7 +96,8 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
 // Plastic bookkeeping of the state: engineering shear 2 sqrt(J2) and volume of d_eps_p.
 [[gnu::always_inline]] inline void record_plastic_strain(const Vec3& ep, PointState& state) {
   const double j2 = ((ep[0] - ep[1]) * (ep[0] - ep[1]) + (ep[1] - ep[2]) * (ep[1] - ep[2]) +
-                     (ep[2] - ep[0]) * (ep[2] - ep[0])) / 6.0;
+                     (ep[2] - ep[0]) * (ep[2] - ep[0])) /
+                    6.0;
   state.plastic_shear_strain += 2.0 * std::sqrt(j2);
   state.plastic_volume_strain += ep.sum();
   state.yielding = 1;
@@ -110,8 +110,7 @@ template <class V>
 [[gnu::always_inline]] inline V mohr_coulomb_plastic_plane(const ElasticConstants& e,
                                                            const MohrCoulombConstants& k, V& stress,
                                                            const V& trial, const PlanePrincipal& pp,
-                                                           PointState& state,
-                                                           MohrCoulombRegion* region) {
+                                                           PointState& state, MohrCoulombRegion* region) {
   // Dilation cut-off (Paper III §C.3.2): psi = 0 once e = (1 + e0) exp(eps_v) - 1 >= e_max,
   // evaluated with the updated volume strain.
   const double sq = state.volume_strain >= k.max_volume_strain ? 0.0 : k.sin_psi;
@@ -152,8 +151,8 @@ template <class V>
 }
 
 // The elastic check: f <= tol and sigma_3 - t <= tol, relative to the stress magnitude.
-[[gnu::always_inline]] inline bool mohr_coulomb_admissible(const MohrCoulombConstants& k,
-                                                           const Vec3& p, double tol) {
+[[gnu::always_inline]] inline bool mohr_coulomb_admissible(const MohrCoulombConstants& k, const Vec3& p,
+                                                           double tol) {
   const double scale = k.c_cos_phi + std::max(std::abs(p[0]), std::abs(p[2]));
   return mohr_coulomb_yield(k, p) <= tol * scale &&
          p[2] - k.tension_cutoff <= tol * (scale + std::abs(k.tension_cutoff));
@@ -195,13 +194,15 @@ template <class V>
 
 // Plane strain on the stored components [xx, yy, zz, xy] (the solver's hot path): the same
 // update as above with d_eps = (e0, e1, 0, e3). Returns d_eps_p in the same four components.
-[[gnu::always_inline]] inline Eigen::Vector4d mohr_coulomb_update_plane(
-    const ElasticConstants& e, const MohrCoulombConstants& k, Eigen::Vector4d& stress, double e0,
-    double e1, double e3, PointState& state) {
+[[gnu::always_inline]] inline Eigen::Vector4d mohr_coulomb_update_plane(const ElasticConstants& e,
+                                                                        const MohrCoulombConstants& k,
+                                                                        Eigen::Vector4d& stress, double e0,
+                                                                        double e1, double e3,
+                                                                        PointState& state) {
   const double tr = e0 + e1, lam = e.lambda * tr;
   state.volume_strain += tr;
-  const Eigen::Vector4d trial(stress[0] + lam + e.two_g * e0, stress[1] + lam + e.two_g * e1,
-                              stress[2] + lam, stress[3] + e.two_g * e3);
+  const Eigen::Vector4d trial(stress[0] + lam + e.two_g * e0, stress[1] + lam + e.two_g * e1, stress[2] + lam,
+                              stress[3] + e.two_g * e3);
   const PlanePrincipal pp = plane_principal(trial);
   if (detail::mohr_coulomb_admissible(k, Vec3(pp.v[0], pp.v[1], pp.v[2]), kYieldRelTol)) {
     stress = trial;
@@ -212,8 +213,8 @@ template <class V>
 }
 
 // The fixed interface: same as above with the derived constants built on the fly.
-inline Sym3 mohr_coulomb_update(const ElasticConstants& e, const MohrCoulombParams& mc,
-                                Sym3& stress, const Sym3& deps, PointState& state) {
+inline Sym3 mohr_coulomb_update(const ElasticConstants& e, const MohrCoulombParams& mc, Sym3& stress,
+                                const Sym3& deps, PointState& state) {
   return mohr_coulomb_update(e, MohrCoulombConstants(mc), stress, deps, state);
 }
 

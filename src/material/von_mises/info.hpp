@@ -17,14 +17,11 @@ inline constexpr ParamSpec kVonMisesParamSpecs[] = {
 };
 
 inline constexpr ModelInfo kVonMisesInfo{
-    "von-mises",
-    "von Mises with linear post-peak softening of the cohesion, radial return (Acosta §3.2)",
+    "von-mises", "von Mises with linear post-peak softening of the cohesion, radial return (Acosta §3.2)",
     kVonMisesParamSpecs};
 
 // Strength for the relative yield function (Post eq. 66): in plane strain sqrt(J2) = c is the
 // Tresca envelope phi = 0 with the peak cohesion (reference R5).
-inline MaterialStrength von_mises_strength(const VonMisesParams& p) {
-  return {0.0, p.cohesion_peak};
-}
+inline MaterialStrength von_mises_strength(const VonMisesParams& p) { return {0.0, p.cohesion_peak}; }
 
 }  // namespace skred

@@ -5,9 +5,9 @@
 
 namespace skred {
 
-LawResult von_mises_evaluate(const ElasticConstants& e, const VonMisesParams& vm,
-                             const Sym3& stress, const Sym3& deps, const PointState& state,
-                             bool want_tangent, VonMisesBranch* branch) {
+LawResult von_mises_evaluate(const ElasticConstants& e, const VonMisesParams& vm, const Sym3& stress,
+                             const Sym3& deps, const PointState& state, bool want_tangent,
+                             VonMisesBranch* branch) {
   LawResult r;
   r.stress = stress;
   r.state = state;

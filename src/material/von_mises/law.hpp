@@ -21,8 +21,8 @@ namespace skred {
 enum class VonMisesBranch : std::uint8_t { Elastic, Softening, Residual };
 
 // The const law. `branch` (optional) receives the branch of the return.
-LawResult von_mises_evaluate(const ElasticConstants& e, const VonMisesParams& vm,
-                             const Sym3& stress, const Sym3& deps, const PointState& state,
-                             bool want_tangent, VonMisesBranch* branch = nullptr);
+LawResult von_mises_evaluate(const ElasticConstants& e, const VonMisesParams& vm, const Sym3& stress,
+                             const Sym3& deps, const PointState& state, bool want_tangent,
+                             VonMisesBranch* branch = nullptr);
 
 }  // namespace skred

@@ -8,9 +8,9 @@ namespace skred {
 // engineering shear strain (PointState::plastic_shear_strain). In plane strain at failure
 // sqrt(J2) = (sigma_3 - sigma_1)/2, so this matches Tresca with s_u = c (reference R5).
 struct VonMisesParams {
-  double cohesion_peak = 0.0;       // c_p [Pa]
-  double cohesion_residual = 0.0;   // c_r [Pa], <= c_p
-  double softening_modulus = 0.0;   // H_s [Pa per unit plastic shear strain], <= 0
+  double cohesion_peak = 0.0;      // c_p [Pa]
+  double cohesion_residual = 0.0;  // c_r [Pa], <= c_p
+  double softening_modulus = 0.0;  // H_s [Pa per unit plastic shear strain], <= 0
 };
 
 }  // namespace skred

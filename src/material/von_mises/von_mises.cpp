@@ -16,16 +16,15 @@ namespace skred {
 
 namespace detail {
 
-Sym3 von_mises_plastic(const ElasticConstants& e, const VonMisesParams& vm, Sym3& stress,
-                       const Sym3& trial, double q_trial, PointState& state) {
+Sym3 von_mises_plastic(const ElasticConstants& e, const VonMisesParams& vm, Sym3& stress, const Sym3& trial,
+                       double q_trial, PointState& state) {
   const double G = 0.5 * e.two_g, H = vm.softening_modulus;
   const double kappa = state.plastic_shear_strain;
   // h(dl) = min(q^tr - G dl - c_r, q^tr - G dl - (c_p + H_s (kappa + dl))) is the minimum of
   // two decreasing lines (for G + H_s > 0), so its root is the smaller of their roots.
   const double dl_residual = (q_trial - vm.cohesion_residual) / G;
   double dl = dl_residual;
-  if (G + H > 0.0)
-    dl = std::min(dl, (q_trial - vm.cohesion_peak - H * kappa) / (G + H));
+  if (G + H > 0.0) dl = std::min(dl, (q_trial - vm.cohesion_peak - H * kappa) / (G + H));
   // d_eps_p = dl s^tr/(2 q^tr) (deviatoric, tensor components).
   const double p = (trial[0] + trial[1] + trial[2]) / 3.0;
   Sym3 n = trial;

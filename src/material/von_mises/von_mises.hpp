@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "material/elastic/elastic.hpp"
-#include "material/von_mises/params.hpp"
 #include "material/state.hpp"
+#include "material/von_mises/params.hpp"
 
 namespace skred {
 
@@ -29,17 +29,16 @@ namespace skred {
 inline constexpr double kVonMisesRelTol = 1e-12;
 
 namespace detail {
-Sym3 von_mises_plastic(const ElasticConstants& e, const VonMisesParams& vm, Sym3& stress,
-                       const Sym3& trial, double q_trial, PointState& state);
+Sym3 von_mises_plastic(const ElasticConstants& e, const VonMisesParams& vm, Sym3& stress, const Sym3& trial,
+                       double q_trial, PointState& state);
 }  // namespace detail
 
 // Stress update: `stress` in = sigma^k, out = returned stress; `deps` = total strain increment
 // (tensor components); returns the plastic strain increment (zero when elastic). State updates as
 // mohr_coulomb_update: volume_strain += tr(d_eps); when plastic plastic_shear_strain += dl,
 // plastic_volume_strain += tr(d_eps_p) (= 0 to round-off), yielding = 1; else yielding = 0.
-[[gnu::always_inline]] inline Sym3 von_mises_update(const ElasticConstants& e,
-                                                    const VonMisesParams& vm, Sym3& stress,
-                                                    const Sym3& deps, PointState& state) {
+[[gnu::always_inline]] inline Sym3 von_mises_update(const ElasticConstants& e, const VonMisesParams& vm,
+                                                    Sym3& stress, const Sym3& deps, PointState& state) {
   state.volume_strain += deps[0] + deps[1] + deps[2];
   const Sym3 trial = stress + elastic_increment(e, deps);
   const double q = std::sqrt(second_invariant(trial));
