@@ -326,27 +326,35 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       Mat<D>* const affine =
           settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
+      // One loop per transfer kind (APIC or not), so the FLIP loop carries no affine branch.
+      const auto loop = [&](auto apic_tag) {
+        constexpr bool apic = decltype(apic_tag)::value;
 #pragma omp parallel num_threads(threads()) reduction(+ : lost)
-      {
-        const int t = omp_get_thread_num();
-        Vec<D>* __restrict mom = buffers.vec_target(t, remap);
-        BaseSpan span;
+        {
+          const int t = omp_get_thread_num();
+          Vec<D>* __restrict mom = buffers.vec_target(t, remap);
+          BaseSpan span;
 #pragma omp for schedule(static) nowait
-        for (long p = 0; p < n; ++p) {
-          if (!sel(p)) continue;
-          typename K::Shape sh;
-          kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
-                                              affine ? affine + p : nullptr, pmass[p], lost);
-          v[p] = vp;
-          if (affine)  // APIC: the remap carries the affine velocity too
-            scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
-          else
-            scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
-          span.add(sh.base);
+          for (long p = 0; p < n; ++p) {
+            if (!sel(p)) continue;
+            typename K::Shape sh;
+            kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+            const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+                                                apic ? affine + p : nullptr, pmass[p], lost);
+            v[p] = vp;
+            if constexpr (apic)  // APIC: the remap carries the affine velocity too
+              scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
+            else
+              scatter(sh, strides, Vec<D>(pmass[p] * vp), mom);
+            span.add(sh.base);
+          }
+          buffers.touched(t, span);
         }
-        buffers.touched(t, span);
-      }
+      };
+      if (affine)
+        loop(std::true_type{});
+      else
+        loop(std::false_type{});
       transfer_.reduce(nullptr, remap);
     });
     energy_.transfer_dissipation += lost;
