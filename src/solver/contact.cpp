@@ -218,12 +218,26 @@ void ExplicitSolver<D>::contact() {
   });
 }
 
+// The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.
+template <int D>
+void ExplicitSolver<D>::rigid_velocity() {
+  const ContactSettings<D>& c = settings_.contact;
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+#pragma omp parallel for num_threads(threads()) schedule(static)
+  for (long p = 0; p < n; ++p) {
+    const auto b = static_cast<std::size_t>(P.body[p]);
+    if (c.rigid[b]) P.v[p] = c.rigid_velocity[b];
+  }
+}
+
 #define SKRED_CONTACT_PHASES(D)                                \
   template void ExplicitSolver<D>::body_nodal_velocity();      \
   template void ExplicitSolver<D>::body_grid_update();         \
   template void ExplicitSolver<D>::body_remap_velocity();      \
   template void ExplicitSolver<D>::clear_body_mass_momentum(); \
-  template void ExplicitSolver<D>::contact();
+  template void ExplicitSolver<D>::contact();                  \
+  template void ExplicitSolver<D>::rigid_velocity();
 SKRED_CONTACT_PHASES(2)
 SKRED_CONTACT_PHASES(3)
 #undef SKRED_CONTACT_PHASES

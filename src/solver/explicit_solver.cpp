@@ -520,19 +520,6 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   });
 }
 
-// The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.
-template <int D>
-void ExplicitSolver<D>::rigid_velocity() {
-  const ContactSettings<D>& c = settings_.contact;
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-#pragma omp parallel for num_threads(threads()) schedule(static)
-  for (long p = 0; p < n; ++p) {
-    const auto b = static_cast<std::size_t>(P.body[p]);
-    if (c.rigid[b]) P.v[p] = c.rigid_velocity[b];
-  }
-}
-
 // The rigid bodies' points (contact runs): no stress update; x_p += dt v (only when the body
 // moves), then their mass and momentum mapped into their body's fields for the next step
 // (their mass gives the contact normal). `all` grows by their extent. Returns the first point
