@@ -939,3 +939,47 @@ TEST(VonMises, RandomReturnsRadialOnSurface) {
   }
   std::printf("[VM random] worst |f|/c %.2e\n", worst);
 }
+
+// The eigenvalue-free elastic screen (detail::clearly_elastic) is a sufficient condition: on
+// random 3D states it never calls a stress elastic that lies on or outside the Mohr-Coulomb
+// surface or beyond the tension cut-off (decided with the accurate principal values), and it
+// is tight: on the Lode angle where its bound is attained it accepts stresses up to within
+// 1e-9 of the surface.
+TEST(MohrCoulomb, EigenvalueFreeScreenIsSufficientAndTight) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  long accepted = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    MohrCoulombParams p;
+    p.friction = (trial % 4 == 0 ? 0.0 : 45.0 * (0.5 + 0.5 * u(rng))) * deg;
+    p.cohesion = (1.0 + u(rng)) * 20 * kPa;
+    if (trial % 3 == 0) p.tension_cutoff = 5 * kPa * (1.0 + u(rng));
+    const MohrCoulombConstants k(p);
+    Sym3 s;
+    for (int i = 0; i < 6; ++i) s[i] = 60 * kPa * u(rng) - (i < 3 ? 40 * kPa : 0.0);
+    if (!detail::clearly_elastic(k, s)) continue;
+    ++accepted;
+    const Vec3 v = principal_decomposition(s).values;
+    ASSERT_LT(mohr_coulomb_yield(p, v), 0.0) << "trial " << trial;
+    ASSERT_LT(v[2], k.tension_cutoff) << "trial " << trial;
+  }
+  EXPECT_GT(accepted, 100);  // (a screen that accepted nothing would make the loop vacuous)
+  // Tightness: a = sqrt(J2) cos t, m = (2/sqrt 3) sqrt(J2) sin t with tan t = -sin(phi)/sqrt 3
+  // attains the bound; scaled to f = -1e-9 |p| it must be accepted, to f = +1e-9 |p| refused.
+  MohrCoulombParams p;
+  p.friction = 30 * deg;
+  p.cohesion = 10 * kPa;
+  const MohrCoulombConstants k(p);
+  const double sp = std::sin(p.friction), t = std::atan(-sp / std::sqrt(3.0)), mean = -100 * kPa;
+  const double bound = std::sqrt(1.0 + sp * sp / 3.0);
+  for (double rel : {-1e-9, 1e-9}) {
+    // f = r bound + mean sin(phi) - c cos(phi) = rel |mean|
+    const double r = (rel * std::abs(mean) - mean * sp + k.c_cos_phi) / bound;
+    const double a = r * std::cos(t), m = 2.0 / std::sqrt(3.0) * r * std::sin(t);
+    Sym3 s;  // principal values p - a - m/2, p + m, p + a - m/2 on the axes
+    s << mean - a - 0.5 * m, mean + m, mean + a - 0.5 * m, 0, 0, 0;
+    EXPECT_NEAR(mohr_coulomb_yield(p, principal_decomposition(s).values), rel * std::abs(mean),
+                1e-2 * std::abs(rel * mean));
+    EXPECT_EQ(detail::clearly_elastic(k, s), rel < 0) << rel;
+  }
+}

@@ -5,7 +5,9 @@
 #pragma once
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 
+#include "shape/row_lanes.hpp"
 #include "shape/stencil.hpp"
 
 namespace skred {
@@ -119,7 +121,20 @@ template <int D, int S, class Fn>
 
 // The transfers of the time step, written once for both stencil forms. On a separable
 // stencil they are sum-factorised: the sums over a row of nodes are formed first and then
-// weighted by the row's function, so a node costs a few multiply-adds.
+// weighted by the row's function, so a node costs a few multiply-adds; in 3D a whole row is
+// one short vector of lanes (row_lanes.hpp).
+
+// 3D rows in lanes (row_lanes.hpp): the row of S nodes at (b, c) of a point's block as
+// 3 S contiguous doubles, and the rows' (y, z) weights N_y N_z, dN_y N_z, N_y dN_z.
+namespace lanes3 {
+template <int S>
+using Row = RowLanes<3 * S>;
+template <int S, class T>
+[[gnu::always_inline]] inline T* row(T* f, const Separable<3, S>& sh, const NodeStrides<3>& st, int b,
+                                     int c) {
+  return f + 3 * (sh.base + b * st.s[1] + c * st.s[2]);
+}
+}  // namespace lanes3
 
 // sum_i N_ip f_i (eq. 2.56, Post eq. 31).
 template <int D, int S, class T>
@@ -133,6 +148,15 @@ template <int D, int S, class T>
       for (int a = 1; a < S; ++a) row += sh.w[0][a] * r[a];
       out += sh.w[1][b] * row;
     }
+  } else if constexpr (std::is_same_v<T, Vec<3>>) {
+    static_assert(sizeof(Vec<3>) == 3 * sizeof(double), "rows of Vec<3> must be contiguous doubles");
+    const double* fd = reinterpret_cast<const double*>(f);
+    auto acc = lanes3::Row<S>::zero();
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b)
+        acc.add(sh.w[1][b] * sh.w[2][c], lanes3::Row<S>::load(lanes3::row(fd, sh, st, b, c)));
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) out[i] += sh.w[0][a] * acc[3 * a + i];
   } else {
     for (int c = 0; c < S; ++c) {
       T plane = T::Zero();
@@ -146,6 +170,35 @@ template <int D, int S, class T>
     }
   }
   return out;
+}
+
+// The gathers sum_i N_ip f_i and sum_i N_ip g_i of two nodal fields in one walk (the point
+// update reads the acceleration and the moving velocity with the same weights).
+template <int D, int S>
+[[gnu::always_inline]] inline void gather_pair(const Separable<D, S>& sh, const NodeStrides<D>& st,
+                                               const Vec<D>* __restrict f, const Vec<D>* __restrict g,
+                                               Vec<D>& out_f, Vec<D>& out_g) {
+  if constexpr (D == 2) {
+    out_f = gather(sh, st, f);
+    out_g = gather(sh, st, g);
+  } else {
+    const double* fd = reinterpret_cast<const double*>(f);
+    const double* gd = reinterpret_cast<const double*>(g);
+    auto af = lanes3::Row<S>::zero(), ag = af;
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        const double k = sh.w[1][b] * sh.w[2][c];
+        af.add(k, lanes3::Row<S>::load(lanes3::row(fd, sh, st, b, c)));
+        ag.add(k, lanes3::Row<S>::load(lanes3::row(gd, sh, st, b, c)));
+      }
+    out_f.setZero();
+    out_g.setZero();
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) {
+        out_f[i] += sh.w[0][a] * af[3 * a + i];
+        out_g[i] += sh.w[0][a] * ag[3 * a + i];
+      }
+  }
 }
 
 // sum_i v_i (x) grad N_ip: the velocity gradient of eq. 2.20.
@@ -165,23 +218,22 @@ template <int D, int S>
       out.col(1) += sh.g[1][b] * rw;
     }
   } else {
-    for (int c = 0; c < S; ++c) {
-      Vec<3> pg = Vec<3>::Zero(), pw = Vec<3>::Zero(), pz = Vec<3>::Zero();
+    // Rows summed with the weights N_y N_z, dN_y N_z and N_y dN_z; the x functions last.
+    const double* vd = reinterpret_cast<const double*>(v);
+    auto a0 = lanes3::Row<S>::zero(), a1 = a0, a2 = a0;
+    for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b) {
-        const Vec<3>* r = v + sh.base + b * st.s[1] + c * st.s[2];
-        Vec<3> rg = sh.g[0][0] * r[0], rw = sh.w[0][0] * r[0];
-        for (int a = 1; a < S; ++a) {
-          rg += sh.g[0][a] * r[a];
-          rw += sh.w[0][a] * r[a];
-        }
-        pg += sh.w[1][b] * rg;
-        pw += sh.g[1][b] * rw;
-        pz += sh.w[1][b] * rw;
+        const auto r = lanes3::Row<S>::load(lanes3::row(vd, sh, st, b, c));
+        a0.add(sh.w[1][b] * sh.w[2][c], r);
+        a1.add(sh.g[1][b] * sh.w[2][c], r);
+        a2.add(sh.w[1][b] * sh.g[2][c], r);
       }
-      out.col(0) += sh.w[2][c] * pg;
-      out.col(1) += sh.w[2][c] * pw;
-      out.col(2) += sh.g[2][c] * pz;
-    }
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) {
+        out(i, 0) += sh.g[0][a] * a0[3 * a + i];
+        out(i, 1) += sh.w[0][a] * a1[3 * a + i];
+        out(i, 2) += sh.w[0][a] * a2[3 * a + i];
+      }
   }
   return out;
 }
@@ -196,6 +248,19 @@ template <int D, int S, class T>
       const T xb = sh.w[1][b] * x;
       for (int a = 0; a < S; ++a) r[a] += sh.w[0][a] * xb;
     }
+  } else if constexpr (std::is_same_v<T, Vec<3>>) {
+    double* fd = reinterpret_cast<double*>(f);
+    double lx[3 * S];  // N_x(a) x_i in lane (a, i)
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) lx[3 * a + i] = sh.w[0][a] * x[i];
+    const auto px = lanes3::Row<S>::load(lx);
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        double* r = lanes3::row(fd, sh, st, b, c);
+        auto row = lanes3::Row<S>::load(r);
+        row.add(sh.w[1][b] * sh.w[2][c], px);
+        row.store(r);
+      }
   } else {
     for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b) {
@@ -222,12 +287,25 @@ template <int D, int S>
       for (int a = 0; a < S; ++a) r[a] += sh.g[0][a] * c0 + sh.w[0][a] * c1;
     }
   } else {
+    // Lane (a, i) holds dN_x(a) A_i0, N_x(a) A_i1, N_x(a) A_i2; a row adds them weighted by
+    // its N_y N_z, dN_y N_z, N_y dN_z.
+    double* fd = reinterpret_cast<double*>(f);
+    double l0[3 * S], l1[3 * S], l2[3 * S];
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) {
+        l0[3 * a + i] = sh.g[0][a] * A(i, 0);
+        l1[3 * a + i] = sh.w[0][a] * A(i, 1);
+        l2[3 * a + i] = sh.w[0][a] * A(i, 2);
+      }
+    const auto p0 = lanes3::Row<S>::load(l0), p1 = lanes3::Row<S>::load(l1), p2 = lanes3::Row<S>::load(l2);
     for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b) {
-        Vec<3>* r = f + sh.base + b * st.s[1] + c * st.s[2];
-        const Vec<3> c0 = (sh.w[1][b] * sh.w[2][c]) * A.col(0);
-        const Vec<3> c1 = (sh.g[1][b] * sh.w[2][c]) * A.col(1) + (sh.w[1][b] * sh.g[2][c]) * A.col(2);
-        for (int a = 0; a < S; ++a) r[a] += sh.g[0][a] * c0 + sh.w[0][a] * c1;
+        double* r = lanes3::row(fd, sh, st, b, c);
+        auto row = lanes3::Row<S>::load(r);
+        row.add(sh.w[1][b] * sh.w[2][c], p0);
+        row.add(sh.g[1][b] * sh.w[2][c], p1);
+        row.add(sh.w[1][b] * sh.g[2][c], p2);
+        row.store(r);
       }
   }
 }
@@ -262,6 +340,14 @@ template <int D, int S>
 [[gnu::always_inline]] inline void scatter_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st,
                                                     const Mat<D>& A, Vec<D>* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) { f[i].noalias() += A * g; });
+}
+
+template <int D, int S>
+[[gnu::always_inline]] inline void gather_pair(const Stencil<D, S>& sh, const NodeStrides<D>& st,
+                                               const Vec<D>* __restrict f, const Vec<D>* __restrict g,
+                                               Vec<D>& out_f, Vec<D>& out_g) {
+  out_f = gather(sh, st, f);
+  out_g = gather(sh, st, g);
 }
 
 // A separable kernel's full stencil (for tests and post-processing).

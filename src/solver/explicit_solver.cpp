@@ -70,18 +70,17 @@ struct StressArrays {
 };
 
 // The particle velocity update (velocity_transfer.hpp). FLIP, Thesis eq. 2.56: v_p + dt sum
-// N_ip a_i, blended with a PIC share alpha of sum N_ip v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP +
-// alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal velocity in vnext; APIC also
-// takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient form of Jiang et
-// al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel).
-// `lost` gains (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
+// N_ip a_i (acc_p = sum N_ip a_i, gathered by the caller), blended with a PIC share alpha of sum N_ip
+// v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal
+// velocity in vnext; APIC also takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient
+// form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains (1/2) m_p
+// (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
 template <class Shape, int D>
 [[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
-                                                       const Vec<D>& v, double dt,
-                                                       const Vec<D>* __restrict acc,
+                                                       const Vec<D>& v, double dt, const Vec<D>& acc_p,
                                                        const Vec<D>* __restrict vnext, double alpha,
                                                        Mat<D>* affine, double m, double& lost) {
-  const Vec<D> flip = v + dt * gather(sh, strides, acc);
+  const Vec<D> flip = v + dt * acc_p;
   if (alpha <= 0.0) return flip;
   Vec<D> vp;
   if (alpha >= 1.0) {
@@ -339,7 +338,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
             if (!sel(p)) continue;
             typename K::Shape sh;
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-            const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+            const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, gather(sh, strides, acc), vnext, alpha,
                                                 apic ? affine + p : nullptr, pmass[p], lost);
             v[p] = vp;
             if constexpr (apic)  // APIC: the remap carries the affine velocity too
@@ -488,10 +487,11 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           if (!sel(p)) continue;
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
-          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc, vnext, alpha,
+          Vec<D> acc_p, vmove;
+          gather_pair(sh, strides, acc, vel, acc_p, vmove);
+          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc_p, vnext, alpha,
                                               affine ? affine + p : nullptr, pmass[p], lost);
           v[p] = vp;
-          const Vec<D> vmove = gather(sh, strides, vel);
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
               !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span,

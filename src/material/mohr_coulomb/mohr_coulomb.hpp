@@ -157,6 +157,21 @@ template <class V>
   return mohr_coulomb_yield(k, p) <= tol * scale &&
          p[2] - k.tension_cutoff <= tol * (scale + std::abs(k.tension_cutoff));
 }
+
+// A sufficient elastic condition from p and J2 alone (no eigenvalues, no square root). With
+// a = (sigma_3 - sigma_1)/2 and m = s_2 (the middle deviatoric value), J2 = a^2 + 3 m^2 / 4 and
+// f = a + (p - m/2) sin(phi) - c cos(phi) (eq. 5.1), whose largest value over all Lode angles
+// is sqrt(J2) sqrt(1 + sin^2(phi)/3) + p sin(phi) - c cos(phi); and sigma_3 <= p + 2 sqrt(J2/3).
+// Both bounds below zero: elastic, whatever the Lode angle.
+[[gnu::always_inline]] inline bool clearly_elastic(const MohrCoulombConstants& k, const Sym3& s) {
+  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
+  const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  const double room = k.c_cos_phi - p * k.sin_phi;  // f < 0 needs room > sqrt(J2 (1 + sin^2/3))
+  const double cut = k.tension_cutoff - p;          // sigma_3 < t needs cut > sqrt(4 J2 / 3)
+  return room > 0.0 && j2 * (1.0 + k.sin_phi * k.sin_phi / 3.0) < room * room && cut > 0.0 &&
+         (cut == std::numeric_limits<double>::infinity() || 4.0 * j2 < 3.0 * cut * cut);
+}
 }  // namespace detail
 
 // Stress update: `stress` in = sigma^k, out = the returned stress; `deps` = total strain
@@ -183,7 +198,8 @@ template <class V>
     }
     return detail::mohr_coulomb_plastic_plane(e, k, stress, trial, pp, state, region);
   }
-  if (detail::mohr_coulomb_admissible(k, principal_values_screen(trial), -kScreenRelMargin)) {
+  if (detail::clearly_elastic(k, trial) ||
+      detail::mohr_coulomb_admissible(k, principal_values_screen(trial), -kScreenRelMargin)) {
     stress = trial;
     state.yielding = 0;
     if (region) *region = MohrCoulombRegion::Elastic;
