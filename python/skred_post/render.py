@@ -185,6 +185,7 @@ def draw_arrows(ax, frame, idx, spacing):
 MARGIN = {"left": 0.85, "bottom": 0.65, "top": 0.75, "right": 1.45}
 BAR_GAP, BAR_WIDTH = 0.2, 0.22  # [inch]
 MIN_PLOT_HEIGHT = 1.2           # [inch]; a flatter domain gets more room above and below
+MIN_PLOT_WIDTH = 2.6            # [inch]; a narrower domain gets room beside it (for the title)
 
 
 def layout(style, xlim, ylim):
@@ -199,6 +200,7 @@ def layout(style, xlim, ylim):
         h = style.max_height - m["bottom"] - m["top"]
         w = h / aspect
     h = max(h, MIN_PLOT_HEIGHT)  # the axis limits widen to keep the aspect (datalim)
+    w = max(w, MIN_PLOT_WIDTH)
     return (m["left"] + w + m["right"], m["bottom"] + h + m["top"]), (m["left"], m["bottom"], w, h)
 
 
@@ -245,7 +247,7 @@ def draw_frame(frame, style, xlim, ylim, vrange=None):
         draw_arrows(ax, frame, idx, spacing)
         overlays.append("arrows: velocity")
     if overlays:
-        what += "; " + ", ".join(overlays)
+        what += "\n" + ", ".join(overlays)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
     ax.set_aspect("equal", adjustable="datalim")

@@ -32,15 +32,18 @@ def stage_starts(outdir, s):
     return out
 
 
-def mark_stages(axes, starts):
-    """Dotted lines at the stage boundaries, the stage names along the top of the first plot."""
-    for k, (t0, name) in enumerate(starts):
+def mark_stages(axes, starts, t_end):
+    """Dotted lines at the stage boundaries; the stage names above the first plot, each over
+    the middle of its stage."""
+    for t0, _ in starts[1:]:
         for a in axes:
-            if k > 0:
-                a.axvline(t0, color="0.4", ls=":", lw=1.0, zorder=0)
-        if len(starts) > 1:
-            axes[0].annotate(name, xy=(t0, 1.0), xycoords=("data", "axes fraction"), xytext=(3, -3),
-                             textcoords="offset points", va="top", fontsize="small", color="0.3")
+            a.axvline(t0, color="0.4", ls=":", lw=1.0, zorder=0)
+    if len(starts) > 1:
+        ends = [t for t, _ in starts[1:]] + [t_end]
+        top = axes[0].secondary_xaxis("top")
+        top.set_xticks([0.5 * (t0 + t1) for (t0, _), t1 in zip(starts, ends)])
+        top.set_xticklabels([name for _, name in starts], fontsize="small", color="0.3")
+        top.tick_params(length=0)
 
 
 def plot_series(outdir, width=8.0, height=8.0, dpi=100):
@@ -49,11 +52,13 @@ def plot_series(outdir, width=8.0, height=8.0, dpi=100):
     three_d = "momentum_z" in s  # 3D runs: totals, not per metre of thickness
     fig, axes = plt.subplots(3, 1, figsize=(width, height), dpi=dpi, sharex=True,
                              constrained_layout=True)
+    big = max((float(np.nanmax(np.abs(s[k]))) for k, _ in ENERGIES if k in s and len(s[k])), default=0.0)
+    scale, prefix = (1e-3, "k") if big >= 1e4 else (1.0, "")  # kJ rather than a 1e6 multiplier
     for key, label in ENERGIES:
         if key in s:
-            axes[0].plot(t, s[key], label=label, lw=2.0 if key == "total_energy" else 1.2,
+            axes[0].plot(t, s[key] * scale, label=label, lw=2.0 if key == "total_energy" else 1.2,
                          ls="--" if key == "total_energy" else "-")
-    axes[0].set_ylabel("energy [J]" if three_d else "energy [J/m]")
+    axes[0].set_ylabel(f"energy [{prefix}J]" if three_d else f"energy [{prefix}J/m]")
     axes[0].set_title("energies and gravity work, from the start of each stage (series.csv)",
                       fontsize="medium")
     axes[0].legend(fontsize="small")
@@ -71,5 +76,5 @@ def plot_series(outdir, width=8.0, height=8.0, dpi=100):
     axes[2].set_xlabel("time $t$ [s]")
     for a in axes:
         a.grid(alpha=0.3)
-    mark_stages(axes, stage_starts(outdir, s))
+    mark_stages(axes, stage_starts(outdir, s), float(t[-1]))
     return fig
