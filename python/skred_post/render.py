@@ -193,7 +193,9 @@ def layout(style, xlim, ylim):
     plot has the domain's aspect ratio, so the picture has no empty band."""
     dx, dy = xlim[1] - xlim[0], ylim[1] - ylim[0]
     aspect = dy / dx if dx > 0 and dy > 0 else 1.0
-    m = MARGIN
+    m = dict(MARGIN)
+    if style.arrows or style.crosses:
+        m["top"] += 0.2  # a third title line names the overlays
     w = style.width - m["left"] - m["right"]
     h = w * aspect
     if h > style.max_height - m["bottom"] - m["top"]:
