@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .labels import display, label, unit_of  # noqa: F401  (unit_of: for callers)
+
 
 class PostError(Exception):
     """A problem with the user's request or the result files; printed without a traceback."""
@@ -186,9 +188,6 @@ def load_frame(outdir, step=-1, view=None):
         raise PostError(f"step {step} out of range: {outdir} has frames 0..{len(index) - 1}")
     i, t, p = index[step]
     return read_frame(p, t, i, view)
-
-
-from .labels import display, label, unit_of  # noqa: E402,F401  (unit_of: public)
 
 
 def select(frame, spec):
