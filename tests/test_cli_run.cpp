@@ -285,3 +285,17 @@ TEST(CliRun, ABadSweepSetIsAUsageError) {
     EXPECT_FALSE(fs::exists(d / "out" / "run_000"));
   }
 }
+
+// Without Python the runs still complete and sweep.csv is written; the exit code says the
+// picture is missing (6, README "Exit codes") and the message what to install.
+TEST(CliRun, ASweepWithoutPythonKeepsItsTable) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.02"));
+  const Outcome r = sh("SKRED_PYTHON=/nonexistent/python3 " + kSkred + " sweep " + q(d / "discs.toml") +
+                       " -o " + q(d / "out") + " --threads 1 --set 'material[elastic].young=1000'");
+  EXPECT_EQ(r.signal, 0);
+  EXPECT_EQ(r.code, 6) << r.output;
+  EXPECT_NE(r.output.find("apt-get install python3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sweep.csv is complete"), std::string::npos) << r.output;
+  EXPECT_NE(read(d / "out" / "sweep.csv").find("\n1000,completed,run_000,"), std::string::npos);
+}
