@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "io/pvd_writer.hpp"
@@ -170,4 +171,18 @@ TEST_F(IoTest, RenderAndReportFailClearly) {
   auto [s8, o8] = run_command(hide);
   EXPECT_EQ(s8, 6) << o8;
   EXPECT_NE(o8.find("apt-get install python3-matplotlib"), std::string::npos) << o8;
+}
+
+// `render --series` of a two-stage run marks the stage boundary in every panel and names the
+// stages (energies restart at each stage, so the reader must see where).
+TEST_F(IoTest, SeriesPlotMarksTheStageBoundaries) {
+  require_python_vtk();
+  std::ofstream(dir / "series.csv") << "step,time,kinetic_energy,gravity_work,mean_speed,momentum_x,stage\n"
+                                       "0,0,0,0,0,0,0\n10,0.5,1,2,0.1,1,0\n20,1,0.5,3,0.05,0.5,0\n"
+                                       "30,1.5,0,0,0,0,1\n40,2,2,4,0.2,2,1\n";
+  std::ofstream(dir / "summary.json")
+      << R"({"status": "completed", "stages": [{"name": "settle"}, {"name": "slide"}]})";
+  const auto [status, out] =
+      run_python("check_series_stages.py", {std::string(SKRED_SOURCE_DIR) + "/python", dir.string()});
+  EXPECT_EQ(status, 0) << out;
 }
