@@ -13,6 +13,8 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "temp_dir.hpp"
 
@@ -224,4 +226,76 @@ TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
   const Outcome active = sh(base + "OMP_WAIT_POLICY=active " + kSkred + " --version");
   EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
   EXPECT_NE(last_spin(active.output), "1000") << active.output;
+}
+
+// `skred sweep` over a 2 x 2 grid (repeated --set): one row per run with both keys' values,
+// the first key varying slowest, clean numbers, and the picture pictures/sweep.png.
+TEST(CliRun, ASweepOverAGridWritesOneRowPerRunAndAPicture) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.02"));
+  const Outcome r = sh(kSkred + " sweep " + q(d / "discs.toml") + " -o " + q(d / "out") +
+                       " --threads 1 --set 'material[elastic].young=1000,2000'"
+                       " --set 'material[elastic].poisson=0.1:0.2:0.1'");
+  ASSERT_EQ(r.code, 0) << r.output;
+  std::istringstream table(read(d / "out" / "sweep.csv"));
+  std::string header, line;
+  std::getline(table, header);
+  EXPECT_EQ(header.rfind("material[elastic].young,material[elastic].poisson,status,folder,", 0), 0u)
+      << header;
+  for (const char* m :
+       {",max_displacement,", ",runout,", ",peak_mean_speed,", ",stop_time,", ",plastic_volume,"})
+    EXPECT_NE(header.find(m), std::string::npos) << m;
+  std::vector<std::string> rows;
+  while (std::getline(table, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 4u);
+  const char* expected[] = {"1000,0.1,completed,run_000,", "1000,0.2,completed,run_001,",
+                            "2000,0.1,completed,run_002,", "2000,0.2,completed,run_003,"};
+  for (int k = 0; k < 4; ++k) {
+    EXPECT_EQ(rows[k].rfind(expected[k], 0), 0u) << rows[k];
+    // 12 significant digits at most: no rounding noise such as 0.020000000000000004.
+    EXPECT_FALSE(std::regex_search(rows[k], std::regex(R"([1-9]\d{12})"))) << rows[k];
+    EXPECT_TRUE(fs::exists(d / "out" / ("run_00" + std::to_string(k)) / "summary.json"));
+  }
+  const fs::path png = d / "out" / "pictures" / "sweep.png";
+  ASSERT_TRUE(fs::exists(png)) << r.output;
+  const Outcome check =
+      sh("/usr/bin/python3 -c 'import sys; from PIL import Image; im = Image.open(sys.argv[1]); im.load(); "
+         "print(im.format, im.size[0] >= 400 and im.size[1] >= 300)' " +
+         q(png));
+  EXPECT_EQ(check.output, "PNG True\n");
+}
+
+// A malformed --set is a usage error (exit code 4) that quotes the bad part; nothing runs.
+TEST(CliRun, ABadSweepSetIsAUsageError) {
+  TempDir d;
+  write(d / "discs.toml", short_discs());
+  const std::string sweep = kSkred + " sweep " + q(d / "discs.toml") + " -o " + q(d / "out") + " --set ";
+  const std::pair<const char*, const char*> cases[] = {
+      {"'material[elastic].young'", "expected KEY=V1,V2,... or KEY=FROM:TO:STEP"},
+      {"'material[elastic].young=1000,abc'", "'abc' is not a number"},
+      {"'material[elastic].young=2000:1000:100'", "must be a number or FROM:TO:STEP"},
+      {"'material[elastic].young=1000' --set 'material[elastic].young=2000'", "is swept twice"},
+  };
+  for (const auto& [set, message] : cases) {
+    SCOPED_TRACE(set);
+    const Outcome r = sh(sweep + set);
+    EXPECT_EQ(r.signal, 0);
+    EXPECT_EQ(r.code, 4) << r.output;  // README, "Exit codes": usage
+    EXPECT_NE(r.output.find(message), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(d / "out" / "run_000"));
+  }
+}
+
+// Without Python the runs still complete and sweep.csv is written; the exit code says the
+// picture is missing (6, README "Exit codes") and the message what to install.
+TEST(CliRun, ASweepWithoutPythonKeepsItsTable) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.02"));
+  const Outcome r = sh("SKRED_PYTHON=/nonexistent/python3 " + kSkred + " sweep " + q(d / "discs.toml") +
+                       " -o " + q(d / "out") + " --threads 1 --set 'material[elastic].young=1000'");
+  EXPECT_EQ(r.signal, 0);
+  EXPECT_EQ(r.code, 6) << r.output;
+  EXPECT_NE(r.output.find("apt-get install python3"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("sweep.csv is complete"), std::string::npos) << r.output;
+  EXPECT_NE(read(d / "out" / "sweep.csv").find("\n1000,completed,run_000,"), std::string::npos);
 }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 
 #include "io/pvd_writer.hpp"
@@ -20,8 +21,9 @@ const std::string kSkred = SKRED_BINARY;
 
 std::pair<int, std::string> run_skred(const std::string& args) { return run_command(kSkred + " " + args); }
 
-// Voxel A: a square at (0.5, 0.5), stress xx 2.5, body 0. Voxel B: sheared by F = [[1, 1],
-// [0, 1]] at (1.5, 0.5), stress xx 10, body 1. `frames` copies with the voxels moving right.
+// Voxel A: a square at (0.5, 0.5), stress xx 2.5 kPa, body 0. Voxel B: sheared by F = [[1, 1],
+// [0, 1]] at (1.5, 0.5), stress xx 10 kPa, body 1. `frames` copies with the voxels moving
+// right by 0.2 m per frame (displacement 0 in the first frame).
 void write_two_particles(const fs::path& dir, int frames = 1) {
   PvdWriter pvd(dir);
   const std::vector<MaterialStrength> strength = {{}};
@@ -30,9 +32,9 @@ void write_two_particles(const fs::path& dir, int frames = 1) {
     P.add(Vec<2>(0.5, 0.5), Vec<2>(1.0, 0.0), 1.0, 0.16, Vec<2>(0.2, 0.2), 0, 0);
     P.add(Vec<2>(1.5, 0.5), Vec<2>(0.0, -1.0), 1.0, 0.16, Vec<2>(0.2, 0.2), 0, 1);
     P.F[1] << 1.0, 1.0, 0.0, 1.0;
-    P.stress[0][0] = 2.5;
-    P.stress[1][0] = 10.0;
-    P.stress[1][1] = -4.0;
+    P.stress[0][0] = 2500.0;  // pictures show stresses in kPa
+    P.stress[1][0] = 10000.0;
+    P.stress[1][1] = -4000.0;
     for (auto& x : P.x) x[0] += 0.2 * f;
     ParticleFields extra;
     extra.strength = &strength;
@@ -100,8 +102,37 @@ TEST_F(IoTest, RenderAllWritesEveryFrameAndAnAnimatedGif) {
                                     "print(im.format, im.n_frames, im.size)' " +
                                     shell_quote(gif.string()));
   ASSERT_EQ(s2, 0) << o2;
-  EXPECT_EQ(o2, "GIF 3 (800, 600)\n");
+  const auto [s3, o3] = run_command(std::string(kPython) +
+                                    " -c 'import sys; from PIL import Image; "
+                                    "print(Image.open(sys.argv[1]).size)' " +
+                                    shell_quote((dir / "anim_frames" / "frame_000000.png").string()));
+  EXPECT_EQ(o2, "GIF 3 " + o3);  // the frames' size
   expect_no_tmp_files();
+}
+
+// An animation whose first frame is all zero (the displacement at the start): one colour
+// range for all frames, from the data, 0 to the largest displacement (0.4 m), not the -1...
+// of a flat frame's widened range; the first frame is drawn in the colour of 0.
+TEST_F(IoTest, RenderAllTakesTheRangeFromTheDataWhenTheFirstFrameIsZero) {
+  require_python_vtk();
+  write_two_particles(dir, 3);
+  const fs::path gif = dir / "u.gif", info = dir / "u.json";
+  const auto [status, out] = run_skred("render " + shell_quote(dir.string()) + " --all -o " +
+                                       shell_quote(gif.string()) + " --info " + shell_quote(info.string()));
+  ASSERT_EQ(status, 0) << out;  // no --field: the displacement magnitude
+  expect_pixels("zero", dir / "u_frames" / "frame_000000.png", info);  // vmin 0, vmax 0.4
+}
+
+// The picture follows the domain: the plot box has the aspect of its axis limits, the colour
+// bar is as tall as the plot, and the rest of the image is only the margins (labels, title).
+TEST_F(IoTest, RenderFollowsTheDomainsAspectRatio) {
+  require_python_vtk();
+  write_two_particles(dir);
+  const fs::path png = dir / "flat.png", info = dir / "flat.json";
+  const auto [status, out] = run_skred("render " + shell_quote(dir.string()) + " --field speed -o " +
+                                       shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+  ASSERT_EQ(status, 0) << out;
+  expect_pixels("layout", png, info);
 }
 
 TEST_F(IoTest, RenderAndReportFailClearly) {
@@ -140,4 +171,18 @@ TEST_F(IoTest, RenderAndReportFailClearly) {
   auto [s8, o8] = run_command(hide);
   EXPECT_EQ(s8, 6) << o8;
   EXPECT_NE(o8.find("apt-get install python3-matplotlib"), std::string::npos) << o8;
+}
+
+// `render --series` of a two-stage run marks the stage boundary in every panel and names the
+// stages (energies restart at each stage, so the reader must see where).
+TEST_F(IoTest, SeriesPlotMarksTheStageBoundaries) {
+  require_python_vtk();
+  std::ofstream(dir / "series.csv") << "step,time,kinetic_energy,gravity_work,mean_speed,momentum_x,stage\n"
+                                       "0,0,0,0,0,0,0\n10,0.5,1,2,0.1,1,0\n20,1,0.5,3,0.05,0.5,0\n"
+                                       "30,1.5,0,0,0,0,1\n40,2,2,4,0.2,2,1\n";
+  std::ofstream(dir / "summary.json")
+      << R"({"status": "completed", "stages": [{"name": "settle"}, {"name": "slide"}]})";
+  const auto [status, out] =
+      run_python("check_series_stages.py", {std::string(SKRED_SOURCE_DIR) + "/python", dir.string()});
+  EXPECT_EQ(status, 0) << out;
 }

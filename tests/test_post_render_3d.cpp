@@ -16,9 +16,9 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// Voxel A at (0.5, 0.5, 0.5), stress xx 2.5, body 0; voxel B at (1.5, 0.5, 0.5) sheared by
-// F = [[1, 1, 0], [0, 1, 0], [0, 0, 1]], stress xx 10, body 1; voxel C at (0.5, 0.5, 3),
-// stress xx 10: in front of A, outside the section z = 0.5.
+// Voxel A at (0.5, 0.5, 0.5), stress xx 2.5 kPa, body 0; voxel B at (1.5, 0.5, 0.5) sheared by
+// F = [[1, 1, 0], [0, 1, 0], [0, 0, 1]], stress xx 10 kPa, body 1; voxel C at (0.5, 0.5, 3),
+// stress xx 10 kPa: in front of A, outside the section z = 0.5.
 void write_three_voxels(const fs::path& dir) {
   PvdWriter pvd(dir);
   const std::vector<MaterialStrength> strength = {{}};
@@ -27,10 +27,10 @@ void write_three_voxels(const fs::path& dir) {
   P.add(Vec<3>(1.5, 0.5, 0.5), Vec<3>(0.0, -1.0, 0.0), 1.0, 0.064, Vec<3>::Constant(0.2), 0, 1);
   P.add(Vec<3>(0.5, 0.5, 3.0), Vec<3>(0.0, 0.0, 1.0), 1.0, 0.064, Vec<3>::Constant(0.2), 0, 0);
   P.F[1](0, 1) = 1.0;
-  P.stress[0][0] = 2.5;
-  P.stress[1][0] = 10.0;
-  P.stress[1][1] = -4.0;
-  P.stress[2][0] = 10.0;
+  P.stress[0][0] = 2500.0;  // pictures show stresses in kPa
+  P.stress[1][0] = 10000.0;
+  P.stress[1][1] = -4000.0;
+  P.stress[2][0] = 10000.0;
   ParticleFields extra;
   extra.strength = &strength;
   write_particles_vtu(dir / "particles_000000.vtu", P, extra);

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
@@ -293,30 +295,58 @@ TEST(Sweep, OneRowPerValueAndBadKeysNamed) {
   const fs::path file = dir / "column.toml";
   std::ofstream(file) << column_text("end_time = 0.01\n[output]\ninterval = 0.01\n");
   SweepOptions o;
-  o.key = "material[soil].young";
-  o.values = {1e6, 4e6};
+  o.axes = {{"material[soil].young", {1e6, 4e6}}};
   o.progress = false;
   const auto rows = run_sweep(file.string(), dir / "out", o);
   ASSERT_EQ(rows.size(), 2u);
   const std::string table = read(dir / "out" / "sweep.csv");
-  EXPECT_EQ(table.rfind(sweep_header(o.key), 0), 0u);
-  EXPECT_NE(table.find("1000000,completed,run_000,"), std::string::npos);
-  EXPECT_NE(table.find("4000000,completed,run_001,"), std::string::npos);
+  EXPECT_EQ(table.rfind("material[soil].young,status,folder,steps,", 0), 0u) << table;
+  EXPECT_NE(table.find("\n1000000,completed,run_000,"), std::string::npos) << table;
+  EXPECT_NE(table.find("\n4000000,completed,run_001,"), std::string::npos) << table;
   EXPECT_TRUE(fs::exists(dir / "out" / "run_001" / "summary.json"));
   // The stiffer column's time step is shorter: more steps for the same end time.
   EXPECT_GT(rows[1].steps, rows[0].steps);
-  o.key = "material[clay].young";
+  o.axes[0].key = "material[clay].young";
   try {
     run_sweep(file.string(), dir / "out2", o);
     ADD_FAILURE() << "no error for an unknown material";
   } catch (const ScenarioError& e) {
     EXPECT_NE(std::string(e.what()).find("material[clay].young"), std::string::npos) << e.what();
   }
-  o.key = "material[0].young";
-  o.values = {1e6, -1.0};  // validated before any run starts
+  o.axes[0] = {"material[0].young", {1e6, -1.0}};  // validated before any run starts
   EXPECT_THROW(run_sweep(file.string(), dir / "out3", o), ScenarioError);
   EXPECT_FALSE(fs::exists(dir / "out3" / "run_000"));
   fs::remove_all(dir);
+}
+
+// The values of --set: lists and ranges, without the rounding noise of FROM + k STEP, and a
+// grid of several keys (the first slowest); malformed input named.
+TEST(Sweep, SetValuesAndGrid) {
+  const SweepAxis a = parse_sweep_axis("material[sand].friction=0.1:0.3:0.1,0.7");
+  EXPECT_EQ(a.key, "material[sand].friction");
+  ASSERT_EQ(a.values.size(), 4u);
+  EXPECT_EQ(a.values[2], 0.3);  // 0.1 + 2 * 0.1 is 0.30000000000000004
+  EXPECT_EQ(a.values[3], 0.7);
+  const auto grid = sweep_grid({{"a", {1, 2}}, {"b", {10, 20, 30}}});
+  ASSERT_EQ(grid.size(), 6u);
+  EXPECT_EQ(grid[1], (std::vector<double>{1, 20}));
+  EXPECT_EQ(grid[3], (std::vector<double>{2, 10}));
+  for (const char* bad : {"friction", "=1,2", "k=", "k=1:2", "k=1:2:", "k=2:1:0.5", "k=1:2:0", "k=abc",
+                          "k=1,,2", "k=0:1e9:1", "k=nan"})
+    EXPECT_THROW(parse_sweep_axis(bad), std::invalid_argument) << bad;
+  EXPECT_THROW(sweep_grid({{"a", {1}}, {"a", {2}}}), std::invalid_argument);
+  EXPECT_THROW(sweep_grid({}), std::invalid_argument);
+  SweepRow r;
+  r.values = {0.3, 2};
+  r.status = "completed";
+  r.folder = "run_000";
+  r.last.name = "slide, dry";
+  r.last.runout = 1.0 / 3.0;
+  const std::string table = sweep_table({{"a", {}}, {"b", {}}}, {r});
+  EXPECT_NE(table.find("\n0.3,2,completed,run_000,0,0,0,\"slide, dry\",,0.333333333333,"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find(",stop_time,"), std::string::npos);
+  EXPECT_NE(table.find(",nan,"), std::string::npos) << table;  // no stop time
 }
 
 TEST(Walls, ClosedWallsAreImpenetrableFreeSidesAreNot) {
@@ -356,7 +386,7 @@ interval = 0.1
     const fs::path out = temp_dir("wall");
     RunOptions opt;
     opt.progress = false;
-    double x_max = -1.0;  // the largest point position seen before any step, and at the end
+    double x_max = -1.0;  // the largest point position seen before every step
     opt.edit_points = [&](Particles<2>& P, const ExplicitSolver<2>&) {
       for (const Vec<2>& x : P.x) x_max = std::max(x_max, x[0]);
       return false;

@@ -11,6 +11,15 @@ def field_slug(style):
     return style.pattern or style.field.replace(":", "_")
 
 
+def cmd_sweep(a):
+    from .render import save
+    from .sweep import plot_sweep
+    out = a.output or os.path.join(a.outdir, "pictures", "sweep.png")
+    save(plot_sweep(a.outdir, dpi=a.dpi), out)
+    print(f"wrote {out}")
+    return 0
+
+
 def cmd_render(a):
     from .render import Style, bounds, check_style, draw_frame, save
     from .scenario_info import body_names_of
@@ -32,11 +41,14 @@ def cmd_render(a):
         return 0
     if a.all:
         from .animate import render_all
+        from .render import resolve_field
+        if not style.pattern and not style.field:  # the default field names the GIF
+            resolve_field(load_frame(a.outdir, -1, view), style)
         out = a.output or os.path.join(pictures, field_slug(style) + ".gif")
-        render_all(a.outdir, style, out, fps=a.fps, view=view)
+        render_all(a.outdir, style, out, fps=a.fps, view=view, info_path=a.info)
         return 0
     frame = load_frame(a.outdir, a.step, view)
-    check_style(frame, style)
+    check_style(frame, style)  # also picks the default field
     xlim, ylim = bounds([frame])
     fig, info = draw_frame(frame, style, xlim, ylim)
     out = a.output or os.path.join(pictures, f"{field_slug(style)}_{frame.step:06}.png")
@@ -60,7 +72,7 @@ def parser():
     sub = p.add_subparsers(dest="command", required=True)
     r = sub.add_parser("render", help="PNG of a frame, GIF of all frames, or the time series")
     r.add_argument("outdir")
-    r.add_argument("--field", default="speed", help="NAME or NAME:COMPONENT (default: speed)")
+    r.add_argument("--field", help="NAME or NAME:COMPONENT (default: displacement, its magnitude)")
     g = r.add_mutually_exclusive_group()
     g.add_argument("--step", type=int, default=-1, help="frame number (default: the last)")
     g.add_argument("--all", action="store_true", help="every frame, and an animated GIF")
@@ -73,7 +85,8 @@ def parser():
     pat.add_argument("--checkerboard", action="store_true")
     r.add_argument("--pattern-width", type=float, help="stripe width [m] (default: 4 voxels)")
     r.add_argument("--pattern-angle", type=float, default=0.0, help="stripe direction [deg]")
-    r.add_argument("--range", type=float, nargs=2, metavar=("MIN", "MAX"))
+    r.add_argument("--range", type=float, nargs=2, metavar=("MIN", "MAX"),
+                   help="colour range in the colour bar's unit (kPa for stresses)")
     r.add_argument("--cmap", default="viridis")
     r.add_argument("--sample", type=int, default=4, help="overlays: 1 particle per N x N voxels")
     r.add_argument("--fps", type=float, default=8.0)
@@ -87,8 +100,13 @@ def parser():
     rep = sub.add_parser("report", help="self-contained HTML report")
     rep.add_argument("outdir")
     rep.add_argument("-o", "--output")
-    rep.add_argument("--field", default="speed")
+    rep.add_argument("--field", help="field of the frame pictures (default: displacement)")
     rep.set_defaults(run=cmd_report)
+    sw = sub.add_parser("sweep", help="picture of a sweep's sweep.csv (run by `skred sweep`)")
+    sw.add_argument("outdir")
+    sw.add_argument("-o", "--output", help="PNG file (default OUTDIR/pictures/sweep.png)")
+    sw.add_argument("--dpi", type=int, default=100)
+    sw.set_defaults(run=cmd_sweep)
     return p
 
 
@@ -102,3 +120,10 @@ def main(argv):
     except PostError as e:
         print(f"skred: {e}", file=sys.stderr)
         return 1
+
+
+def entry():
+    """The `skred-post` command of the installed package: skred-post render|report|sweep ..."""
+    from .deps import require_modules
+    require_modules()
+    sys.exit(main(sys.argv[1:]))

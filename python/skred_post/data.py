@@ -1,5 +1,8 @@
 """Reading skred's result folder: the PVD indexes, particle VTU frames (with VTK's own XML
-reader, python3-vtk9), series.csv and summary.json, and picking a scalar out of a field."""
+reader, python3-vtk9 or ParaView's VTK, imported only when a frame is read), series.csv,
+summary.json and a sweep's sweep.csv; and picking a scalar out of a field for a picture.
+Values are in SI units as the run wrote them (Pa, m, s); the public functions are listed in
+skred_post/__init__.py."""
 import csv
 import json
 import math
@@ -8,8 +11,8 @@ import xml.etree.ElementTree as ET
 from dataclasses import dataclass, field
 
 import numpy as np
-from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
+
+from .labels import display, label, unit_of  # noqa: F401  (unit_of: for callers)
 
 
 class PostError(Exception):
@@ -29,8 +32,14 @@ class View:
 
 @dataclass
 class Frame:
-    """One particle output step: deformed voxels and their cell data. A 3D frame is held as
-    the quadrilaterals of its View (see project3d); `axes` names the picture's axes."""
+    """One particle output step: the material points' deformed voxels and their cell data.
+
+    arrays      name -> NumPy array, (n,) or (n, k), one row per point, SI units
+    components  name -> component names, e.g. ["xx", "yy", "zz", "xy", "yz", "xz"]
+    corners     (n, 4, 3) in 2D or (n, 8, 3) in 3D: the voxel corners [m] (VTK order)
+    quads       (n, 4, 2): the voxels as drawn in the picture's plane; a 3D frame read for
+                a picture holds only the points of its View (see project3d), and `axes`
+                names the picture's axes."""
     path: str
     time: float
     step: int                      # index of the frame in particles.pvd
@@ -40,13 +49,33 @@ class Frame:
     dim: int = 2
     axes: tuple = ("x", "y")
     view_label: str = ""
+    corners: np.ndarray = None     # (n, 4 or 8, 3) voxel corners as written [m]
 
     @property
     def size(self):
         return len(self.quads)
 
     def centres(self):
+        """(n, 2) centres of the voxels in the picture's plane."""
         return self.quads.mean(axis=1)
+
+    def positions(self):
+        """(n, dim) centres of the voxels (the points' positions x_p) [m]."""
+        if self.corners is None or len(self.corners) == 0:
+            return np.zeros((0, self.dim))
+        return self.corners.mean(axis=1)[:, :self.dim]
+
+    def table(self):
+        """The frame as flat columns {name: (n,) array}: x, y (z), then every field, a field
+        of k components as NAME_COMPONENT (stress_xx, ...): pandas.DataFrame(frame.table())."""
+        cols = dict(zip("xyz", self.positions().T))
+        for name, values in self.arrays.items():
+            if values.ndim == 1:
+                cols[name] = values
+            else:
+                for k, comp in enumerate(self.components[name]):
+                    cols[f"{name}_{comp}"] = values[:, k]
+        return cols
 
 
 def read_pvd(outdir, name="particles.pvd"):
@@ -60,6 +89,10 @@ def read_pvd(outdir, name="particles.pvd"):
 
 
 def read_frame(path, time=math.nan, step=-1, view=None):
+    """The Frame in a particle VTU file. A 3D frame is cut to `view` (a View) for a picture;
+    with view None it keeps every point (quads then holds the z- faces in x-y)."""
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
     reader = vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
@@ -69,20 +102,21 @@ def read_frame(path, time=math.nan, step=-1, view=None):
     n = grid.GetNumberOfCells()
     hexes = None
     if n == 0 or grid.GetPoints() is None:
-        quads = np.zeros((0, 4, 2))
+        quads, corners = np.zeros((0, 4, 2)), np.zeros((0, 4, 3))
     else:
-        points = vtk_to_numpy(grid.GetPoints().GetData())
+        points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
         cells = grid.GetCells()
         offsets = vtk_to_numpy(cells.GetOffsetsArray())
         ids = vtk_to_numpy(cells.GetConnectivityArray())
         if np.all(np.diff(offsets) == 8):
-            hexes = points[ids.reshape(-1, 8)]
-            quads = np.zeros((n, 4, 2))
+            hexes = corners = points[ids.reshape(-1, 8)]
+            quads = hexes[:, :4, :2]
         elif np.all(np.diff(offsets) == 4):
-            quads = points[:, :2][ids.reshape(-1, 4)]
+            corners = points[ids.reshape(-1, 4)]
+            quads = corners[:, :, :2]
         else:
             raise PostError(f"{path}: expected one quadrilateral or hexahedron (deformed voxel) per cell")
-    frame = Frame(path, time, step, quads)
+    frame = Frame(path, time, step, quads, corners=corners, dim=3 if hexes is not None else 2)
     data = grid.GetCellData()
     for a in range(data.GetNumberOfArrays()):
         arr = data.GetArray(a)
@@ -90,8 +124,8 @@ def read_frame(path, time=math.nan, step=-1, view=None):
         frame.arrays[arr.GetName()] = values
         k = arr.GetNumberOfComponents()
         frame.components[arr.GetName()] = [arr.GetComponentName(c) or str(c) for c in range(k)]
-    if hexes is not None:
-        project3d(frame, hexes, view or View())
+    if hexes is not None and view is not None:
+        project3d(frame, hexes, view)
     return frame
 
 
@@ -108,6 +142,7 @@ def project3d(frame, hexes, view):
         order = np.argsort(centres[:, 1], kind="stable")   # the highest drawn last
         top = hexes[order][:, [3, 2, 6, 7]]                # the +y face
         frame.quads = top[:, :, [0, 2]]
+        frame.corners = hexes[order]
         frame.axes = ("x", "z")
         frame.view_label = "top view (seen from +y)"
         for name, values in frame.arrays.items():
@@ -130,6 +165,7 @@ def project3d(frame, hexes, view):
                         f"{float(z.max()):.6g} (choose --section-z and --slab)")
     mid = 0.5 * (hexes[keep, :4] + hexes[keep, 4:])       # the voxel cut through its centre
     frame.quads = mid[:, :, :2]
+    frame.corners = hexes[keep]
     frame.view_label = f"section z = {z0:.4g} m (slab {width:.3g} m)"
     for name in frame.arrays:
         frame.arrays[name] = frame.arrays[name][keep]
@@ -140,7 +176,9 @@ def frames_index(outdir):
     return [(i, t, p) for i, (t, p) in enumerate(read_pvd(outdir))]
 
 
-def load_frame(outdir, step, view=None):
+def load_frame(outdir, step=-1, view=None):
+    """Frame number `step` of a run (negative: from the end; default the last), read with
+    VTK's XML reader. A 3D frame keeps every point unless a View is given (pictures)."""
     index = frames_index(outdir)
     if not index:
         raise PostError(f"{outdir}/particles.pvd lists no frames")
@@ -152,42 +190,27 @@ def load_frame(outdir, step, view=None):
     return read_frame(p, t, i, view)
 
 
-UNITS = {
-    "velocity": "m/s", "speed": "m/s", "displacement": "m", "volume": "m³/m",  # m³ in 3D
-    "principal_angle": "°", "smoothed_principal_angle": "°",
-}
-
-
-def unit_of(name, dim=2):
-    if name == "volume" and dim == 3:
-        return "m³"
-    if name in UNITS:
-        return UNITS[name]
-    if "stress" in name or name.endswith("_p") or name.endswith("_q") or name == "stress_from_Fe":
-        return "Pa"
-    return "-"
-
-
 def select(frame, spec):
-    """Values (n,) and a label for a field spec NAME or NAME:COMPONENT. COMPONENT is a component
-    name (xx, yy, s1, ...), an index, or `mag` (magnitude). A vector field (velocity,
-    displacement) without a component means its magnitude."""
+    """Values (n,) in the unit pictures show (kPa for stresses) and a label with symbol and
+    unit for a field spec NAME or NAME:COMPONENT. COMPONENT is a component name (xx, yy, s1,
+    ...), an index, or `mag` (magnitude). A vector field (velocity, displacement) without a
+    component means its magnitude."""
     name, _, comp = spec.partition(":")
     if name not in frame.arrays:
         raise PostError(f"field '{name}' is not in {os.path.basename(frame.path)}; fields: "
                         + ", ".join(sorted(frame.arrays)))
-    values = frame.arrays[name]
+    scale = display(name, frame.dim)[1]
+    values = frame.arrays[name] * scale
     names = frame.components[name]
-    unit = unit_of(name, frame.dim)
     if values.ndim == 1:
         if comp:
             raise PostError(f"field '{name}' has a single component; drop ':{comp}'")
-        return values, f"{name} [{unit}]"
+        return values, label(name, None, frame.dim)
     if comp in ("", "mag", "magnitude"):
         if comp == "" and values.shape[1] != 3:
             raise PostError(f"field '{name}' has components {', '.join(names)}: "
                             f"choose one, e.g. {name}:{names[0]}")
-        return np.linalg.norm(values, axis=1), f"|{name}| [{unit}]"
+        return np.linalg.norm(values, axis=1), label(name, "mag", frame.dim)
     if comp in names:
         k = names.index(comp)
     elif comp.isdigit() and int(comp) < values.shape[1]:
@@ -195,7 +218,7 @@ def select(frame, spec):
     else:
         raise PostError(f"field '{name}' has no component '{comp}'; components: "
                         + ", ".join(names) + ", mag")
-    return values[:, k], f"{name} {names[k]} [{unit}]"
+    return values[:, k], label(name, names[k], frame.dim)
 
 
 def reference_centres(frame):
@@ -217,19 +240,34 @@ def voxel_size(frame):
     return float(np.median(edges))
 
 
+def numeric_column(values):
+    """A CSV column as a NumPy array: int64 if every entry is an integer, else float (an
+    empty entry or "nan" is NaN)."""
+    try:
+        return np.array([int(v) for v in values], dtype=np.int64)
+    except ValueError:
+        return np.array([float(v) if v else np.nan for v in values])
+
+
 def read_series(outdir):
-    """series.csv as {column: array}."""
+    """OUTDIR/series.csv as {column: NumPy array} (step, stage, num_particles... as int64, the
+    rest float), one entry per row: pandas.DataFrame(read_series(d)) takes it as it is.
+    Energies and gravity work are measured from the start of each row's stage."""
     path = os.path.join(outdir, "series.csv")
     if not os.path.isfile(path):
         raise PostError(f"{path} not found")
     with open(path, newline="") as f:
-        rows = list(csv.DictReader(f))
-    if not rows:
+        reader = csv.reader(f)
+        header = next(reader, None)
+        rows = [r for r in reader if len(r) == len(header or [])]
+    if not header or not rows:
         raise PostError(f"{path} has no rows")
-    return {k: np.array([float(r[k]) for r in rows]) for k in rows[0]}
+    return {name: numeric_column([r[k] for r in rows]) for k, name in enumerate(header)}
 
 
 def read_summary(outdir):
+    """OUTDIR/summary.json as a dict (JSON null: None), or None if the run wrote none yet:
+    status, steps, simulated_time, ..., and "stages", a list of dicts of slide measures."""
     path = os.path.join(outdir, "summary.json")
     if not os.path.isfile(path):
         return None

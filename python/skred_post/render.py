@@ -23,9 +23,12 @@ BACKGROUND = "white"
 BAD_COLOUR = "#c8c8c8"  # NaN or infinite values (e.g. relative yield of an elastic material)
 
 
+DEFAULT_FIELDS = ("displacement", "speed")  # the first a frame has is drawn by default
+
+
 @dataclass
 class Style:
-    field: str = "speed"
+    field: str = None             # NAME or NAME:COMPONENT; None: the first of DEFAULT_FIELDS
     cmap: str = "viridis"
     vrange: tuple = None          # (vmin, vmax) or None for the data's range
     pattern: str = None           # None, "stripes" or "checkerboard"
@@ -34,25 +37,66 @@ class Style:
     arrows: bool = False
     crosses: bool = False
     sample: int = 4               # overlays: one particle per sample x sample voxels
-    width: float = 8.0            # figure size [inch]
-    height: float = 6.0
+    width: float = 8.0            # figure width [inch]; the height follows the domain
+    max_height: float = 9.0       # the tallest figure [inch] (a tall domain narrows it)
     dpi: int = 100
     body_names: dict = None       # body id -> name, for the pattern legend
 
 
-def finite_range(values_list):
-    """(min, max) over the finite values of several arrays, widened if empty or flat."""
+def data_range(values_list):
+    """(min, max) over the finite values of several arrays; None if there is none. Merge
+    these (merge_ranges) before widening a flat range (finite_range)."""
     lo, hi = math.inf, -math.inf
     for v in values_list:
         v = v[np.isfinite(v)]
         if v.size:
             lo, hi = min(lo, float(v.min())), max(hi, float(v.max()))
-    if lo > hi:
+    return (lo, hi) if lo <= hi else None
+
+
+def merge_ranges(ranges):
+    """The range holding every range of a list (None entries: no finite value)."""
+    ranges = [r for r in ranges if r is not None]
+    if not ranges:
+        return None
+    return min(r[0] for r in ranges), max(r[1] for r in ranges)
+
+
+def widened(r):
+    """A colour range that can be drawn: (0, 1) without data; a flat range x is widened to
+    (0, 1) for x = 0 (a field that is zero everywhere, such as the displacement at the start),
+    else by 0.1 % of |x| on each side; a range narrower than 1e-9 |x| counts as flat."""
+    if r is None:
         return 0.0, 1.0
-    if lo == hi:
-        pad = abs(lo) * 1e-3 or 1.0
+    lo, hi = r
+    if hi - lo <= 1e-9 * max(abs(lo), abs(hi)):  # flat up to rounding (a rigid translation)
+        lo = hi = 0.5 * (lo + hi)
+        if lo == 0.0:
+            return 0.0, 1.0
+        pad = abs(lo) * 1e-3
         return lo - pad, hi + pad
     return lo, hi
+
+
+def finite_range(values_list):
+    """(min, max) over the finite values of several arrays, widened if empty or flat."""
+    return widened(data_range(values_list))
+
+
+def default_field(frame):
+    """The field drawn when none is asked for: the displacement magnitude (the speed is zero
+    at the final state of a slide), else the speed."""
+    for name in DEFAULT_FIELDS:
+        if name in frame.arrays:
+            return name
+    raise PostError("the frame has neither displacement nor speed; choose a field with --field: "
+                    + ", ".join(sorted(frame.arrays)))
+
+
+def resolve_field(frame, style):
+    """Fills style.field with the default field if it is unset."""
+    if not style.pattern and not style.field:
+        style.field = default_field(frame)
 
 
 def bounds(frames, margin=0.05):
@@ -136,10 +180,38 @@ def draw_arrows(ax, frame, idx, spacing):
               scale=vmax / (0.8 * spacing), width=0.003, color="black", zorder=5)
 
 
+# Margins around the plot [inch]: room for the tick labels, axis labels, the two-line title
+# and, on the right, the colour bar (or the body legend) with its label.
+MARGIN = {"left": 0.85, "bottom": 0.65, "top": 0.75, "right": 1.45}
+BAR_GAP, BAR_WIDTH = 0.2, 0.22  # [inch]
+MIN_PLOT_HEIGHT = 1.2           # [inch]; a flatter domain gets more room above and below
+MIN_PLOT_WIDTH = 2.6            # [inch]; a narrower domain gets room beside it (for the title)
+
+
+def layout(style, xlim, ylim):
+    """(figure width, height) and the plot's (left, bottom, width, height) in inches: the
+    plot has the domain's aspect ratio, so the picture has no empty band."""
+    dx, dy = xlim[1] - xlim[0], ylim[1] - ylim[0]
+    aspect = dy / dx if dx > 0 and dy > 0 else 1.0
+    m = dict(MARGIN)
+    if style.arrows or style.crosses:
+        m["top"] += 0.2  # a third title line names the overlays
+    w = style.width - m["left"] - m["right"]
+    h = w * aspect
+    if h > style.max_height - m["bottom"] - m["top"]:
+        h = style.max_height - m["bottom"] - m["top"]
+        w = h / aspect
+    h = max(h, MIN_PLOT_HEIGHT)  # the axis limits widen to keep the aspect (datalim)
+    w = max(w, MIN_PLOT_WIDTH)
+    return (m["left"] + w + m["right"], m["bottom"] + h + m["top"]), (m["left"], m["bottom"], w, h)
+
+
 def draw_frame(frame, style, xlim, ylim, vrange=None):
     """The figure of one frame and a dict describing where things are in the picture."""
-    fig = plt.figure(figsize=(style.width, style.height), dpi=style.dpi, facecolor=BACKGROUND)
-    ax = fig.add_axes([0.11, 0.1, 0.7, 0.8], facecolor=BACKGROUND)
+    resolve_field(frame, style)
+    (fw, fh), (left, bottom, w, h) = layout(style, xlim, ylim)
+    fig = plt.figure(figsize=(fw, fh), dpi=style.dpi, facecolor=BACKGROUND)
+    ax = fig.add_axes([left / fw, bottom / fh, w / fw, h / fh], facecolor=BACKGROUND)
     cax = None
     info = {"cmap": None, "vmin": None, "vmax": None}
     if style.pattern:
@@ -153,10 +225,17 @@ def draw_frame(frame, style, xlim, ylim, vrange=None):
         vmin, vmax = vrange or style.vrange or finite_range([values])
         norm = mcolors.Normalize(vmin=vmin, vmax=vmax)
         cmap = plt.get_cmap(style.cmap).with_extremes(bad=BAD_COLOUR)
-        faces = cmap(norm(np.where(np.isfinite(values), values, np.nan)))
-        cax = fig.add_axes([0.85, 0.1, 0.03, 0.8])
-        fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=cax, label=label)
-        info.update(cmap=style.cmap, vmin=vmin, vmax=vmax)
+        finite = np.isfinite(values)
+        faces = cmap(norm(np.where(finite, values, np.nan)))
+        # The colour bar: as tall as the plot, beside it.
+        cax = fig.add_axes([(left + w + BAR_GAP) / fw, bottom / fh, BAR_WIDTH / fw, h / fh])
+        bar = fig.colorbar(ScalarMappable(norm=norm, cmap=cmap), cax=cax, label=label)
+        bar.formatter.set_useOffset(False)  # the values themselves, never "1e-14 + 0.0424"
+        if not finite.all():  # grey voxels: say what they are, under the colour bar
+            fig.legend(handles=[Patch(facecolor=BAD_COLOUR, edgecolor="none", label="no value\n(NaN or inf)")],
+                       loc="upper left", bbox_to_anchor=((left + w + 0.05) / fw, (bottom - 0.08) / fh),
+                       fontsize="x-small", frameon=False, borderaxespad=0.0, handlelength=1.2)
+        info.update(cmap=style.cmap, vmin=vmin, vmax=vmax, nonfinite=int(np.count_nonzero(~finite)))
         what = label
     ax.add_collection(PolyCollection(frame.quads, facecolors=faces, edgecolors=faces,
                                      linewidths=0.3, zorder=2))
@@ -173,14 +252,14 @@ def draw_frame(frame, style, xlim, ylim, vrange=None):
         what += "\n" + ", ".join(overlays)
     ax.set_xlim(*xlim)
     ax.set_ylim(*ylim)
-    ax.set_aspect("equal", adjustable="box")
-    ax.set_xlabel(f"{frame.axes[0]} [m]")
-    ax.set_ylabel(f"{frame.axes[1]} [m]")
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.set_xlabel(f"${frame.axes[0]}$ [m]")
+    ax.set_ylabel(f"${frame.axes[1]}$ [m]")
     view = f", {frame.view_label}" if frame.view_label else ""
-    ax.set_title(f"{what}\nt = {frame.time:.4g} s (frame {frame.step}{view})", fontsize="medium")
+    ax.set_title(f"{what}\n$t$ = {frame.time:.4g} s (frame {frame.step}{view})", fontsize="medium")
     fig.canvas.draw()
     info.update(image_size=[int(round(v)) for v in fig.canvas.get_width_height()],
-                axes=pixel_box(fig, ax), xlim=list(xlim), ylim=list(ylim),
+                axes=pixel_box(fig, ax), xlim=list(ax.get_xlim()), ylim=list(ax.get_ylim()),
                 colorbar=pixel_box(fig, cax) if cax else None)
     return fig, info
 
@@ -206,7 +285,9 @@ def save(fig, path, info=None, info_path=None):
 
 
 def check_style(frame, style):
-    """Raises PostError early for a field that the frame does not have."""
+    """Raises PostError early for a field that the frame does not have (and picks the
+    default field if none was asked for)."""
+    resolve_field(frame, style)
     if not style.pattern:
         select(frame, style.field)
     if style.arrows and "velocity" not in frame.arrays:

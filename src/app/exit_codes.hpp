@@ -9,6 +9,6 @@ inline constexpr int kUnstable = 2;         // unstable, or a point left the gri
 inline constexpr int kInterrupted = 3;      // SIGINT/SIGTERM: checkpoint written, resume it
 inline constexpr int kUsage = 4;            // bad command line
 inline constexpr int kInvalidScenario = 5;  // the scenario file is invalid (file:line:col: key)
-inline constexpr int kMissingPython = 6;    // render/report: Python or its modules missing
+inline constexpr int kMissingPython = 6;    // render/report/sweep picture: Python or its modules missing
 
 }  // namespace skred::exit_code

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <filesystem>
 #include <sstream>
+#include <stdexcept>
+#include <vector>
 
 #include "app/exit_codes.hpp"
 #include "app/omp_wait.hpp"
@@ -54,54 +56,35 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads, skr
   return code::kSuccess;
 }
 
-// "KEY=V1,V2,..." where each item is a number or a range FROM:TO:STEP (TO included).
-skred::SweepOptions parse_sweep_set(const std::string& set) {
+// One run per point of the grid of --set values; then sweep.csv's picture (pictures/sweep.png)
+// is drawn by the Python post-processing. Exits: usage for a bad --set, unstable if a run
+// was, missing Python if the picture could not be drawn (sweep.csv is written all the same).
+int cmd_sweep(const std::string& file, const std::string& outdir, const std::vector<std::string>& sets,
+              int threads, bool overwrite) {
   skred::SweepOptions o;
-  const auto eq = set.find('=');
-  if (eq == std::string::npos || eq == 0 || eq + 1 == set.size())
-    throw CLI::ValidationError("--set", "expected KEY=V1,V2,... or KEY=FROM:TO:STEP, got '" + set + "'");
-  o.key = set.substr(0, eq);
-  std::stringstream items(set.substr(eq + 1));
-  for (std::string item; std::getline(items, item, ',');) {
-    std::vector<double> parts;
-    std::stringstream ps(item);
-    for (std::string x; std::getline(ps, x, ':');) {
-      std::size_t used = 0;
-      double v = 0;
-      try {
-        v = std::stod(x, &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != x.size() || x.empty() || !std::isfinite(v))
-        throw CLI::ValidationError("--set", "'" + x + "' is not a number");
-      parts.push_back(v);
-    }
-    if (parts.size() == 1) {
-      o.values.push_back(parts[0]);
-    } else if (parts.size() == 3 && parts[2] > 0 && parts[1] >= parts[0]) {
-      const long n = std::lround(std::floor((parts[1] - parts[0]) / parts[2] + 1e-9));
-      if (n > 1000) throw CLI::ValidationError("--set", "a range may give at most 1000 values");
-      for (long k = 0; k <= n; ++k) o.values.push_back(parts[0] + k * parts[2]);
-    } else {
-      throw CLI::ValidationError("--set", "'" + item + "' must be a number or FROM:TO:STEP with STEP > 0");
-    }
+  try {
+    for (const std::string& set : sets) o.axes.push_back(skred::parse_sweep_axis(set));
+    skred::sweep_grid(o.axes);  // checks the keys and the number of runs
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("--set", e.what());
   }
-  return o;
-}
-
-int cmd_sweep(const std::string& file, const std::string& outdir, const std::string& set, int threads,
-              bool overwrite) {
-  skred::SweepOptions o = parse_sweep_set(set);
   skred::prepare_output_folder(outdir, overwrite, file);
   o.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto rows = skred::run_sweep(file, outdir, o);
-  fmt::print("{:>12} {:>10} {:>10} {:>10} {:>12} {:>10}\n", o.key.substr(0, 12), "status", "runout", "height",
-             "peak speed", "stop time");
-  for (const auto& r : rows)
-    fmt::print("{:>12.6g} {:>10} {:>10.4g} {:>10.4g} {:>12.4g} {:>10.4g}\n", r.value, r.status, r.runout,
-               r.height_end, r.peak_mean_speed, r.stop_time);
-  fmt::print("table: {}\n", (std::filesystem::path(outdir) / "sweep.csv").string());
+  for (const auto& a : o.axes) fmt::print("{:>14.14} ", a.key);
+  fmt::print("{:>10} {:>10} {:>10} {:>12} {:>10}\n", "status", "runout", "height", "peak speed", "stop time");
+  for (const auto& r : rows) {
+    for (double v : r.values) fmt::print("{:>14.6g} ", v);
+    fmt::print("{:>10} {:>10.4g} {:>10.4g} {:>12.4g} {:>10.4g}\n", r.status, r.last.runout, r.last.height_end,
+               r.last.peak_mean_speed, r.last.stop_time.value_or(NAN));
+  }
+  const std::filesystem::path table = std::filesystem::path(outdir) / "sweep.csv";
+  fmt::print("table: {}\n", table.string());
+  const int drawn = skred::run_post({"sweep", outdir});
+  if (drawn != code::kSuccess) {
+    fmt::print(stderr, "skred: the sweep's picture was not drawn; {} is complete\n", table.string());
+    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
+  }
   for (const auto& r : rows)
     if (r.status != "completed") return code::kUnstable;
   return code::kSuccess;
@@ -148,12 +131,21 @@ int main(int argc, char** argv) {
   bool force = false;
   run->add_flag("--force", force, "Run a scenario that needs more memory than the machine has");
 
-  std::string set;
-  auto* sweep = app.add_subcommand("sweep", "Run a scenario once per value of one parameter");
+  std::vector<std::string> sets;
+  auto* sweep = app.add_subcommand(
+      "sweep", "Run a scenario once per value of a parameter, or per point of a grid of several");
   sweep->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
-  sweep->add_option("--set", set, "KEY=V1,V2,... or KEY=FROM:TO:STEP, e.g. material[sand].friction=15:30:3")
+  sweep
+      ->add_option(
+          "--set", sets,
+          "KEY=V1,V2,... or KEY=FROM:TO:STEP, e.g. material[sand].friction=15:30:3; repeat for a grid")
+      ->required()
+      ->expected(1)
+      ->take_all();
+  sweep
+      ->add_option("-o,--output", outdir,
+                   "Output folder (one sub-folder per run, sweep.csv, pictures/sweep.png)")
       ->required();
-  sweep->add_option("-o,--output", outdir, "Output folder (one sub-folder per run, sweep.csv)")->required();
   sweep->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--overwrite", overwrite, "Replace an earlier sweep in OUTDIR (removes its files first)");
 
@@ -205,7 +197,7 @@ int main(int argc, char** argv) {
       return cmd_run((std::filesystem::path(outdir) / "scenario.toml").string(), outdir, threads, ro, false);
     }
     if (scenario_commands.chosen()) return scenario_commands.run();
-    if (*sweep) return cmd_sweep(scenario, outdir, set, threads, overwrite);
+    if (*sweep) return cmd_sweep(scenario, outdir, sets, threads, overwrite);
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column") {
         fmt::print(stderr, "skred: --dim 3 is available for --problem column only\n");

@@ -19,8 +19,9 @@ class PostCommands {
     render_->add_option("outdir", outdir_, "Output folder of `skred run`")
         ->required()
         ->check(CLI::ExistingDirectory);
-    render_->add_option("--field", field_,
-                        "Colour field NAME or NAME:COMPONENT, e.g. stress:yy, smoothed_p (default speed)");
+    render_->add_option(
+        "--field", field_,
+        "Colour field NAME or NAME:COMPONENT, e.g. stress:yy, smoothed_p (default: displacement magnitude)");
     auto* step = render_->add_option("--step", step_, "Frame number (default: the last)");
     auto* all = render_->add_flag("--all", all_, "Render every frame and assemble an animated GIF");
     auto* series = render_->add_flag("--series", series_, "Plot series.csv (energies, speeds, momentum)");
@@ -35,13 +36,17 @@ class PostCommands {
     render_->add_option("--pattern-width", pattern_width_, "Stripe/square width [m] (default 4 voxels)")
         ->check(CLI::PositiveNumber);
     render_->add_option("--pattern-angle", pattern_angle_, "Stripe direction [degrees from x]");
-    render_->add_option("--range", range_, "Colour range MIN MAX")->expected(2);
+    render_
+        ->add_option("--range", range_, "Colour range MIN MAX, in the colour bar's unit (kPa for stresses)")
+        ->expected(2);
     render_->add_option("--cmap", cmap_, "matplotlib colour map (default viridis)");
     render_->add_option("--sample", sample_, "Overlays: one particle per N x N voxels (default 4)")
         ->check(CLI::Range(1, 1000));
     render_->add_option("--fps", fps_, "Frames per second of the GIF (default 8)")
         ->check(CLI::PositiveNumber);
-    render_->add_option("--dpi", dpi_, "Pixels per inch (default 100; 8 x 6 inch pictures)")
+    render_
+        ->add_option("--dpi", dpi_,
+                     "Pixels per inch (default 100; 8 inch wide pictures, as tall as the domain needs)")
         ->check(CLI::Range(20, 1000));
     render_->add_option("--info", info_, "Also write where axes and colour bar lie in the picture (JSON)");
     render_
@@ -59,7 +64,7 @@ class PostCommands {
         ->required()
         ->check(CLI::ExistingDirectory);
     report_->add_option("-o,--output", output_, "HTML file (default OUTDIR/report.html)");
-    report_->add_option("--field", field_, "Field of the frame pictures (default speed)");
+    report_->add_option("--field", field_, "Field of the frame pictures (default: displacement magnitude)");
   }
 
   bool chosen() const { return render_->parsed() || report_->parsed(); }

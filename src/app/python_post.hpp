@@ -1,5 +1,5 @@
-// `skred render` and `skred report` run the Python post-processing (python/skred-post.py,
-// matplotlib + VTK from Debian's packages) with the system Python.
+// `skred render`, `skred report` and the picture of `skred sweep` run the Python post-processing
+// (python/skred-post.py, matplotlib + VTK from Debian's packages) with the system Python.
 #pragma once
 #include <filesystem>
 #include <string>
@@ -20,7 +20,11 @@ std::filesystem::path find_post_script(const std::filesystem::path& exe);
 // variables and no user site-packages, so Debian's modules are the ones imported; -B: no
 // __pycache__ written into the source tree). Returns only if that
 // fails, after printing why (with the packages to install) on stderr; the return value is the
-// exit status to use (1).
+// exit status to use (kMissingPython, or kError when the script is not found).
 int exec_post(const std::vector<std::string>& args);
+
+// Runs the same command as a child process and waits for it: its exit status (6 when Python
+// is missing, as skred-post.py's own for a missing module).
+int run_post(const std::vector<std::string>& args);
 
 }  // namespace skred

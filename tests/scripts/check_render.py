@@ -3,9 +3,12 @@ Checks the pixels of the picture `skred render` drew of the two-particle state o
 tests/test_post_render.cpp, using the axes and colour-bar boxes it reported with --info.
 Voxel A: centre (0.5, 0.5), square of half-size 0.2, stress xx 2.5, body 0.
 Voxel B: centre (1.5, 0.5), sheared by F = [[1, 1], [0, 1]], stress xx 10, body 1.
-MODE: field   (--field stress:xx --range 0 10: A = viridis(0.25), B = viridis(1), colour bar)
+MODE: field   (--field stress:xx --range 0 10 [kPa]: A = viridis(0.25), B = viridis(1), colour bar)
       nan     (--field relative_yield with no strength: both grey #c8c8c8)
       checker (--checkerboard --pattern-width 1: A light body-0 blue, B dark body-1 orange)
+      zero    (the first frame of --all, displacement 0 of a range 0 ... 0.4 m: both viridis(0))
+      layout  (the plot box has the aspect of its axis limits, the colour bar its height, and
+               the image holds little besides them)
 Prints one line per check and exits 1 if any fails."""
 import json
 import sys
@@ -43,6 +46,18 @@ def main(mode, png, info_path):
         py = top + (y1 - y) / (y1 - y0) * (bottom - top)
         return img[int(py), int(px)]
 
+    if mode == "layout":
+        pw, ph = right - left, bottom - top
+        data_aspect = (y1 - y0) / (x1 - x0)
+        check("plot box aspect (x1000) = axis limits' aspect", [1000 * ph / pw], [1000 * data_aspect],
+              0.02 * 1000 * data_aspect)
+        bl, bt, br, bb = info["colorbar"]
+        check("colour bar top and bottom = the plot's", [bt, bb], [top, bottom], 1.5)
+        # Margins only: at most 1.6 inch (0.2 of the 8 inch width) above and below the plot,
+        # 2.4 inch (0.3) beside it.
+        check("image height beyond the plot (x100 of the width)", [100 * (h - ph) / w], [0], 20)
+        check("image width beyond the plot (x100 of the width)", [100 * (w - pw) / w], [0], 30)
+        return report()
     a_in = [(0.5, 0.5), (0.35, 0.62), (0.66, 0.36)]
     b_in = [(1.5, 0.5), (1.8, 0.65), (1.2, 0.35)]   # (1.8, 0.65): sheared part, outside the square
     background = [(1.0, 0.5), (1.35, 0.65),        # (1.35, 0.65): inside the square, not the voxel
@@ -53,6 +68,9 @@ def main(mode, png, info_path):
         check("viridis(0.25) is the textbook #3b528b", want_a, (59, 82, 139), 1)
     elif mode == "nan":
         want_a = want_b = (200, 200, 200)
+    elif mode == "zero":
+        want_a = want_b = rgb(colormaps["viridis"](0.0))
+        check("colour range (x1e6)", [1e6 * info["vmin"], 1e6 * info["vmax"]], [0, 0.4e6], 1)
     else:
         tab = colormaps["tab10"]
         want_a = rgb([0.45 * c + 0.55 for c in tab(0)[:3]])  # light shade of body 0
@@ -63,7 +81,7 @@ def main(mode, png, info_path):
         check(f"voxel B at {p}", at(*p), want_b)
     for p in background:
         check(f"background at {p}", at(*p), WHITE, 0)
-    if mode in ("field", "nan"):
+    if mode in ("field", "nan", "zero"):
         bl, bt, br, bb = info["colorbar"]
         cx = int(0.5 * (bl + br))
         for frac in (0.05, 0.25, 0.5, 0.75, 0.95):
@@ -74,6 +92,10 @@ def main(mode, png, info_path):
     else:
         if info["colorbar"] is not None:
             failures.append("a pattern picture has no colour bar")
+    return report()
+
+
+def report():
     if failures:
         print("failed: " + "; ".join(failures))
         return 1

@@ -51,6 +51,11 @@ def main(html_path, dom_path, log_path):
     expect(not c.links, f"no outside resources ({c.links})")
     expect(not re.search(r"(src|href)\s*=\s*['\"]?(https?:|file:|//)", page), "no remote URL")
     expect("completed" in page, "summary shows the run's status")
+    # The stage measures as a table with units, not a Python repr; empty fields left out.
+    expect("<table class='stages'>" in page, "stage measures table")
+    expect("runout <span class='unit'>[m]</span>" in page, "measures carry units")
+    expect(not re.search(r"\[\{'|\{'name'|>None<|<td></td>", page), "no Python repr, no empty cell")
+    expect("<th>message" not in page, "the empty message is left out")
     expect("[[body]]" in page, "scenario text is shown")
     dom = open(dom_path, encoding="utf-8", errors="replace").read()
     m = re.search(r'data-images-loaded="(\d+)/(\d+)"', dom)
