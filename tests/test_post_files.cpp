@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <numbers>
 #include <sstream>
 
@@ -241,7 +242,12 @@ TEST_F(IoTest, GridNodeFileReadsBackWithVtk) {
 }
 
 TEST_F(IoTest, RunWritesGridFilesScenarioCopyAndPostFields) {
-  const fs::path scenario = fs::path(SKRED_SOURCE_DIR) / "tests" / "data" / "minimal.toml";
+  const fs::path scenario = dir / "all_fields.toml";  // minimal.toml writing every field
+  {
+    std::ofstream f(scenario);
+    f << read_text(fs::path(SKRED_SOURCE_DIR) / "tests" / "data" / "minimal.toml")
+      << "\n[output]\nfields = \"all\"\ncompression = false\n";
+  }
   const auto [status, out] =
       run_command(std::string(SKRED_BINARY) + " run " + shell_quote(scenario.string()) + " -o " +
                   shell_quote((dir / "out").string()) + " --threads 1");

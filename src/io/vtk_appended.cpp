@@ -13,8 +13,9 @@ namespace {
 
 constexpr std::size_t kChunkItems = 1 << 14;  // items per fill call
 constexpr std::size_t kBlockBytes = 1 << 18;  // uncompressed bytes per zlib block (VTK: any size)
-// zlib level 1 (fastest): on the slope example's frames it gives nearly the ratio of the
-// default level 6 at several times the speed (scripts/vtu_size.sh measures both).
+// zlib level 1 (fastest): the slope example's last default frame shrinks to 0.557 of its raw
+// size, against 0.552 at the default level 6, which took 4 times as long (recompressed with
+// Python's zlib).
 constexpr int kZlibLevel = 1;
 constexpr int kOffsetWidth = 20;  // digits of a UInt64
 

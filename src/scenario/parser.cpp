@@ -268,13 +268,16 @@ constexpr double kMaxSeriesRows = 1e7;
 
 // output.fields: "default", "all", or a list of field names and "default"; the names in the
 // order of output_fields::all(), each once.
-std::vector<std::string> parse_output_fields(const TableReader& o) {
+// `table` is the [output] table, if there is one.
+std::vector<std::string> parse_output_fields(const std::optional<TableReader>& table) {
   const std::vector<std::string>& all = output_fields::all();
-  if (!o.has("fields")) return output_fields::defaults();
   std::vector<std::string> given;
-  if (o.find("fields")->is_string()) {
-    given.push_back(o.string("fields"));
+  if (!table || !table->has("fields")) {
+    given.push_back("default");
+  } else if (table->find("fields")->is_string()) {
+    given.push_back(table->string("fields"));
   } else {
+    const TableReader& o = *table;
     const auto* arr = o.find("fields")->as_array();
     if (!arr || arr->empty())
       o.fail_type("fields", "\"default\", \"all\" or a non-empty list of field names");
@@ -293,7 +296,7 @@ std::vector<std::string> parse_output_fields(const TableReader& o) {
     } else {
       std::vector<std::string> allowed = {"default", "all"};
       allowed.insert(allowed.end(), all.begin(), all.end());
-      o.fail_at("fields", TableReader::unknown_choice_message(g, allowed));
+      table->fail_at("fields", TableReader::unknown_choice_message(g, allowed));  // only given names fail
     }
   }
   std::vector<std::string> names;
@@ -320,9 +323,9 @@ void parse_output(const TableReader& root, ScenarioCommon& s) {
       o->fail_at("series_interval", fmt::format("gives {:.3g} rows of series.csv over {} s; at most "
                                                 "{:.0f} are allowed",
                                                 s.end_time / s.series_interval, s.end_time, kMaxSeriesRows));
-    s.output_fields = parse_output_fields(*o);
     s.output_compression = o->boolean_or("compression", true);
   }
+  s.output_fields = parse_output_fields(o);
 }
 
 }  // namespace
