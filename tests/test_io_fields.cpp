@@ -36,7 +36,7 @@ struct Frame {
 
   explicit Frame(int n) {
     for (int i = 0; i < n; ++i) {
-      P.add(Vec<2>(0.1 * (i % 100), 0.1 * (i / 100)), Vec<2>(std::sin(i), 1.0 / (i + 3)), 2.0, 0.01,
+      P.add(Vec<2>(0.1 * (i % 1000), 0.1 * (i / 1000)), Vec<2>(std::sin(i), 1.0 / (i + 3)), 2.0, 0.01,
             Vec<2>(0.05, 0.05), 0, i % 2);
       P.F[i] << 1.0 + 1e-3 * std::cos(i), 1e-4 * i / n, 0.0, 1.0 - 7e-4 * std::sin(i);
       P.x[i] += Vec<2>(1e-3 * std::cos(3.0 * i), -2e-3 * i / n);
