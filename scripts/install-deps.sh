@@ -3,9 +3,10 @@
 set -euo pipefail
 # python3-matplotlib (with python3-numpy, python3-pil): `skred render` / `skred report`;
 # chromium: the test that opens the HTML report headless; clang-format: the test that the
-# sources follow .clang-format; python3-pip, python3-setuptools, python3-wheel: installing
-# python/ (skred_post) offline with `pip install --no-build-isolation ./python` (and its test).
-pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev
+# sources follow .clang-format; zlib1g-dev: the compressed VTK frames; python3-pip,
+# python3-setuptools, python3-wheel: installing python/ (skred_post) offline with
+# `pip install --no-build-isolation ./python` (and its test).
+pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev zlib1g-dev
       python3-numpy python3-matplotlib python3-pil chromium clang-format
       python3-pip python3-setuptools python3-wheel)
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }

@@ -3,6 +3,7 @@
 #pragma once
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <map>
 #include <sstream>
@@ -14,6 +15,11 @@
 
 namespace skred::iotest {
 
+// A double as the Float32 of a frame holds it (the writer rounds to nearest).
+inline double f32(double x) { return static_cast<float>(x); }
+// Half a Float32 unit in the last place of x: how far a stored value may lie from x.
+inline double f32_tolerance(double x) { return std::abs(x) * 0x1p-24; }
+
 // What tests/scripts/read_vtu.py reports about a file.
 struct VtuArray {
   int components = 0;
@@ -23,6 +29,7 @@ struct VtuArray {
 };
 struct VtuInfo {
   long cells = -1, points = -1, point_arrays = -1;
+  std::string point_type;  // float32 or float64
   std::map<int, int> cell_type;
   std::map<int, std::vector<int>> cell_points;
   std::map<int, Vec<2>> point;
@@ -49,6 +56,8 @@ inline VtuInfo read_vtu(const std::filesystem::path& file, const std::string& ce
       in >> info.cells;
     else if (key == "points")
       in >> info.points;
+    else if (key == "pointtype")
+      in >> info.point_type;
     else if (key == "pointarrays")
       in >> info.point_arrays;
     else if (key == "celltype") {

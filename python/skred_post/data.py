@@ -104,7 +104,7 @@ def read_frame(path, time=math.nan, step=-1, view=None):
     if n == 0 or grid.GetPoints() is None:
         quads, corners = np.zeros((0, 4, 2)), np.zeros((0, 4, 3))
     else:
-        points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)
+        points = vtk_to_numpy(grid.GetPoints().GetData()).astype(float)  # Float32 or Float64 corners
         cells = grid.GetCells()
         offsets = vtk_to_numpy(cells.GetOffsetsArray())
         ids = vtk_to_numpy(cells.GetConnectivityArray())

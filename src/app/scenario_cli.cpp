@@ -47,8 +47,8 @@ void print_check(const ScenarioOf<D>& s, bool force) {
     fmt::print("warning: the time step exceeds the stable step (allow_unstable_time_step = true)\n");
   fmt::print("grid nodes: {:.0f}\nmemory: about {} (this machine offers {})\n", z.nodes,
              gigabytes(z.memory_bytes), gigabytes(available_memory_bytes()));
-  fmt::print("output: {:.0f} particle frames of about {:.3g} MB, {} in all\n", z.frames, z.frame_bytes / 1e6,
-             gigabytes(z.output_bytes()));
+  fmt::print("output: {:.0f} particle frames of at most {:.3g} MB (less compressed), {} in all\n", z.frames,
+             z.frame_bytes / 1e6, gigabytes(z.output_bytes()));
   fmt::print("scenario is valid\n");
 }
 

@@ -2,60 +2,73 @@
 
 #include <fmt/format.h>
 
-#include <bit>
 #include <cstdint>
+#include <cstring>
 #include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "io/atomic_file.hpp"
+#include "io/vtk_appended.hpp"
 
 namespace skred {
 
 namespace {
 
-// One appended array: its XML attributes and its values (Float64, or UInt8 in `bytes`).
+// One appended array: its XML attributes and its values (Float32 for the nodal fields, Float64
+// for the coordinates, UInt8 in `bytes`).
 struct Array {
   std::string name;
   int components;
   std::vector<std::string> component_names;
   std::vector<double> values;
   std::vector<std::uint8_t> bytes = {};
+  bool single = true;
 
   bool is_bytes() const { return values.empty() && !bytes.empty(); }
-  std::size_t size_bytes() const { return is_bytes() ? bytes.size() : values.size() * sizeof(double); }
-  const char* data() const {
-    return is_bytes() ? reinterpret_cast<const char*>(bytes.data())
-                      : reinterpret_cast<const char*>(values.data());
+  const char* type() const { return is_bytes() ? "UInt8" : single ? "Float32" : "Float64"; }
+  vtk::AppendedArray appended() const {
+    if (is_bytes())
+      return {bytes.size(), 1, [this](std::size_t b, std::size_t e, unsigned char* out) {
+                std::memcpy(out, bytes.data() + b, e - b);
+              }};
+    return {values.size(), single ? sizeof(float) : sizeof(double),
+            [this](std::size_t b, std::size_t e, unsigned char* out) {
+              for (std::size_t i = b; i < e; ++i) {
+                if (single) {
+                  const float x = static_cast<float>(values[i]);
+                  std::memcpy(out, &x, sizeof x);
+                  out += sizeof x;
+                } else {
+                  std::memcpy(out, &values[i], sizeof(double));
+                  out += sizeof(double);
+                }
+              }
+            }};
   }
 };
 
 template <int D>
 std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
-                   const std::vector<Array>& point_data) {
-  constexpr bool little = std::endian::native == std::endian::little;
-  std::string h;
+                   const std::vector<Array>& point_data, bool compress,
+                   const std::vector<std::uint64_t>& offsets) {
+  std::string h = "<?xml version=\"1.0\"?>\n" + vtk::vtkfile_element("RectilinearGrid", compress);
   auto out = std::back_inserter(h);
   const int nx = g.nodes(0) - 1, ny = g.nodes(1) - 1, nz = D == 3 ? g.nodes(D - 1) - 1 : 0;
   fmt::format_to(out,
-                 "<?xml version=\"1.0\"?>\n"
-                 "<VTKFile type=\"RectilinearGrid\" version=\"1.0\" byte_order=\"{}\" "
-                 "header_type=\"UInt64\">\n"
                  "  <RectilinearGrid WholeExtent=\"0 {} 0 {} 0 {}\">\n"
                  "    <Piece Extent=\"0 {} 0 {} 0 {}\">\n",
-                 little ? "LittleEndian" : "BigEndian", nx, ny, nz, nx, ny, nz);
-  std::size_t offset = 0;
+                 nx, ny, nz, nx, ny, nz);
+  std::size_t i = 0;
   auto arrays = [&](const char* section, const std::vector<Array>& list) {
     fmt::format_to(out, "      <{}>\n", section);
     for (const Array& a : list) {
-      fmt::format_to(out, "        <DataArray type=\"{}\" Name=\"{}\"", a.is_bytes() ? "UInt8" : "Float64",
-                     a.name);
+      fmt::format_to(out, "        <DataArray type=\"{}\" Name=\"{}\"", a.type(), a.name);
       if (a.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", a.components);
       for (std::size_t c = 0; c < a.component_names.size(); ++c)
         fmt::format_to(out, " ComponentName{}=\"{}\"", c, a.component_names[c]);
-      fmt::format_to(out, " format=\"appended\" offset=\"{}\"/>\n", offset);
-      offset += sizeof(std::uint64_t) + a.size_bytes();
+      fmt::format_to(out, " format=\"appended\"{}/>\n", vtk::offset_attribute(offsets[i++]));
     }
     fmt::format_to(out, "      </{}>\n", section);
   };
@@ -66,20 +79,21 @@ std::string header(const GridGeometry<D>& g, const std::vector<Array>& coords,
 }
 
 template <int D>
-void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid, const GridNodeFieldsOf<D>& f) {
+void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid, const GridNodeFieldsOf<D>& f,
+               bool compress) {
   const std::size_t n = grid.node_count();
   if (f.mass.size() != n || f.velocity.size() != n || f.stress.size() != n)
     throw std::invalid_argument(
         fmt::format("write_grid_vtr: {} nodes but mass/velocity/stress have {}/{}/{} entries", n,
                     f.mass.size(), f.velocity.size(), f.stress.size()));
 
-  std::vector<Array> coords;
+  std::vector<Array> coords;  // Float64: node coordinates may be georeferenced
   for (int d = 0; d < D; ++d) {
-    Array a{d == 0 ? "x" : d == 1 ? "y" : "z", 1, {}, {}};
+    Array a{d == 0 ? "x" : d == 1 ? "y" : "z", 1, {}, {}, {}, false};
     for (int j = 0; j < grid.nodes(d); ++j) a.values.push_back(grid.origin[d] + grid.node_coordinate(d, j));
     coords.push_back(std::move(a));
   }
-  if (D == 2) coords.push_back({"z", 1, {}, {0.0}});
+  if (D == 2) coords.push_back({"z", 1, {}, {0.0}, {}, false});
 
   std::vector<Array> data = {{"mass", 1, {}, {}},
                              {"velocity", 3, {}, {}},
@@ -99,28 +113,29 @@ void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid, c
   }
   data.push_back(std::move(mask));
 
-  const std::string head = header(grid, coords, data);
+  std::vector<vtk::AppendedArray> arrays;
+  for (const auto* list : {&data, &coords})
+    for (const Array& a : *list) arrays.push_back(a.appended());
   write_file_atomically(file, [&](std::ostream& os) {
-    os.write(head.data(), static_cast<std::streamsize>(head.size()));
-    for (const auto* list : {&data, &coords})
-      for (const Array& a : *list) {
-        const std::uint64_t bytes = a.size_bytes();
-        os.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
-        os.write(a.data(), static_cast<std::streamsize>(bytes));
-      }
-    os << "\n  </AppendedData>\n</VTKFile>\n";
+    vtk::write_appended(
+        os,
+        [&](const std::vector<std::uint64_t>& offsets) {
+          return header(grid, coords, data, compress, offsets);
+        },
+        arrays, compress, "\n  </AppendedData>\n</VTKFile>\n");
   });
 }
 
 }  // namespace
 
-void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid, const GridNodeFields& f) {
-  write_vtr(file, grid, f);
+void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid, const GridNodeFields& f,
+                    bool compress) {
+  write_vtr(file, grid, f, compress);
 }
 
 void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<3>& grid,
-                    const GridNodeFieldsOf<3>& f) {
-  write_vtr(file, grid, f);
+                    const GridNodeFieldsOf<3>& f, bool compress) {
+  write_vtr(file, grid, f, compress);
 }
 
 }  // namespace skred

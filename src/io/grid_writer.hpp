@@ -20,17 +20,18 @@ using GridNodeFields = GridNodeFieldsOf<2>;
 
 // Writes every node of `grid`, ghost nodes included, as a point of a rectilinear grid (one
 // coordinate array per axis, from GridGeometry::node_coordinate, so the uneven spacing of
-// the cubic B-spline's Greville abscissae is kept; z = 0). Point data (Float64): mass,
+// the cubic B-spline's Greville abscissae is kept; z = 0; Float64). Point data (Float32):
+// mass,
 // velocity (3, z = 0), stress (6, Voigt xx,yy,zz,xy,yz,xz), mean_stress_p and
 // deviatoric_stress_q of the nodal stress, and has_material (UInt8: 1 where mass > 0, 0 at an
 // empty node, whose zero stress is no material's; threshold on it in ParaView to hide empty
-// nodes). Binary appended raw encoding, header_type UInt64,
-// written atomically. Throws std::invalid_argument if an array does not have
+// nodes). Binary appended data, zlib-compressed if `compress` (vtk_appended.hpp),
+// header_type UInt64, written atomically. Throws std::invalid_argument if an array does not have
 // grid.node_count() entries, std::runtime_error on I/O failure.
 void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<2>& grid,
-                    const GridNodeFields& fields);
+                    const GridNodeFields& fields, bool compress = true);
 // The same in 3D (z coordinates from the grid, velocity with its z component).
 void write_grid_vtr(const std::filesystem::path& file, const GridGeometry<3>& grid,
-                    const GridNodeFieldsOf<3>& fields);
+                    const GridNodeFieldsOf<3>& fields, bool compress = true);
 
 }  // namespace skred

@@ -1,7 +1,7 @@
-// Internal to the VTU writer: one binary block of the appended section per data array.
-// Every block holds a fixed number of bytes per material point (points: 4 corners (2D) or 8
-// (3D) x 3 coordinates; connectivity: 4 or 8 ids; cell data: one tuple), so all blocks are filled chunk by
-// chunk over the particles.
+// Internal to the VTU writer: one data array of the appended section per block. Every block
+// holds a fixed number of bytes per material point (points: 4 corners (2D) or 8 (3D) x 3
+// coordinates; connectivity: 4 or 8 ids; cell data: one tuple), so all blocks are filled chunk
+// by chunk over the particles (in parallel: fill must only read the particles).
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -28,19 +28,19 @@ struct Block {
   std::size_t bytes_per_particle() const { return value_bytes * values_per_particle; }
 };
 
-template <class T>
-inline unsigned char* put(unsigned char* out, T value) {
-  std::memcpy(out, &value, sizeof value);
-  return out + sizeof value;
+// Real values are computed in double and stored as Float32 (vtu_writer.hpp says why).
+inline double* put(double* out, double value) {
+  *out = value;
+  return out + 1;
 }
 
-inline unsigned char* put_sym3(unsigned char* out, const Sym3& s) {
-  std::memcpy(out, s.data(), 6 * sizeof(double));
-  return out + 6 * sizeof(double);
+inline double* put_sym3(double* out, const Sym3& s) {
+  for (int k = 0; k < 6; ++k) *out++ = s[k];
+  return out;
 }
 
 // A 3 x 3 tensor, row by row: xx, xy, xz, yx, yy, yz, zx, zy, zz (ParaView's tensor order).
-inline unsigned char* put_mat3(unsigned char* out, const Mat3& m) {
+inline double* put_mat3(double* out, const Mat3& m) {
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) out = put(out, m(i, j));
   return out;
@@ -56,19 +56,37 @@ inline const std::vector<std::string>& tensor_names() {
   return n;
 }
 
-// A cell-data block of `components` doubles per particle computed by f(p, out) -> out.
+template <class T>
+inline unsigned char* put_bytes(unsigned char* out, T value) {
+  std::memcpy(out, &value, sizeof value);
+  return out + sizeof value;
+}
+
+// A block of `values` (at most 24) reals per particle, computed in double by f(p, out) and
+// stored as Float32 (`single`) or Float64.
 template <class F>
-Block doubles(std::string name, int components, F f, std::vector<std::string> names = {}) {
-  return Block{"CellData",
-               std::move(name),
-               "Float64",
-               components,
-               sizeof(double),
-               static_cast<std::size_t>(components),
-               std::move(names),
-               [f](std::size_t b, std::size_t e, unsigned char* out) {
-                 for (std::size_t p = b; p < e; ++p) out = f(p, out);
-               }};
+Block real_block(const char* section, std::string name, int components, std::size_t values, bool single,
+                 F f) {
+  Block b{section, std::move(name), single ? "Float32" : "Float64", components, single ? 4u : 8u, values,
+          {},      nullptr};
+  b.fill = [f, values, single](std::size_t begin, std::size_t end, unsigned char* out) {
+    double v[24];
+    for (std::size_t p = begin; p < end; ++p) {
+      f(p, v);
+      for (std::size_t k = 0; k < values; ++k)
+        out = single ? put_bytes(out, static_cast<float>(v[k])) : put_bytes(out, v[k]);
+    }
+  };
+  return b;
+}
+
+// A cell-data block of `components` (at most 9) Float32 per particle from f(p, out) -> out.
+template <class F>
+Block reals(std::string name, int components, F f, std::vector<std::string> names = {}) {
+  Block b =
+      real_block("CellData", std::move(name), components, static_cast<std::size_t>(components), true, f);
+  b.component_names = std::move(names);
+  return b;
 }
 
 template <class T>

@@ -21,31 +21,28 @@ inline Sym3 full(const PointStress<2>& s) { return full_stress<2>(s); }
 template <int D, class V>
 void add_invariant_blocks(std::vector<Block>& blocks, const std::string& prefix, const std::vector<V>& stress,
                           const Particles<D>& P, const std::vector<MaterialStrength>* strength) {
-  blocks.push_back(doubles(prefix + "principal_stress", 3,
-                           [&stress](std::size_t p, unsigned char* o) {
-                             const PrincipalStresses ps =
-                                 principal_stresses(Sym3(full(stress[p])));  // Post eq. 59
-                             return put(put(put(o, ps.s1), ps.s2), ps.s3);
-                           },
-                           {"s1", "s2", "s3"}));
-  blocks.push_back(doubles(prefix + "principal_angle", 1, [&stress](std::size_t p, unsigned char* o) {
+  blocks.push_back(reals(prefix + "principal_stress", 3,
+                         [&stress](std::size_t p, double* o) {
+                           const PrincipalStresses ps =
+                               principal_stresses(Sym3(full(stress[p])));  // Post eq. 59
+                           return put(put(put(o, ps.s1), ps.s2), ps.s3);
+                         },
+                         {"s1", "s2", "s3"}));
+  blocks.push_back(reals(prefix + "principal_angle", 1, [&stress](std::size_t p, double* o) {
     return put(o, principal_angle_degrees(Sym3(full(stress[p]))));  // Post eq. 60
   }));
   if (!strength) return;
-  blocks.push_back(
-      doubles(prefix + "relative_yield", 1, [&stress, &P, strength](std::size_t p, unsigned char* o) {
-        const MaterialStrength& m = (*strength)[P.material[p]];
-        return put(o, relative_yield(Sym3(full(stress[p])), m.friction, m.cohesion));
-      }));
+  blocks.push_back(reals(prefix + "relative_yield", 1, [&stress, &P, strength](std::size_t p, double* o) {
+    const MaterialStrength& m = (*strength)[P.material[p]];
+    return put(o, relative_yield(Sym3(full(stress[p])), m.friction, m.cohesion));
+  }));
 }
 
 template <int D, class Measure>
 Block strain_block(std::string name, const Particles<D>& P, Measure measure) {
-  return doubles(
+  return reals(
       std::move(name), 6,
-      [&P, measure](std::size_t p, unsigned char* o) {
-        return put_sym3(o, measure(deformation3<D>(P.F[p])));
-      },
+      [&P, measure](std::size_t p, double* o) { return put_sym3(o, measure(deformation3<D>(P.F[p]))); },
       voigt_names());
 }
 
@@ -53,10 +50,9 @@ Block strain_block(std::string name, const Particles<D>& P, Measure measure) {
 
 template <int D>
 void add_post_blocks(std::vector<Block>& blocks, const Particles<D>& P, const ParticleFields& extra) {
-  blocks.push_back(
-      doubles("speed", 1, [&P](std::size_t p, unsigned char* o) { return put(o, P.v[p].norm()); }));
-  blocks.push_back(doubles(
-      "F", 9, [&P](std::size_t p, unsigned char* o) { return put_mat3(o, deformation3<D>(P.F[p])); },
+  blocks.push_back(reals("speed", 1, [&P](std::size_t p, double* o) { return put(o, P.v[p].norm()); }));
+  blocks.push_back(reals(
+      "F", 9, [&P](std::size_t p, double* o) { return put_mat3(o, deformation3<D>(P.F[p])); },
       tensor_names()));
   blocks.push_back(strain_block("engineering_strain", P, engineering_strain));  // eq. 63
   blocks.push_back(strain_block("green_strain", P, green_lagrange_strain));     // eq. 64
@@ -66,20 +62,19 @@ void add_post_blocks(std::vector<Block>& blocks, const Particles<D>& P, const Pa
     add_invariant_blocks(blocks, "smoothed_", *extra.smoothed_stress, P, extra.strength);
   if (extra.elastic_F) {
     const std::vector<Mat3>& Fe = *extra.elastic_F;
-    blocks.push_back(doubles(
-        "Fe", 9, [&Fe](std::size_t p, unsigned char* o) { return put_mat3(o, Fe[p]); }, tensor_names()));
-    blocks.push_back(doubles(
+    blocks.push_back(reals(
+        "Fe", 9, [&Fe](std::size_t p, double* o) { return put_mat3(o, Fe[p]); }, tensor_names()));
+    blocks.push_back(reals(
         "Fp", 9,
-        [&Fe, &P](std::size_t p, unsigned char* o) {
+        [&Fe, &P](std::size_t p, double* o) {
           return put_mat3(o, plastic_F(Fe[p], deformation3<D>(P.F[p])));  // Post eq. 74
         },
         tensor_names()));
   }
   if (extra.stress_from_elastic_F) {
     const std::vector<Sym3>& s = *extra.stress_from_elastic_F;
-    blocks.push_back(doubles(
-        "stress_from_Fe", 6, [&s](std::size_t p, unsigned char* o) { return put_sym3(o, s[p]); },
-        voigt_names()));
+    blocks.push_back(reals(
+        "stress_from_Fe", 6, [&s](std::size_t p, double* o) { return put_sym3(o, s[p]); }, voigt_names()));
   }
 }
 

@@ -4,16 +4,19 @@
 #include <Eigen/LU>  // determinant(); core/types.hpp includes only Eigen/Core
 
 #include <algorithm>
-#include <bit>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <functional>
 #include <iterator>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "io/atomic_file.hpp"
+#include "io/vtk_appended.hpp"
 #include "io/vtu_blocks.hpp"
+#include "scenario/output_fields.hpp"
 
 namespace skred {
 
@@ -26,7 +29,7 @@ constexpr std::uint8_t kVtkHexahedron = 12;
 
 // Velocity-like vectors padded to three components (z = 0 in 2D).
 template <int D>
-unsigned char* put_vec3(unsigned char* o, const Vec<D>& v) {
+double* put_vec3(double* o, const Vec<D>& v) {
   o = put(put(o, v[0]), v[1]);
   return put(o, D == 3 ? v[D - 1] : 0.0);
 }
@@ -34,7 +37,7 @@ unsigned char* put_vec3(unsigned char* o, const Vec<D>& v) {
 // The corners x_p + F_p (+-l0) of a deformed voxel (Thesis eq. 3.6-3.12), in VTK order:
 // a quad counter-clockwise (2D, z = 0), or a hexahedron's z- face then its z+ face.
 template <int D>
-unsigned char* put_corners(unsigned char* out, const Particles<D>& P, std::size_t p) {
+double* put_corners(double* out, const Particles<D>& P, std::size_t p) {
   static constexpr double sx[8] = {-1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0, -1.0};
   static constexpr double sy[8] = {-1.0, -1.0, 1.0, 1.0, -1.0, -1.0, 1.0, 1.0};
   static constexpr double sz[8] = {-1.0, -1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0};
@@ -48,7 +51,41 @@ unsigned char* put_corners(unsigned char* out, const Particles<D>& P, std::size_
   }
   return out;
 }
-constexpr std::size_t kChunk = 1 << 15;  // particles converted per buffer fill
+
+// Whether the voxel corners may be stored as Float32: its rounding, 2^-24 |x| at most, must
+// stay below 1e-3 of the smallest voxel half-size. Local coordinates pass easily (a 1 km
+// slope: 0.06 mm against voxels of centimetres or more); georeferenced ones (UTM, |x| ~ 5e5 m:
+// 3 cm) fall back to Float64 rather than draw jagged voxels.
+template <int D>
+bool corners_fit_float32(const Particles<D>& P) {
+  double reach = 0.0, half = std::numeric_limits<double>::infinity();
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    reach = std::max(reach, P.x[p].cwiseAbs().maxCoeff() + (P.F[p] * P.half0[p]).cwiseAbs().maxCoeff() +
+                                P.half0[p].maxCoeff());
+    half = std::min(half, P.half0[p].minCoeff());
+  }
+  return reach * std::ldexp(1.0, -24) <= 1e-3 * half;
+}
+
+// Cell connectivity and offsets as Int32 while the point count allows, else Int64.
+template <class Int, std::size_t corners>
+void add_cells(std::vector<Block>& blocks, const char* type) {
+  blocks.push_back({"Cells",
+                    "connectivity",
+                    type,
+                    1,
+                    sizeof(Int),
+                    corners,
+                    {},
+                    [](std::size_t b, std::size_t e, unsigned char* out) {
+                      for (std::size_t i = corners * b; i < corners * e; ++i)
+                        out = put_bytes(out, static_cast<Int>(i));
+                    }});
+  blocks.push_back(
+      {"Cells", "offsets", type, 1, sizeof(Int), 1, {}, [](std::size_t b, std::size_t e, unsigned char* out) {
+         for (std::size_t p = b; p < e; ++p) out = put_bytes(out, static_cast<Int>(corners * (p + 1)));
+       }});
+}
 
 template <int D>
 std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra) {
@@ -56,57 +93,35 @@ std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extr
   std::vector<Block> blocks;
   constexpr std::size_t corners = 1 << D;
 
-  blocks.push_back({"Points",
-                    "",
-                    "Float64",
-                    3,
-                    sizeof(double),
-                    3 * corners,
-                    {},
-                    [&P](std::size_t b, std::size_t e, unsigned char* out) {
-                      for (std::size_t p = b; p < e; ++p) out = put_corners<D>(out, P, p);
-                    }});
-  blocks.push_back({"Cells",
-                    "connectivity",
-                    "Int64",
-                    1,
-                    8,
-                    corners,
-                    {},
-                    [](std::size_t b, std::size_t e, unsigned char* out) {
-                      for (std::size_t i = corners * b; i < corners * e; ++i)
-                        out = put(out, static_cast<std::int64_t>(i));
-                    }});
-  blocks.push_back(
-      {"Cells", "offsets", "Int64", 1, 8, 1, {}, [](std::size_t b, std::size_t e, unsigned char* out) {
-         for (std::size_t p = b; p < e; ++p) out = put(out, static_cast<std::int64_t>(corners * (p + 1)));
-       }});
+  blocks.push_back(real_block("Points", "", 3, 3 * corners, corners_fit_float32(P),
+                              [&P](std::size_t p, double* o) { put_corners<D>(o, P, p); }));
+  if (corners * P.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
+    add_cells<std::int32_t, corners>(blocks, "Int32");
+  else
+    add_cells<std::int64_t, corners>(blocks, "Int64");
   blocks.push_back(
       {"Cells", "types", "UInt8", 1, 1, 1, {}, [](std::size_t b, std::size_t e, unsigned char* out) {
          std::fill(out, out + (e - b), D == 3 ? kVtkHexahedron : kVtkQuad);
        }});
 
-  blocks.push_back(
-      doubles("velocity", 3, [&P](std::size_t p, unsigned char* o) { return put_vec3<D>(o, P.v[p]); }));
-  blocks.push_back(doubles("displacement", 3, [&P](std::size_t p, unsigned char* o) {
+  blocks.push_back(reals("velocity", 3, [&P](std::size_t p, double* o) { return put_vec3<D>(o, P.v[p]); }));
+  blocks.push_back(reals("displacement", 3, [&P](std::size_t p, double* o) {
     return put_vec3<D>(o, Vec<D>(P.x[p] - P.x_ref[p]));
   }));
-  blocks.push_back(doubles(
-      "stress", 6, [&P](std::size_t p, unsigned char* o) { return put_sym3(o, full_stress<D>(P.stress[p])); },
+  blocks.push_back(reals(
+      "stress", 6, [&P](std::size_t p, double* o) { return put_sym3(o, full_stress<D>(P.stress[p])); },
       voigt));
-  blocks.push_back(doubles("mean_stress_p", 1, [&P](std::size_t p, unsigned char* o) {
+  blocks.push_back(reals("mean_stress_p", 1, [&P](std::size_t p, double* o) {
     return put(o, mean_stress(full_stress<D>(P.stress[p])));
   }));
-  blocks.push_back(doubles("deviatoric_stress_q", 1, [&P](std::size_t p, unsigned char* o) {
+  blocks.push_back(reals("deviatoric_stress_q", 1, [&P](std::size_t p, double* o) {
     return put(o, deviatoric_stress(full_stress<D>(P.stress[p])));
   }));
+  blocks.push_back(reals("volume", 1, [&P](std::size_t p, double* o) { return put(o, P.volume(p)); }));
   blocks.push_back(
-      doubles("volume", 1, [&P](std::size_t p, unsigned char* o) { return put(o, P.volume(p)); }));
-  blocks.push_back(
-      doubles("det_F", 1, [&P](std::size_t p, unsigned char* o) { return put(o, P.F[p].determinant()); }));
-  blocks.push_back(doubles("plastic_shear_strain", 1, [&P](std::size_t p, unsigned char* o) {
-    return put(o, P.state[p].plastic_shear_strain);
-  }));
+      reals("det_F", 1, [&P](std::size_t p, double* o) { return put(o, P.F[p].determinant()); }));
+  blocks.push_back(reals("plastic_shear_strain", 1,
+                         [&P](std::size_t p, double* o) { return put(o, P.state[p].plastic_shear_strain); }));
   blocks.push_back(
       {"CellData", "yielding", "UInt8", 1, 1, 1, {}, [&P](std::size_t b, std::size_t e, unsigned char* out) {
          for (std::size_t p = b; p < e; ++p) *out++ = P.state[p].yielding;
@@ -116,12 +131,12 @@ std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extr
 
   if (extra.smoothed_stress) {
     const std::vector<Sym3>& s = *extra.smoothed_stress;
-    blocks.push_back(doubles(
-        "smoothed_stress", 6, [&s](std::size_t p, unsigned char* o) { return put_sym3(o, s[p]); }, voigt));
-    blocks.push_back(doubles("smoothed_p", 1,
-                             [&s](std::size_t p, unsigned char* o) { return put(o, mean_stress(s[p])); }));
-    blocks.push_back(doubles(
-        "smoothed_q", 1, [&s](std::size_t p, unsigned char* o) { return put(o, deviatoric_stress(s[p])); }));
+    blocks.push_back(reals(
+        "smoothed_stress", 6, [&s](std::size_t p, double* o) { return put_sym3(o, s[p]); }, voigt));
+    blocks.push_back(
+        reals("smoothed_p", 1, [&s](std::size_t p, double* o) { return put(o, mean_stress(s[p])); }));
+    blocks.push_back(
+        reals("smoothed_q", 1, [&s](std::size_t p, double* o) { return put(o, deviatoric_stress(s[p])); }));
   }
   add_post_blocks<D>(blocks, P, extra);
   return blocks;
@@ -154,20 +169,17 @@ void check_sizes(const Particles<D>& P, const ParticleFields& extra) {
                         P.material[p], extra.strength->size()));
 }
 
-std::string xml_header(const std::vector<Block>& blocks, std::size_t n, std::size_t corners) {
-  constexpr bool little = std::endian::native == std::endian::little;
-  std::string h;
+std::string xml_header(const std::vector<Block>& blocks, std::size_t n, std::size_t corners, bool compress,
+                       const std::vector<std::uint64_t>& offsets) {
+  std::string h = "<?xml version=\"1.0\"?>\n" + vtk::vtkfile_element("UnstructuredGrid", compress);
   auto out = std::back_inserter(h);
   fmt::format_to(out,
-                 "<?xml version=\"1.0\"?>\n"
-                 "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"{}\" "
-                 "header_type=\"UInt64\">\n"
                  "  <UnstructuredGrid>\n"
                  "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">\n",
-                 little ? "LittleEndian" : "BigEndian", corners * n, n);
-  std::size_t offset = 0;
+                 corners * n, n);
   const char* open = nullptr;
-  for (const Block& b : blocks) {
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const Block& b = blocks[i];
     if (!open || std::strcmp(open, b.section) != 0) {
       if (open) fmt::format_to(out, "      </{}>\n", open);
       open = b.section;
@@ -178,49 +190,55 @@ std::string xml_header(const std::vector<Block>& blocks, std::size_t n, std::siz
     if (b.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", b.components);
     for (std::size_t c = 0; c < b.component_names.size(); ++c)
       fmt::format_to(out, " ComponentName{}=\"{}\"", c, b.component_names[c]);
-    fmt::format_to(out, " format=\"appended\" offset=\"{}\"/>\n", offset);
-    offset += sizeof(std::uint64_t) + n * b.bytes_per_particle();
+    fmt::format_to(out, " format=\"appended\"{}/>\n", vtk::offset_attribute(offsets[i]));
   }
   if (open) fmt::format_to(out, "      </{}>\n", open);
   h += "    </Piece>\n  </UnstructuredGrid>\n  <AppendedData encoding=\"raw\">\n_";
   return h;
 }
 
+// The blocks of `fields` (all when empty) besides the points and cells, in the file's order.
+std::vector<Block> chosen(std::vector<Block> blocks, const std::vector<std::string>& fields) {
+  const std::vector<std::string>& all = output_fields::all();
+  for (const std::string& f : fields)
+    if (std::find(all.begin(), all.end(), f) == all.end())
+      throw std::invalid_argument(fmt::format("write_particles_vtu: no field is called '{}'", f));
+  if (fields.empty()) return blocks;
+  std::erase_if(blocks, [&](const Block& b) {
+    return std::strcmp(b.section, "CellData") == 0 &&
+           std::find(fields.begin(), fields.end(), b.name) == fields.end();
+  });
+  return blocks;
+}
+
 template <int D>
-void write_vtu(const std::filesystem::path& file, const Particles<D>& P, const ParticleFields& extra) {
+void write_vtu(const std::filesystem::path& file, const Particles<D>& P, const ParticleFields& extra,
+               const VtuOptions& options) {
   check_sizes(P, extra);
   const std::size_t n = P.size();
-  const std::vector<Block> blocks = make_blocks(P, extra);
-  const std::string header = xml_header(blocks, n, std::size_t{1} << D);
-
+  const std::vector<Block> blocks = chosen(make_blocks(P, extra), options.fields);
+  std::vector<vtk::AppendedArray> arrays;
+  for (const Block& b : blocks) arrays.push_back({n, b.bytes_per_particle(), b.fill});
   write_file_atomically(file, [&](std::ostream& os) {
-    os.write(header.data(), static_cast<std::streamsize>(header.size()));
-    std::vector<unsigned char> buffer;
-    for (const Block& b : blocks) {
-      const std::uint64_t bytes = n * b.bytes_per_particle();
-      os.write(reinterpret_cast<const char*>(&bytes), sizeof bytes);
-      buffer.resize(std::min(n, kChunk) * b.bytes_per_particle());
-      for (std::size_t begin = 0; begin < n && os; begin += kChunk) {
-        const std::size_t end = std::min(n, begin + kChunk);
-        b.fill(begin, end, buffer.data());
-        os.write(reinterpret_cast<const char*>(buffer.data()),
-                 static_cast<std::streamsize>((end - begin) * b.bytes_per_particle()));
-      }
-    }
-    os << "\n  </AppendedData>\n</VTKFile>\n";
+    vtk::write_appended(
+        os,
+        [&](const std::vector<std::uint64_t>& offsets) {
+          return xml_header(blocks, n, std::size_t{1} << D, options.compress, offsets);
+        },
+        arrays, options.compress, "\n  </AppendedData>\n</VTKFile>\n");
   });
 }
 
 }  // namespace
 
 void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
-                         const ParticleFields& extra) {
-  write_vtu(file, P, extra);
+                         const ParticleFields& extra, const VtuOptions& options) {
+  write_vtu(file, P, extra, options);
 }
 
 void write_particles_vtu(const std::filesystem::path& file, const Particles<3>& P,
-                         const ParticleFields& extra) {
-  write_vtu(file, P, extra);
+                         const ParticleFields& extra, const VtuOptions& options) {
+  write_vtu(file, P, extra, options);
 }
 
 }  // namespace skred

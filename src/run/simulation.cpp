@@ -116,10 +116,12 @@ void copy_scenario(const std::string& source, const fs::path& outdir) {
 // The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
 // smoothed_stress() call, and its entry in grid.pvd (post).
 template <int D>
-void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame, PvdWriter& index) {
+void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame, PvdWriter& index,
+                      bool compress) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
   write_grid_vtr(outdir / name, solver.grid(),
-                 GridNodeFieldsOf<D>{solver.node_mass(), solver.node_velocity(), solver.node_stress()});
+                 GridNodeFieldsOf<D>{solver.node_mass(), solver.node_velocity(), solver.node_stress()},
+                 compress);
   index.add(solver.time(), name);
 }
 
@@ -147,26 +149,31 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
   std::vector<Sym3> smoothed;
+  const VtuOptions vtu_options{s.output_fields, s.output_compression};
+  const bool wants_split = std::ranges::any_of(
+      s.output_fields, [](const std::string& f) { return f == "Fe" || f == "Fp" || f == "stress_from_Fe"; });
   auto write_frame = [&]() {
     const int frame = static_cast<int>(at.frame_times.size());
     at.frame_times.push_back(solver.time());
     solver.smoothed_stress(smoothed);
-    write_grid_frame(solver, outdir, frame, grid_pvd);  // post: after smoothed_stress()
+    write_grid_frame(solver, outdir, frame, grid_pvd, s.output_compression);  // post: after smoothed_stress()
     const std::string name = fmt::format("particles_{:06}.vtu", frame);
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
     extra.strength = &strength;  // post: relative yield
-    elastic_F.resize(particles.size());
-    stress_from_Fe.resize(particles.size());
-    for (std::size_t p = 0; p < particles.size(); ++p) {
-      elastic_F[p] = embed3<D>(particles.Fe[p], 1.0);
-      const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
-      stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)), elastic_F[p],
-                                                mat.elastic_constants);
+    if (wants_split) {           // Fe, Fp or stress_from_Fe is written
+      elastic_F.resize(particles.size());
+      stress_from_Fe.resize(particles.size());
+      for (std::size_t p = 0; p < particles.size(); ++p) {
+        elastic_F[p] = embed3<D>(particles.Fe[p], 1.0);
+        const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
+        stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)), elastic_F[p],
+                                                  mat.elastic_constants);
+      }
+      extra.elastic_F = &elastic_F;
+      extra.stress_from_elastic_F = &stress_from_Fe;
     }
-    extra.elastic_F = &elastic_F;
-    extra.stress_from_elastic_F = &stress_from_Fe;
-    write_particles_vtu(outdir / name, particles, extra);
+    write_particles_vtu(outdir / name, particles, extra, vtu_options);
     pvd.add(solver.time(), name);
     series.flush();
   };

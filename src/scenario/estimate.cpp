@@ -62,9 +62,6 @@ double bytes_per_point() {
 // plus one scatter buffer of the second thread.
 template <int D>
 constexpr double kBytesPerNode = D == 2 ? 152.0 : 208.0;
-// A particle frame (VTU) per point: every field as Float64, voxel corners included.
-template <int D>
-constexpr double kFrameBytesPerPoint = D == 2 ? 840.0 : 1100.0;
 
 }  // namespace
 
@@ -97,7 +94,7 @@ ScenarioSize estimate_size(const ScenarioOf<D>& s) {
   for (int c : s.cells) z.nodes *= c + 1.0;
   z.steps = std::ceil(s.end_time / scenario_time_step(s));
   z.memory_bytes = z.points * bytes_per_point<D>() + z.nodes * kBytesPerNode<D>;
-  z.frame_bytes = z.points * kFrameBytesPerPoint<D>;
+  z.frame_bytes = z.points * output_fields::uncompressed_bytes_per_point(s.output_fields, D);  // at most
   z.frames = s.output_interval > 0 ? std::floor(s.end_time / s.output_interval) + 1 : 1;
   return z;
 }

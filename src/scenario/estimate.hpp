@@ -22,7 +22,7 @@ struct ScenarioSize {
   double nodes = 0;         // grid nodes
   double steps = 0;         // time steps to the end time
   double memory_bytes = 0;  // particles, their stored weights and the grid fields
-  double frame_bytes = 0;   // one particle frame (VTU)
+  double frame_bytes = 0;   // one particle frame (VTU) uncompressed: an upper bound
   double frames = 0;        // particle frames written
   double output_bytes() const { return frame_bytes * frames; }
 };

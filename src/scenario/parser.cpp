@@ -10,6 +10,7 @@
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 
 #include "scenario/build.hpp"
@@ -265,6 +266,45 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
 constexpr double kMaxFrames = 1e5;
 constexpr double kMaxSeriesRows = 1e7;
 
+// output.fields: "default", "all", or a list of field names and "default"; the names in the
+// order of output_fields::all(), each once.
+// `table` is the [output] table, if there is one.
+std::vector<std::string> parse_output_fields(const std::optional<TableReader>& table) {
+  const std::vector<std::string>& all = output_fields::all();
+  std::vector<std::string> given;
+  if (!table || !table->has("fields")) {
+    given.push_back("default");
+  } else if (table->find("fields")->is_string()) {
+    given.push_back(table->string("fields"));
+  } else {
+    const TableReader& o = *table;
+    const auto* arr = o.find("fields")->as_array();
+    if (!arr || arr->empty())
+      o.fail_type("fields", "\"default\", \"all\" or a non-empty list of field names");
+    for (const auto& n : *arr) {
+      if (!n.is_string()) o.fail_type("fields", "a list of field names (strings)");
+      given.push_back(*n.value<std::string>());
+    }
+  }
+  std::set<std::string> chosen;
+  for (const std::string& g : given) {
+    if (g == "all" || g == "default") {
+      const auto& set = g == "all" ? all : output_fields::defaults();
+      chosen.insert(set.begin(), set.end());
+    } else if (std::find(all.begin(), all.end(), g) != all.end()) {
+      chosen.insert(g);
+    } else {
+      std::vector<std::string> allowed = {"default", "all"};
+      allowed.insert(allowed.end(), all.begin(), all.end());
+      table->fail_at("fields", TableReader::unknown_choice_message(g, allowed));  // only given names fail
+    }
+  }
+  std::vector<std::string> names;
+  for (const std::string& n : all)
+    if (chosen.count(n)) names.push_back(n);
+  return names;
+}
+
 void parse_output(const TableReader& root, ScenarioCommon& s) {
   const auto o = root.table("output", false);
   s.output_interval = s.end_time / 20.0;
@@ -283,7 +323,9 @@ void parse_output(const TableReader& root, ScenarioCommon& s) {
       o->fail_at("series_interval", fmt::format("gives {:.3g} rows of series.csv over {} s; at most "
                                                 "{:.0f} are allowed",
                                                 s.end_time / s.series_interval, s.end_time, kMaxSeriesRows));
+    s.output_compression = o->boolean_or("compression", true);
   }
+  s.output_fields = parse_output_fields(o);
 }
 
 }  // namespace

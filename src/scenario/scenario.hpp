@@ -12,6 +12,7 @@
 
 #include "core/types.hpp"
 #include "material/material.hpp"
+#include "scenario/output_fields.hpp"
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/scheme.hpp"
@@ -181,6 +182,10 @@ struct ScenarioCommon {
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv
+  // The particle fields of each frame (output.fields; scenario/output_fields.hpp), in the
+  // order of output_fields::all(); and whether frames are zlib-compressed (output.compression).
+  std::vector<std::string> output_fields = output_fields::defaults();
+  bool output_compression = true;
 };
 
 // A scenario in D dimensions (2: plane strain in x-y; 3: x, y, z with y vertical). The

@@ -9,6 +9,7 @@
 #include "material/elastic/info.hpp"
 #include "material/mohr_coulomb/info.hpp"
 #include "material/von_mises/info.hpp"
+#include "scenario/output_fields.hpp"
 
 namespace skred::schema {
 
@@ -510,6 +511,18 @@ std::vector<Section> make_sections() {
                     .def = derived("interval / 10"),
                     .range = Range::positive(kMaxTime),
                     .doc = "simulated time between rows of series.csv; at most 10^7 rows"},
+                   {.name = "fields",
+                    .type = Type::Fields,
+                    .def = derived(output_fields::kDefault),
+                    .choices = output_fields::kAll,
+                    .doc = "the cell fields of each particle frame: `\"default\"` (the default column), "
+                           "`\"all\"`, or a list of names, which may hold `\"default\"`; "
+                           "docs/post-processing.md describes each"},
+                   {.name = "compression",
+                    .type = Type::Boolean,
+                    .def = derived("true"),
+                    .doc = "zlib-compress the arrays of the particle and grid frames (VTK's "
+                           "vtkZLibDataCompressor; ParaView reads both)"},
                }});
   return s;
 }
@@ -531,6 +544,7 @@ const char* to_string(Type t) {
     case Type::Side: return "string or table";
     case Type::Profile: return "CSV file or [[x, y], ...]";
     case Type::BodyPair: return "[name, name] or \"all\"";
+    case Type::Fields: return "string or [name, ...]";
   }
   return "?";
 }

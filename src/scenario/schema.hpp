@@ -52,6 +52,7 @@ enum class Type {
   Side,      // a boundary side: a string or an inline table (boundary.side)
   Profile,   // a profile y(x): a CSV file name or inline [[x, y], ...] with x increasing
   BodyPair,  // [name, name] of two [[body]] tables, or "all"
+  Fields,    // "default", "all" or a list of `choices` (which may hold "default")
 };
 const char* to_string(Type t);
 

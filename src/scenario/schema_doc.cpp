@@ -4,6 +4,7 @@
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
+#include <string_view>
 
 #include "scenario/schema.hpp"
 
@@ -27,7 +28,19 @@ std::string quoted_choices(const Key& k) {
   return t;
 }
 
+// A '|'-separated list as `a`, `b`, ...
+std::string code_list(const char* list) {
+  std::string t;
+  for (std::string_view rest = list; !rest.empty();) {
+    const std::size_t bar = std::min(rest.find('|'), rest.size());
+    t += fmt::format("{}`{}`", t.empty() ? "" : ", ", rest.substr(0, bar));
+    rest.remove_prefix(std::min(bar + 1, rest.size()));
+  }
+  return t;
+}
+
 std::string default_text(const Key& k) {
+  if (k.type == Type::Fields) return code_list(k.def.text);
   switch (k.def.kind) {
     case DefaultKind::Required: return "required";
     case DefaultKind::None: return *k.def.text ? k.def.text : "none";
@@ -54,6 +67,7 @@ std::string allowed_text(const Key& k) {
     case Type::Side: return "see below";
     case Type::Profile: return "x strictly increasing; inside the grid";
     case Type::BodyPair: return "two different body names, or `\"all\"`";
+    case Type::Fields: return "`\"default\"`, `\"all\"`, or a list of " + code_list(k.choices);
     case Type::String:
     case Type::Table:
     case Type::Tables: break;

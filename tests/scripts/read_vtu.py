@@ -1,6 +1,6 @@
 """read_vtu.py FILE [CELL ...]
 Reads a .vtu with VTK's own XML reader and prints what the C++ tests check, one fact a line:
-  cells N / points N / celltype C T / cellpoints C i0 i1 ... / point I x y z
+  cells N / points N / pointtype TYPE / celltype C T / cellpoints C i0 i1 ... / point I x y z
   array NAME NCOMP TYPE (float64, uint8, int16, ...) / compname NAME K COMPNAME / value NAME CELL COMP VALUE
 Floats are printed with repr(), the shortest text that reads back to the same double.
 With CELL arguments, points and values are printed for those cells only (for large files).
@@ -42,6 +42,8 @@ def main(path, chosen):
     grid = reader.GetOutput()
     print(f"cells {grid.GetNumberOfCells()}")
     print(f"points {grid.GetNumberOfPoints()}")
+    if grid.GetPoints() is not None:
+        print(f"pointtype {value_type(grid.GetPoints().GetData())}")
     cells = chosen if chosen else range(grid.GetNumberOfCells())
     for c in cells:
         print(f"celltype {c} {grid.GetCellType(c)}")
