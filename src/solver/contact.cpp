@@ -52,7 +52,8 @@ Vec<D> mass_gradient(const GridGeometry<D>& g, const double* __restrict mass, st
 }  // namespace
 
 // v_i^k,b = p_i^b / m_i^b under the velocity boundary conditions (eq. 2.23) for each
-// deformable body; a rigid body's prescribed velocity wherever it has mass.
+// deformable body; a rigid body's prescribed velocity wherever it has mass. Then the contact
+// rule on these velocities (couple_start), which the strain increment and the motion use.
 template <int D>
 void ExplicitSolver<D>::body_nodal_velocity() {
   const ContactSettings<D>& c = settings_.contact;
@@ -63,9 +64,30 @@ void ExplicitSolver<D>::body_nodal_velocity() {
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
       f.velocity[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum[i] / m);
+      f.velocity_shift[i].setZero();
     });
     if (!rigid) boundaries_.constrain_velocity(f.velocity);
   }
+  couple_start([](BodyFields<D>& f) -> GridArray<Vec<D>>& { return f.velocity; }, true);
+}
+
+// The contact rule (couple_nodes) on a start-of-step velocity field of the bodies (v_i^k or
+// the remapped v~_i): the single-field scheme's shared nodal velocity where the continua are
+// in contact (Bardenhagen et al. 2000 apply the rule to v_i^k as well as to v_i^{k+1}). It
+// changes what the strain increments and the motion see, not the points' velocities (those
+// take only the accelerations, as with one shared field), so it takes no energy from them.
+// `shift`: keep the change in velocity_shift, for the contact phase's accelerations.
+template <int D>
+template <class Field>
+void ExplicitSolver<D>::couple_start(Field&& field, bool shift) {
+  couple_nodes(
+      [&](const BodyFields<D>& f, std::size_t i) { return field(const_cast<BodyFields<D>&>(f))[i]; },
+      [&](BodyFields<D>& f, std::size_t i, const Vec<D>& v) {
+        Vec<D>& u = field(f)[i];
+        if (shift) f.velocity_shift[i] = v - u;
+        u = v;
+      },
+      [&](const BodyFields<D>& f, std::size_t i) { return field(const_cast<BodyFields<D>&>(f))[i]; });
 }
 
 // Eq. 2.49, 2.52 for each deformable body on its own: a_i^b = f_i^int,b / m_i^b + g, the
@@ -103,7 +125,8 @@ void ExplicitSolver<D>::body_grid_update() {
 
 // v~_i^b = p~_i^b / m_i^b under the velocity conditions for each deformable body (a rigid
 // body: its velocity): the remap of its points' velocities, which took the contact
-// correction in g2p; m_i^b, p_i^b and p~_i^b cleared behind for the next step's map.
+// correction in g2p, then the contact rule on them (couple_start); m_i^b, p_i^b and p~_i^b
+// cleared behind for the next step's map.
 template <int D>
 void ExplicitSolver<D>::body_remap_velocity() {
   const ContactSettings<D>& c = settings_.contact;
@@ -114,12 +137,16 @@ void ExplicitSolver<D>::body_remap_velocity() {
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
       f.velocity_remap[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum_remap[i] / m);
+    });
+    if (!rigid) boundaries_.constrain_velocity(f.velocity_remap);
+  }
+  couple_start([](BodyFields<D>& f) -> GridArray<Vec<D>>& { return f.velocity_remap; }, false);
+  for (BodyFields<D>& f : bodies_)
+    transfer_.for_box([&](std::size_t i) {
       f.mass[i] = 0.0;
       f.momentum[i].setZero();
       f.momentum_remap[i].setZero();
     });
-    if (!rigid) boundaries_.constrain_velocity(f.velocity_remap);
-  }
 }
 
 template <int D>
@@ -141,8 +168,8 @@ void ExplicitSolver<D>::clear_body_mass_momentum() {
 // stores the result of each deformable body. Equal and opposite impulses: momentum is
 // conserved to round-off; kinetic energy only decreases. Returns the loss summed over nodes.
 template <int D>
-template <class Get, class Set>
-ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
+template <class Get, class Set, class Start>
+ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start) {
   const ContactSettings<D>& c = settings_.contact;
   const GridGeometry<D>& g = grid();
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
@@ -154,7 +181,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
     for (int b : c.order)
       if (bodies_[static_cast<std::size_t>(b)].mass[i] > 0.0) present[count++] = b;
     if (count < 2) return;
-    Vec<D> v[kMaxContactBodies], grad[kMaxContactBodies];
+    Vec<D> v[kMaxContactBodies], v0[kMaxContactBodies], grad[kMaxContactBodies];
     double m[kMaxContactBodies];
     const auto ij = g.unflatten(i);
     for (int k = 0; k < count; ++k) {
@@ -162,8 +189,22 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
       const BodyFields<D>& f = bodies_[b];
       m[k] = c.rigid[b] ? INFINITY : f.mass[i];
       v[k] = c.rigid[b] ? c.rigid_velocity[b] : get(f, i);
+      v0[k] = c.rigid[b] ? c.rigid_velocity[b] : start(f, i);
       grad[k] = mass_gradient<D>(g, f.mass.data(), i, ij);
     }
+    // Volume check (Nairn 2013): the continua are in contact at the node only when together
+    // they fill kContactFill of its support (h^D, halved per axis at a wall node). Nodes
+    // merely within reach of both (GIMP reaches 2.5 cells across a diagonal gap) would stop
+    // the approach of bodies that have not met yet.
+    double support = 1.0;
+    for (int d = 0; d < D; ++d)
+      support *=
+          (ij[d] <= GridGeometry<D>::pad || ij[d] >= g.cells[d] + GridGeometry<D>::pad) ? 0.5 * g.h : g.h;
+    double volume = 0.0;
+    for (int k = 0; k < count; ++k)
+      volume += bodies_[static_cast<std::size_t>(present[k])].mass[i] *
+                c.volume_per_mass[static_cast<std::size_t>(present[k])];
+    if (volume < kContactFill * support) return;
     ContactLoss sum;
     Vec<D> upper = grad[0];  // gradient of the combined mass of the continua above k
     for (int k = 1; k < count; ++k) {
@@ -172,8 +213,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
       for (int j = 0; j < k; ++j) {
         const double mu = c.mu(present[j], present[k]);
         if (mu >= 0.0 && !(len > 0.0)) continue;  // no normal: no contact to resolve
-        const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu);
-        assert(loss.normal >= 0.0 && loss.friction >= 0.0);  // contact never creates energy
+        const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu, Vec<D>(v0[k] - v0[j]));
         sum.normal += loss.normal;
         sum.friction += loss.friction;
       }
@@ -196,26 +236,49 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set) {
 }
 
 // The contact phase (Paper III §C.2.7): couple_nodes on the trial end-of-step velocities
-// v_i^k,b + dt a_i^b (after the walls); the coupled velocity v_i^{k+1,b} becomes each body's
-// a_i^b = (v_i^{k+1,b} - v_i^k,b) / dt, v_move and v_next, which its points take in g2p.
-// What it takes out of the kinetic energy is the contact work (>= 0).
+// v_i^k,b + dt a_i^b (after the walls; v_i^k,b as coupled by body_nodal_velocity); the
+// coupled velocity v_i^{k+1,b} gives each body's a_i^b = (v_i^{k+1,b} - v_i^k,b) / dt, which
+// its points take in g2p, v_move and v_next. The contact work is the work of the impulses
+// against the mean velocities of the step (ContactLoss).
 template <int D>
 void ExplicitSolver<D>::contact() {
   if (!contact_on()) return;
   timer_.time(Phase::Contact, [&] {
     const double dt = settings_.dt;
     const bool pic = settings_.pic_fraction > 0.0;
+    // v_i^k,b as the points' accelerations see it: the mapped velocity, not the coupled one
+    const auto base = [](const BodyFields<D>& f, std::size_t i) {
+      return Vec<D>(f.momentum[i] / f.mass[i] + f.velocity_shift[i]);
+    };
     const ContactLoss loss = couple_nodes(
-        [dt](const BodyFields<D>& f, std::size_t i) {
-          return Vec<D>(f.momentum[i] / f.mass[i] + dt * f.acceleration[i]);
-        },
-        [dt, pic](BodyFields<D>& f, std::size_t i, const Vec<D>& v) {
-          f.acceleration[i] = (v - f.momentum[i] / f.mass[i]) / dt;
+        [&](const BodyFields<D>& f, std::size_t i) { return Vec<D>(base(f, i) + dt * f.acceleration[i]); },
+        [&](BodyFields<D>& f, std::size_t i, const Vec<D>& v) {
+          f.acceleration[i] = (v - base(f, i)) / dt;
           f.velocity_move[i] = 0.5 * (f.velocity[i] + v);
           if (pic) f.velocity_next[i] = v;
-        });
+        },
+        [](const BodyFields<D>& f, std::size_t i) { return f.velocity[i]; });
+    contact_step_ = loss;
     energy_.contact_work += loss.normal + loss.friction;
   });
+}
+
+// Each body's reference volume per unit mass, from its points.
+template <int D>
+void ExplicitSolver<D>::prepare_contact() {
+  ContactSettings<D>& c = settings_.contact;
+  std::vector<double> mass(static_cast<std::size_t>(c.bodies()), 0.0), volume(mass);
+  const auto& P = particles_;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const auto b = static_cast<std::size_t>(P.body[p]);
+    if (b >= mass.size()) continue;
+    mass[b] += P.mass[p];
+    volume[b] += P.volume0[p];
+  }
+  for (BodyFields<D>& f : bodies_) f.velocity_shift.resize(grid().node_count());
+  c.volume_per_mass.assign(mass.size(), 0.0);
+  for (std::size_t b = 0; b < mass.size(); ++b)
+    c.volume_per_mass[b] = mass[b] > 0.0 ? volume[b] / mass[b] : 0.0;
 }
 
 // The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.
@@ -237,6 +300,7 @@ void ExplicitSolver<D>::rigid_velocity() {
   template void ExplicitSolver<D>::body_remap_velocity();      \
   template void ExplicitSolver<D>::clear_body_mass_momentum(); \
   template void ExplicitSolver<D>::contact();                  \
+  template void ExplicitSolver<D>::prepare_contact();          \
   template void ExplicitSolver<D>::rigid_velocity();
 SKRED_CONTACT_PHASES(2)
 SKRED_CONTACT_PHASES(3)

@@ -124,6 +124,7 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     bodies_.resize(static_cast<std::size_t>(settings_.contact.bodies()));
     for (auto& b : bodies_) b.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF);
     contact_sums_.assign(static_cast<std::size_t>(16 * transfer_.threads()), 0.0);
+    prepare_contact();
   }
 }
 

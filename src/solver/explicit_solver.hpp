@@ -54,9 +54,8 @@ struct EnergyTotals {
   double strain_energy = 0.0;  // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
   double gravity_work = 0.0;   // sum of m_p g . d_x_p (eq. 5.13, incremental form)
   double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
-  // Kinetic energy the contact phase took out of the nodal velocities (>= 0 every step;
-  // Paper III §C.2.7): friction work (friction impulse times mean slip speed) plus the
-  // inelastic stop of the approach.
+  // Work of the contact impulses against the mean relative velocities of each step (Paper
+  // III §C.2.7; ContactLoss): friction (>= 0) plus the normal part (small, either sign).
   double contact_work = 0.0;
   // Energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed walls and
   // the motion stopped at every wall; >= 0 at every node and step (boundary.hpp, WallEnergy).
@@ -130,6 +129,8 @@ class ExplicitSolver {
   // by body id; with contact also each body's velocities and forces.
   const std::vector<BodyFields<D>>& body_fields() const { return bodies_; }
   bool contact_on() const { return settings_.contact.enabled(); }
+  // The contact work of the last step, normal and friction parts (ContactLoss).
+  const ContactLoss& contact_step() const { return contact_step_; }
   const SolverSettings<D>& settings() const { return settings_; }
   int threads() const { return transfer_.threads(); }
   // Seconds spent in each phase since the solver was made.
@@ -213,8 +214,11 @@ class ExplicitSolver {
   void body_grid_update();
   void body_remap_velocity();
   void clear_body_mass_momentum();
-  template <class Get, class Set>
-  ContactLoss couple_nodes(Get&& get, Set&& set);
+  void prepare_contact();  // per-body data of the contact phase (contact.cpp)
+  template <class Get, class Set, class Start>
+  ContactLoss couple_nodes(Get&& get, Set&& set, Start&& start);
+  template <class Field>
+  void couple_start(Field&& field, bool shift);
   // fn(fields, points, body) for each continuum: the centre-of-mass fields and every point
   // without contact; each deformable body's fields and points with it.
   template <class Fn>
@@ -237,6 +241,7 @@ class ExplicitSolver {
   std::vector<BodyFields<D>> bodies_;
   NodeBox<D> body_box_;               // where the body fields were last written
   std::vector<double> contact_sums_;  // per-thread work sums of the contact phase
+  ContactLoss contact_step_;          // the last step's contact work
   PhaseTimer timer_;
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.

@@ -53,6 +53,10 @@ struct GridFields {
 // p_i^b are allocated; with contact every array, each with the meaning above for body b
 // alone (f_i^int,b, a_i^b after contact, ...).
 template <int D>
-struct BodyFields : GridFields<D> {};
+struct BodyFields : GridFields<D> {
+  // With contact: the change the contact made to v_i^k,b (contact.cpp), which the strain and
+  // the motion take but the points' velocities do not (they take only accelerations).
+  GridArray<Vec<D>> velocity_shift;
+};
 
 }  // namespace skred
