@@ -182,7 +182,7 @@ TEST(Slides, EnergyBalanceOverAPlasticCollapse) {
     text.replace(at, a.size(), b);
   };
   replace("y_min = { type = \"friction\", friction = 0.6 }", "y_min = \"roller\"");
-  replace("pic_fraction = 0.02", "pic_fraction = 0.0");
+  replace("velocity_transfer = \"apic\"", "velocity_transfer = \"flip\"");
   replace("duration = 6.0", "duration = 1.5");
   for (const char* scheme : {"usf", "averaged"}) {
     std::string t = text;

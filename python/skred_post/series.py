@@ -12,7 +12,8 @@ from .data import read_series, read_summary  # noqa: E402
 
 ENERGIES = [("kinetic_energy", "kinetic"), ("strain_energy", "strain"),
             ("plastic_dissipation", "plastic dissipation"), ("friction_work", "friction work"),
-            ("transfer_dissipation", "transfer dissipation"), ("gravity_work", "gravity work"),
+            ("transfer_dissipation", "transfer dissipation"), ("contact_work", "contact work"),
+            ("damping_work", "damping work"), ("gravity_work", "gravity work"),
             ("total_energy", "total = kinetic + strain + dissipated - gravity work")]
 
 

@@ -20,8 +20,9 @@ const char* SeriesWriter::header() {
          "mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points\n";
 }
 
-SeriesWriter::SeriesWriter(const std::filesystem::path& file, bool momentum_z, bool contact_work)
-    : file_(file), momentum_z_(momentum_z), contact_work_(contact_work) {
+SeriesWriter::SeriesWriter(const std::filesystem::path& file, bool momentum_z, bool contact_work,
+                           bool damping_work)
+    : file_(file), momentum_z_(momentum_z), contact_work_(contact_work), damping_work_(damping_work) {
   rows_.reserve(4096);
   text_.reserve(4096 * 160);
 }
@@ -42,7 +43,7 @@ void SeriesWriter::add(const SeriesRow& r) {
 
 void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
   const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation + r.friction_work +
-                       r.transfer_dissipation + r.contact_work - r.gravity_work;
+                       r.transfer_dissipation + r.contact_work + r.damping_work - r.gravity_work;
   // "{}" is the shortest representation that reads back to the same double.
   fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
                  r.time, r.kinetic_energy, r.strain_energy, r.gravity_work, r.plastic_dissipation,
@@ -50,6 +51,7 @@ void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
                  r.momentum_y, r.num_particles, r.stage, r.runout, r.yielding_points);
   if (momentum_z_) fmt::format_to(std::back_inserter(out), ",{}", r.momentum_z);
   if (contact_work_) fmt::format_to(std::back_inserter(out), ",{}", r.contact_work);
+  if (damping_work_) fmt::format_to(std::back_inserter(out), ",{}", r.damping_work);
   out += '\n';
 }
 
@@ -95,7 +97,7 @@ void SeriesWriter::flush() {
   write_file_atomically(file_, [&](std::ostream& os) {
     const std::string h = header();
     os << h.substr(0, h.size() - 1) << (momentum_z_ ? ",momentum_z" : "")
-       << (contact_work_ ? ",contact_work" : "") << '\n';
+       << (contact_work_ ? ",contact_work" : "") << (damping_work_ ? ",damping_work" : "") << '\n';
     os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   });
   started_ = true;

@@ -24,7 +24,8 @@ struct SeriesRow {
   double runout;              // front advance since the stage start [m] (StageTracker::runout)
   long yielding_points;       // points whose last stress update was plastic
   double momentum_z = 0.0;    // 3D runs only
-  double contact_work = 0.0;  // runs with contact only (last column; Paper III §C.2.7)
+  double contact_work = 0.0;  // runs with contact only (Paper III §C.2.7)
+  double damping_work = 0.0;  // runs with local damping only (last column)
 };
 
 // Collects rows in memory (for checkpoints). The first flush() writes the file atomically;
@@ -35,10 +36,11 @@ struct SeriesRow {
 //   transfer_dissipation,total_energy,mean_speed,max_speed,momentum_x,momentum_y,
 //   num_particles,stage,runout,yielding_points
 // with total_energy = kinetic_energy + strain_energy + plastic_dissipation + friction_work +
-// transfer_dissipation + contact_work - gravity_work (the energy balance; constant up to the
-// time integration's error). 3D runs add a column momentum_z, runs with contact a last column
-// contact_work (the energy the contact phase took out: friction between bodies and the
-// inelastic stop of approaching bodies). Gravity work, strain energy
+// transfer_dissipation + contact_work + damping_work - gravity_work (the energy balance;
+// constant up to the time integration's error). 3D runs add a column momentum_z, runs with
+// contact a column contact_work (the energy the contact phase took out: friction between
+// bodies and the inelastic stop of approaching bodies), runs with a locally damped stage a
+// last column damping_work (the work of that damping). Gravity work, strain energy
 // (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is
 // written as the shortest decimal that reads back to the identical double.
 class SeriesWriter {
@@ -46,8 +48,8 @@ class SeriesWriter {
   // Nothing is written until the first flush().
   // With momentum_z (3D runs) the rows end with a momentum_z column, then with contact_work
   // (runs with contact) a contact_work column.
-  explicit SeriesWriter(const std::filesystem::path& file, bool momentum_z = false,
-                        bool contact_work = false);
+  explicit SeriesWriter(const std::filesystem::path& file, bool momentum_z = false, bool contact_work = false,
+                        bool damping_work = false);
   // Flushes rows added since the last flush(); errors are swallowed here (call flush()
   // yourself to see them), so a run that ends by an exception still leaves its series.
   ~SeriesWriter();
@@ -69,6 +71,7 @@ class SeriesWriter {
   std::vector<SeriesRow> rows_;
   bool momentum_z_ = false;
   bool contact_work_ = false;
+  bool damping_work_ = false;
   std::string text_;  // the formatted rows not yet written
   bool dirty_ = false;
   bool started_ = false;  // the file was written once: later flushes append

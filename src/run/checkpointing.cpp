@@ -46,6 +46,7 @@ void archive_row(A& a, SeriesRow& r) {
   a(r.yielding_points);
   a(r.momentum_z);
   a(r.contact_work);
+  a(r.damping_work);
 }
 
 // The run's state besides the particles, in payload order.
@@ -61,6 +62,7 @@ void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
   a(c.energy.contact_work);
   a(c.energy.friction_work);
   a(c.energy.transfer_dissipation);
+  a(c.energy.damping_work);
   a(at.stage);
   a(at.in_stage);
   a(at.stage_first_step);

@@ -89,6 +89,7 @@ SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t
   r.plastic_dissipation = e.plastic_dissipation;
   r.friction_work = e.friction_work;
   r.transfer_dissipation = e.transfer_dissipation;
+  r.damping_work = e.damping_work;
   r.mean_speed = t.mean_speed;
   r.max_speed = t.max_speed;
   r.momentum_x = t.momentum[0];
@@ -143,8 +144,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   std::vector<MaterialStrength> strength = material_strengths(s.materials);
   std::vector<Mat3> elastic_F;
   std::vector<Sym3> stress_from_Fe;
+  const bool damped =
+      std::any_of(s.stages.begin(), s.stages.end(), [](const Stage& st) { return st.local_damping > 0.0; });
   SeriesWriter series(outdir / "series.csv", D == 3,  // 3D: with momentum_z
-                      solver.contact_on());           // contact: with contact_work
+                      solver.contact_on(),            // contact: with contact_work
+                      damped);                        // local damping: with damping_work
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
@@ -212,6 +216,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     strength = material_strengths(stage_materials(s, as_plastic));
     const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
     const bool begins = !at.in_stage;  // false for the stage a restart continues
+    solver.set_local_damping(st.local_damping);
     if (begins) {
       solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
       at.stage = k;

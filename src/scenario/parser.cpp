@@ -253,6 +253,7 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
       t.fail_at("rest_time", "only allowed together with rest_speed > 0");
     st.rest_time = t.number_or("rest_time", 0.0);
     if (st.rest_speed > 0.0 && !t.has("rest_time")) t.fail_missing("rest_time");
+    st.local_damping = t.number("local_damping");
     s.end_time += st.duration;
     s.stages.push_back(std::move(st));
   }
@@ -474,6 +475,11 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
     fail(s.source, root.table("solver", true)->where("velocity_transfer"), "solver.velocity_transfer",
          "\"xpic\" and \"apic\" do not work with [[contact]] or rigid bodies yet; use \"flip\"");
   parse_stages(root, s);
+  if (!s.contacts.empty() || rigid)  // the damping acts on the centre-of-mass grid update only
+    for (std::size_t i = 0; i < s.stages.size(); ++i)
+      if (s.stages[i].local_damping > 0.0)
+        root.array_of_tables("stage")[i].fail_at(
+            "local_damping", "local damping does not work with [[contact]] or rigid bodies yet");
   parse_output(root, s);
   check_time_step(root, s);
   return s;

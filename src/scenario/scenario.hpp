@@ -136,6 +136,8 @@ struct Stage {
   // for rest_time seconds (after the gravity ramp). rest_speed = 0 disables this.
   double rest_speed = 0.0;
   double rest_time = 0.0;
+  // Local (non-viscous, Cundall type) damping alpha of the stage's grid update (0: off).
+  double local_damping = 0.0;
 };
 
 // Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies and the

@@ -65,6 +65,9 @@ struct EnergyTotals {
   // sum (1/2) m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2): the PIC share, XPIC and APIC (whose affine
   // velocity's own kinetic energy is not counted in eq. 4.15); zero for pure FLIP.
   double transfer_dissipation = 0.0;
+  // Work of the local (Cundall) damping of an equilibrium stage, per step
+  // -dt sum_i f_i^damp . (v_i^k + v_i^{k+1}) / 2 (grid_update); zero when it is off.
+  double damping_work = 0.0;
 };
 
 // The solver's state between two steps beyond the particles and the scenario, for a
@@ -153,6 +156,11 @@ class ExplicitSolver {
   void begin_stage(std::vector<Material> materials, double gravity_ramp_time);
   void reset_reference();
   const std::vector<Material>& materials() const { return materials_; }
+  // Local (non-viscous, Cundall type) damping of the current stage, 0 <= alpha < 1 (0: off):
+  // each node feels -alpha |f_i| sign(v_i^k) per component, f_i its unbalanced force
+  // (grid_update). A stage setting: the run driver sets it as each stage begins or resumes.
+  void set_local_damping(double alpha) { local_damping_ = alpha; }
+  double local_damping() const { return local_damping_; }
 
   // Checkpoint and restart: the state to save, and restoring it with the current stage's
   // materials. The next step maps the grid afresh from the particles, which gives the same
@@ -193,6 +201,7 @@ class ExplicitSolver {
   template <class K>
   void internal_force(const K& kernel);  // eq. 2.51
   void grid_update();                    // eq. 2.49, 5.8-5.11
+  void damped_accelerations();           // grid_update's first loop with local damping
   void contact();                        // Paper III §C.2.7, C.36
   template <class K>
   void velocity_and_remap(const K& kernel);  // eq. 2.56, §4.4 step 6
@@ -255,6 +264,8 @@ class ExplicitSolver {
   long steps_ = 0;
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;
+  double local_damping_ = 0.0;
+  std::vector<double> damping_sums_;  // per-thread work sums of the damping (padded)
   StepStatus status_;
 };
 

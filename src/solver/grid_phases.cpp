@@ -66,12 +66,15 @@ void ExplicitSolver<D>::grid_update() {
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
     const Vec<D> g = gravity_now_;
     const double dt = settings_.dt, half_dt = 0.5 * dt;
-    transfer_.for_box([&](std::size_t i) {
-      const double m = fields_.mass[i];
-      const Vec<D> a = m > 0.0 ? Vec<D>(fields_.internal_force[i] / m + g) : Vec<D>::Zero();
-      fields_.acceleration[i] = a;
-      fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
-    });
+    if (local_damping_ > 0.0)
+      damped_accelerations();
+    else
+      transfer_.for_box([&](std::size_t i) {
+        const double m = fields_.mass[i];
+        const Vec<D> a = m > 0.0 ? Vec<D>(fields_.internal_force[i] / m + g) : Vec<D>::Zero();
+        fields_.acceleration[i] = a;
+        fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
+      });
     const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
     assert(walls.work >= 0.0);  // friction never creates energy
     energy_.friction_work += walls.work;
@@ -86,11 +89,44 @@ void ExplicitSolver<D>::grid_update() {
   });
 }
 
+// The first loop of grid_update with the local (non-viscous) damping of an equilibrium stage
+// (Cundall type, as geotechnical codes offer it): per component, the unbalanced force f_i =
+// f_i^int + m_i g gets f_i^damp = -alpha |f_i| sign(v_i^k), opposed to the nodal velocity and
+// proportional to the force that is not in equilibrium, so it vanishes at rest and never
+// drives a node. Its work over the velocity the points move with, -dt f^damp . (v^k +
+// v^{k+1}) / 2, is booked in damping_work (at a frictional wall node the friction then
+// changes that velocity: there the work is counted over the velocity before the wall).
+template <int D>
+void ExplicitSolver<D>::damped_accelerations() {
+  constexpr std::size_t kPad = 8;  // one cache line per thread's sum
+  damping_sums_.assign(kPad * static_cast<std::size_t>(threads()), 0.0);
+  const Vec<D> g = gravity_now_;
+  const double alpha = local_damping_, half_dt = 0.5 * settings_.dt;
+  transfer_.for_box([&](std::size_t i) {
+    const double m = fields_.mass[i];
+    const Vec<D>& v = fields_.velocity[i];
+    Vec<D> a = Vec<D>::Zero();
+    if (m > 0.0) {
+      a = fields_.internal_force[i] / m + g;
+      Vec<D> damp;
+      for (int d = 0; d < D; ++d)
+        damp[d] = v[d] > 0.0 ? -alpha * std::abs(a[d]) : v[d] < 0.0 ? alpha * std::abs(a[d]) : 0.0;
+      a += damp;
+      damping_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())] -=
+          2.0 * half_dt * m * damp.dot(v + half_dt * a);
+    }
+    fields_.acceleration[i] = a;
+    fields_.velocity_move[i] = v + half_dt * a;
+  });
+  for (std::size_t t = 0; t < damping_sums_.size(); t += kPad) energy_.damping_work += damping_sums_[t];
+}
+
 #define SKRED_GRID_PHASES(D)                              \
   template void ExplicitSolver<D>::nodal_velocity();      \
   template void ExplicitSolver<D>::remap_velocity();      \
   template void ExplicitSolver<D>::clear_mass_momentum(); \
-  template void ExplicitSolver<D>::grid_update();
+  template void ExplicitSolver<D>::grid_update();         \
+  template void ExplicitSolver<D>::damped_accelerations();
 SKRED_GRID_PHASES(2)
 SKRED_GRID_PHASES(3)
 #undef SKRED_GRID_PHASES

@@ -1,0 +1,55 @@
+#!/bin/sh
+# Runout under grid refinement (issue 12; Thesis §5.1 and §5.2, fig. 5.18): the soil column
+# of examples/soil_column.toml (h = 0.5, 0.25, 0.125 m; time step 2 ms per metre of cell, the
+# example's c dt / h = 0.45) and the slope of examples/slope_collapse.toml (phi = 18 deg,
+# c = 5 kPa; h = 1, 0.5, 0.25 m, its cfl), for each velocity transfer given, 3 x 3 points per
+# cell throughout. Prints one table row per run: problem, transfer, cell size, points, the
+# last stage's runout (summary.json: from the points and their half-sizes, along the
+# connected deposit), how the stage ended, simulated and wall seconds. Takes tens of minutes
+# (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
+#   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
+#   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
+set -e
+skred=${1:-build/skred}
+[ $# -gt 0 ] && shift
+transfers=${*:-flip}
+problems=${PROBLEMS:-column slope}
+threads=${THREADS:-1}
+out=${OUT:-out/convergence}
+here=$(cd "$(dirname "$0")/.." && pwd)
+mkdir -p "$out"
+
+# scenario FILE H DT TRANSFER > toml: the example at cell size H (DT: fixed time step, or
+# empty to keep the example's cfl), with the velocity transfer and no PIC share.
+scenario() {
+  sed -e "s/^cell_size = .*/cell_size = $2/" \
+    -e '/^pic_fraction/d' -e '/^velocity_transfer/d' \
+    -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"/" \
+    ${3:+-e "s/^time_step = .*/time_step = $3/"} "$1"
+}
+
+printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
+for tr in $transfers; do
+  for problem in $problems; do
+    case $problem in
+      column) file=$here/examples/soil_column.toml; sizes="0.5 0.25 0.125" ;;
+      slope) file=$here/examples/slope_collapse.toml; sizes="1.0 0.5 0.25" ;;
+      *) echo "unknown problem $problem" >&2; exit 4 ;;
+    esac
+    for h in $sizes; do
+      dt=
+      [ "$problem" = column ] && dt=$(awk -v h="$h" 'BEGIN { printf "%g", 0.002 * h }')
+      dir=$out/${problem}_${tr}_$h
+      scenario "$file" "$h" "$dt" "$tr" > "$out/${problem}_${tr}_$h.toml"
+      "$skred" run "$out/${problem}_${tr}_$h.toml" -o "$dir" --overwrite --threads "$threads" \
+        > "$dir.log" 2>&1 || true
+      /usr/bin/python3 - "$dir/summary.json" "$problem" "$tr" "$h" << 'EOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+st = s["stages"][-1]
+print("%-7s %-6s %6s %8d %9.3f %-9s %7.2f %7.0f" % (sys.argv[2], sys.argv[3], sys.argv[4], s["particles"],
+      st["runout"], st.get("ended_by", s["status"]), st["end_time"] - st["start_time"], s.get("wall_seconds", 0)))
+EOF
+    done
+  done
+done
