@@ -17,6 +17,8 @@ TEST_F(IoTest, PythonPackageInstallsOfflineAndReadsARun) {
   {
     std::string text = read_text(fs::path(SKRED_SOURCE_DIR) / "examples" / "colliding_discs.toml");
     text.replace(text.find("end_time = 3.0"), 14, "end_time = 0.2");  // free flight, 3 frames
+    text.replace(text.find("[output]\n"), 9,
+                 "[output]\nfields = \"all\"\n");  // volume is not a default field
     std::ofstream(scenario) << text;
   }
   auto [s1, o1] = run_command(std::string(SKRED_BINARY) + " run " + shell_quote(scenario.string()) + " -o " +
