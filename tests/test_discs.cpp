@@ -174,6 +174,7 @@ TEST(CollidingDiscs, StoredEnergyTwoWaysAndNoEnergyFromNowhere) {
   SolverSettings<2> st;
   st.scheme = StressScheme::Averaged;
   st.dt = 0.001;
+  st.hyperelastic = true;
   ExplicitSolver<2> solver(grid2(h, 20, 20), P, {m}, st, 1);
   const double ke_before = solver.totals().kinetic_energy;
   double peak = 0.0, worst_gap = 0.0, min_stored = 0.0;

@@ -31,6 +31,7 @@ DiscEnergy discs(VelocityTransfer t, StressScheme scheme, int steps = 3000) {
   st.scheme = scheme;
   st.velocity_transfer = t;
   st.dt = 0.001;
+  st.hyperelastic = true;  // R3's 25 % squeeze: the law that returns the energy of F
   ExplicitSolver<2> solver(grid2(h, 20, 20), P, {m}, st, 2);
   DiscEnergy r;
   r.mass = solver.totals().mass;
@@ -115,4 +116,8 @@ TEST(VelocityTransfer, ScenarioKeys) {
   EXPECT_ANY_THROW(with("velocity_transfer = \"pic\""));
   EXPECT_ANY_THROW(with("xpic_order = 3"));  // flip
   EXPECT_ANY_THROW(with("velocity_transfer = \"apic\"\npic_fraction = 0.1"));
+  // solver.elastic_update: the seeds' incremental update unless asked for the hyperelastic law
+  EXPECT_FALSE(solver_settings(with("")).hyperelastic);
+  EXPECT_TRUE(solver_settings(with("elastic_update = \"hyperelastic\"")).hyperelastic);
+  EXPECT_ANY_THROW(with("elastic_update = \"hyper\""));
 }

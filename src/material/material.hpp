@@ -35,6 +35,9 @@ struct Material {
   MohrCoulombParams mohr_coulomb;               // MohrCoulomb and Tresca (friction = dilation = 0)
   MohrCoulombConstants mohr_coulomb_constants;  // derived by prepare()
   VonMisesParams von_mises;                     // VonMises
+  // LinearElastic only: the stress of the hyperelastic law of F (solver.elastic_update =
+  // "hyperelastic", stress_update.hpp) instead of the incremental update of Thesis eq. 4.1-4.4.
+  bool hyperelastic = false;
 
   // Computes the derived constants; call after setting the parameters.
   void prepare() {

@@ -54,6 +54,7 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
     for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
   }
   st.velocity_transfer = s.velocity_transfer;
+  st.hyperelastic = s.hyperelastic;
   st.xpic_order = s.xpic_order;
   return st;
 }

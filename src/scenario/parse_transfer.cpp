@@ -11,6 +11,7 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
   s.xpic_order = static_cast<int>(t.integer("xpic_order"));
   if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)
     t.fail_at("xpic_order", "applies to velocity_transfer = \"xpic\" only");
+  s.hyperelastic = t.choice<bool>("elastic_update", {{"incremental", false}, {"hyperelastic", true}}, false);
   if (t.has("pic_fraction") && s.velocity_transfer != VelocityTransfer::Flip)
     t.fail_at("pic_fraction", "applies to velocity_transfer = \"flip\" only");
 }

@@ -180,6 +180,7 @@ struct ScenarioCommon {
   // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables.
   std::vector<ContactPair> contacts;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
+  bool hyperelastic = false;                                    // solver.elastic_update = "hyperelastic"
   int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
 
   double output_interval = 0.0;  // simulated time between particle frames

@@ -408,6 +408,14 @@ std::vector<Section> make_sections() {
             .type = Type::Boolean,
             .def = derived("false"),
             .doc = "true accepts a `time_step` above the stable step with a warning"},
+           {.name = "elastic_update",
+            .type = Type::Choice,
+            .def = derived("\"incremental\""),
+            .choices = "incremental|hyperelastic",
+            .doc = "linear-elastic materials: \"incremental\", sigma^k + C : d_eps pushed forward "
+                   "through dF (Thesis eq. 4.1-4.4), or \"hyperelastic\", the stress of the stored "
+                   "energy W = G sum (l_i - 1)^2 + lambda/2 (sum (l_i - 1))^2 of F, which stores and "
+                   "returns exactly the energy of F at large elastic strains (docs/method.md)"},
            {.name = "velocity_transfer",
             .type = Type::Choice,
             .def = derived("\"flip\""),

@@ -102,7 +102,10 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
       particles_(particles),
       materials_(std::move(materials)),
       settings_(settings) {
-  for (Material& m : materials_) m.prepare();
+  for (Material& m : materials_) {
+    m.hyperelastic = settings_.hyperelastic;
+    m.prepare();
+  }
   const GridGeometry<D>& g = transfer_.grid();
   boundaries_ = Boundaries<D>(g, settings_.boundaries);
   for (int d = 0; d < D; ++d) {

@@ -30,6 +30,7 @@ struct SolverSettings {
   Interpolation interpolation = Interpolation::Gimp;
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
+  bool hyperelastic = false;  // linear-elastic materials: the hyperelastic law (stress_update.hpp)
   double dt = 0.0;
   Vec<D> gravity = Vec<D>::Zero();
   double gravity_ramp_time = 0.0;

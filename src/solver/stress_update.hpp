@@ -142,8 +142,17 @@ template <int D>
     const double g10 = dt * grad_v(1, 0), g11 = dt * grad_v(1, 1);
     const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);  // d_eps (eq. 2.20)
     const double o0 = stress[0], o1 = stress[1], o2 = stress[2], o3 = stress[3];
-    double p0 = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0;  // d_eps_p
-    if (mat.model == Model::LinearElastic) {        // eq. 2.5, hyperelastic (biot_kirchhoff)
+    double p0 = 0.0, p1 = 0.0, p2 = 0.0, p3 = 0.0;                 // d_eps_p
+    if (mat.model == Model::LinearElastic && !mat.hyperelastic) {  // eq. 2.5
+      const double tr = e0 + e1, lam = mat.elastic_constants.lambda * tr;
+      const double two_g = mat.elastic_constants.two_g;
+      stress[0] = o0 + lam + two_g * e0;
+      stress[1] = o1 + lam + two_g * e1;
+      stress[2] = o2 + lam;
+      stress[3] = o3 + two_g * e3;  // the state is untouched (see update_stress)
+      return finish_plane_update<false>(g00, g01, g10, g11, o0, o1, o2, o3, 0.0, 0.0, 0.0, 0.0, volume0,
+                                        stress, F, Fe);
+    } else if (mat.model == Model::LinearElastic) {  // hyperelastic (biot_kirchhoff)
       // tau^{k+1} = dF (tau^k - tau_H(F^k)) dF^T + tau_H(F^{k+1}) (tau = J sigma): the stress of
       // the hyperelastic law of F, plus whatever stress the point had besides it (an initial
       // stress, a stage's carried stress) convected as in eq. 4.4. An elastic step therefore
@@ -190,7 +199,7 @@ template <int D>
     const Sym3 old = stress;
     const Mat<D> dF = Mat<D>::Identity() + G;
     Sym3 deps_p = Sym3::Zero();
-    if (mat.model == Model::LinearElastic) {  // hyperelastic, as in plane strain above
+    if (mat.model == Model::LinearElastic && mat.hyperelastic) {  // as in plane strain above
       const double lam = mat.elastic_constants.lambda, two_g = mat.elastic_constants.two_g;
       const Sym3 rest = F.determinant() * stress - biot_kirchhoff<D>(F, lam, two_g);
       const Mat<D> F1 = dF * F;
