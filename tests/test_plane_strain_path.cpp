@@ -8,7 +8,8 @@
 // out-of-plane shear in 3D), every state field, F, Fe (the in-plane block; the 3D Fe also
 // tracks 1 - d_eps_p_zz out of plane, which plane strain does not store), strain energy,
 // dissipation and volume. And the const law (material/law.hpp) gives what the in-place update
-// gives.
+// gives. And the hand-written 3D update equals the matrix form of the same equations on random
+// 3D states.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -175,6 +176,68 @@ TEST(PlaneStrainPath, ConstLawEqualsTheInPlaceUpdate) {
       EXPECT_EQ(r.state.volume_strain, st1.volume_strain);
       EXPECT_EQ(r.state.yielding, st1.yielding);
       EXPECT_EQ(r.has_tangent, i % 4 < 2);
+    }
+  }
+}
+
+namespace {
+// Thesis eq. 4.1-4.4 and 4.16, Post eq. 72-73 in matrix form with Eigen's 3 x 3 products: the
+// reference the scalar 3D update (solver/kinematics_3d.hpp) must reproduce.
+StressUpdateResult matrix_form_update(const Material& mat, const Mat3& grad_v, double dt, double volume0,
+                                      Sym3& stress, PointState& state, Mat3& F, Mat3& Fe) {
+  const Mat3 G = dt * grad_v, dF = Mat3::Identity() + G;
+  const Sym3 deps = sym_voigt<3>(G), old = stress;
+  const Sym3 deps_p = update_stress(mat, stress, deps, state);
+  stress = to_voigt(dF * to_matrix(stress) * dF.transpose() / dF.determinant());
+  F = dF * F;
+  const Sym3 deps_e = deps - deps_p;
+  Fe = (Mat3::Identity() + to_matrix(deps_e)) * Fe;
+  const double volume = volume0 * F.determinant();
+  const Sym3 mid = 0.5 * volume * (old + stress);
+  return {contract(mid, deps_e), contract(mid, deps_p), volume};
+}
+}  // namespace
+
+TEST(PlaneStrainPath, Scalar3DUpdateEqualsTheMatrixForm) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const Named& n : models()) {
+    int plastic = 0;
+    double worst = 0;
+    const int count = 2000;
+    for (int i = 0; i < count; ++i) {
+      Sym3 s0;
+      for (int k = 0; k < 6; ++k) s0[k] = k < 3 ? 100 * kPa * u(rng) - 50 * kPa : 30 * kPa * u(rng);
+      Mat3 F, Fe, grad_v;
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) {
+          F(r, c) = (r == c) + 0.3 * u(rng);
+          Fe(r, c) = (r == c) + 0.1 * u(rng);
+          grad_v(r, c) = (i % 3 == 0 ? 20.0 : 1.0) * u(rng);
+        }
+      PointState st;
+      st.plastic_shear_strain = 0.02 * (1 + u(rng));
+      st.volume_strain = 0.0124 + 0.01 * u(rng);
+      const double dt = 1e-3, volume0 = 0.01 * (1.5 + u(rng));
+      Sym3 sa = s0, sb = s0;
+      PointState sta = st, stb = st;
+      Mat3 Fa = F, Fea = Fe, Fb = F, Feb = Fe;
+      const StressUpdateResult ra = update_point_stress<3>(n.m, grad_v, dt, volume0, sa, sta, Fa, Fea);
+      const StressUpdateResult rb = matrix_form_update(n.m, grad_v, dt, volume0, sb, stb, Fb, Feb);
+      plastic += n.m.plastic() && sta.yielding;
+      const double ss = sb.cwiseAbs().maxCoeff() + kPa, ws = volume0 * ss * 0.02;
+      const double e = std::max(
+          {(sa - sb).cwiseAbs().maxCoeff() / ss, (Fa - Fb).cwiseAbs().maxCoeff(),
+           (Fea - Feb).cwiseAbs().maxCoeff(), std::abs(ra.strain_energy - rb.strain_energy) / ws,
+           std::abs(ra.dissipation - rb.dissipation) / ws, std::abs(ra.volume - rb.volume) / volume0});
+      EXPECT_LE(e, kRel) << n.name << " sample " << i;
+      EXPECT_EQ(sta.yielding, stb.yielding);
+      EXPECT_EQ(sta.plastic_shear_strain, stb.plastic_shear_strain);
+      worst = std::max(worst, e);
+    }
+    std::printf("  %-32s %4d/%d plastic; max rel. diff %.1e\n", n.name, plastic, count, worst);
+    if (n.m.plastic()) {
+      EXPECT_GE(plastic, count / 5) << n.name;
     }
   }
 }

@@ -5,12 +5,13 @@
 //
 // Plane strain (s[4] == s[5] == 0, the hot case) uses a closed-form 2 x 2 in-plane solution plus
 // the out-of-plane value s[2] with direction e_z; the general 3D case uses Eigen's tridiagonal
-// QR solver, accurate to round-off also for near-equal eigenvalues. Eigen's closed-form
-// computeDirect is ~5x faster but loses accuracy there (measured: rebuild error up to 4e-8 |s|,
-// eigenvalues up to 9e-9 |s|), so it only serves the elastic screening (principal_values_screen).
+// QR solver, accurate to round-off also for near-equal eigenvalues (Eigen's closed-form
+// computeDirect is ~5x faster but loses accuracy there: rebuild error up to 4e-8 |s|). The 3D
+// elastic screen needs only bounds on the extreme values (principal_bounds).
 // Fixed-size Eigen types only: no heap allocation, no exceptions.
 #pragma once
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -131,18 +132,36 @@ template <class V>
   return es.eigenvalues();  // Eigen returns them sorted ascending
 }
 
-// Cheap principal values for screening (the elastic check of the return mappings): exact as above
-// in plane strain; in 3D Eigen's closed-form computeDirect, about 5x faster than the QR solver
-// but only accurate to ~1e-8 |s| near repeated eigenvalues (measured worst 9e-9 |s|), so callers
-// must use it with a margin and decide close cases with principal_decomposition.
-[[gnu::always_inline]] inline Vec3 principal_values_screen(const Sym3& s) {
-  if (is_plane(s)) return principal_values(s);
-  Eigen::SelfAdjointEigenSolver<Mat3> es;
-  es.computeDirect(to_matrix(s), Eigen::EigenvaluesOnly);
-  return es.eigenvalues();  // ascending
+// Bounds lo <= sigma_1 and hi >= sigma_3 on the extreme principal values, without
+// trigonometry, for the 3D elastic screen. With p = tr(s)/3 and r = 2 sqrt(J2/3) the principal
+// values are p + r u, u the roots of 4u^3 - 3u = cos(3 theta) = 4 J3 / r^3. Newton's method
+// started at u = 1 (u = -1) approaches the largest (smallest) root monotonically from outside,
+// because the cubic is convex beyond its largest root and concave below its smallest, so every
+// iterate is a bound. It stops when both steps are below 1e-8 (quadratic convergence: the
+// bounds are then within ~1e-15 r) or after eight steps, which leave a near-double root up to
+// a few tenths of a per cent of r outside (the caller then takes the accurate path).
+struct PrincipalBounds {
+  double lo, hi;
+};
+[[gnu::always_inline]] inline PrincipalBounds principal_bounds(const Sym3& s) {
+  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
+  const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+  if (!(j2 > 0.0)) return {p, p};
+  const double j3 =
+      d0 * (d1 * d2 - s[4] * s[4]) - s[3] * (s[3] * d2 - s[4] * s[5]) + s[5] * (s[3] * s[4] - d1 * s[5]);
+  const double r = 2.0 * std::sqrt(j2 / 3.0);
+  const double c3 = std::clamp(4.0 * j3 / (r * r * r), -1.0, 1.0);
+  double u = 1.0, w = -1.0;
+  for (int k = 0; k < 8; ++k) {
+    const double du = (u * (4.0 * u * u - 3.0) - c3) / (12.0 * u * u - 3.0);
+    const double dw = (w * (4.0 * w * w - 3.0) - c3) / (12.0 * w * w - 3.0);
+    u -= du;
+    w -= dw;
+    if (du < 1e-8 && dw > -1e-8) break;  // both converged: the next error is ~ the step squared
+  }
+  return {p + r * w, p + r * u};
 }
-// Relative accuracy margin to use with principal_values_screen in 3D.
-inline constexpr double kScreenRelMargin = 1e-6;
 
 // Principal values (ascending) and orthonormal directions.
 inline Principal principal_decomposition(const Sym3& s) {

@@ -3,7 +3,9 @@
 // (Thesis eq. 3.23, Post eq. 28).
 #pragma once
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 
 #include "shape/separable.hpp"
 
@@ -51,6 +53,21 @@ namespace skred {
   g[1] = linear ? (e > 0.0 ? -1.0 : 1.0) : -e * inv;
 }
 
+// det(F)^(1/3) for the 3D half-lengths (eq. 3.23) without the library's cbrt, which costs
+// more than the rest of a point's weights: a first guess from the exponent bits (within 4 %)
+// refined by two Halley steps y <- y (y^3 + 2J)/(2y^3 + J), each cubing the relative error
+// (4e-2 -> 1e-5 -> 1e-14), and a Newton step, which squares it. Zero, negative, non-finite or extreme J go to
+// std::cbrt.
+[[gnu::always_inline]] inline double gimp_cube_root(double J) {
+  if (!(J > 1e-200 && J < 1e200)) return std::cbrt(J);
+  double y = std::bit_cast<double>(std::bit_cast<std::uint64_t>(J) / 3 + 0x2A9F7893782DA1CEull);
+  for (int k = 0; k < 2; ++k) {
+    const double y3 = y * y * y;
+    y *= (y3 + 2.0 * J) / (2.0 * y3 + J);
+  }
+  return y - (y - J / (y * y)) / 3.0;  // a Newton step for the last digits
+}
+
 // Stored without the middle weight, which is at least 1/2.
 template <int D>
 struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
@@ -61,7 +78,7 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
                                     const Mat<D>& F, Shape& sh) const {
     const double J = F.determinant();
-    const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : std::cbrt(J);
+    const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : gimp_cube_root(J);
     const double inv_h = 1.0 / g.h;
     std::array<int, D> start{};
     for (int d = 0; d < D; ++d) {

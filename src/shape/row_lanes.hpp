@@ -1,5 +1,5 @@
 // A row of S grid nodes of a Vec<D> array is S*D contiguous doubles (a "lane" per node and
-// component). RowLanes<L> holds such a row in 4-wide vectors plus a scalar tail, so the
+// component). RowLanes<L> holds such a row in 8- and 4-wide vectors plus a scalar tail, so the
 // separable transfers (separable.hpp) read, weight and write a whole row with a few vector
 // operations instead of S small Vec<D> operations (3D rows of 3 doubles per node map badly
 // onto vector registers otherwise). GCC/Clang vector extensions: no intrinsics, any x86-64
@@ -11,33 +11,43 @@ namespace skred {
 
 template <int L>
 struct RowLanes {
+  using V8 = double __attribute__((vector_size(64)));
   using V4 = double __attribute__((vector_size(32)));
-  static constexpr int N = L / 4, R = L % 4;
-  V4 v[N > 0 ? N : 1];
+  // 8-wide vectors first (one AVX-512 register, or two 4-wide ones where there is none), then
+  // at most one 4-wide vector, then scalars.
+  static constexpr int N8 = L / 8, N4 = (L % 8) / 4, R = L % 4, O4 = 8 * N8, OR = O4 + 4 * N4;
+  V8 w[N8 > 0 ? N8 : 1];
+  V4 v[N4 > 0 ? N4 : 1];
   double t[R > 0 ? R : 1];
 
   [[gnu::always_inline]] static RowLanes zero() {
     RowLanes r;
-    for (int i = 0; i < N; ++i) r.v[i] = V4{0.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < N8; ++i) r.w[i] = V8{};
+    for (int i = 0; i < N4; ++i) r.v[i] = V4{};
     for (int i = 0; i < R; ++i) r.t[i] = 0.0;
     return r;
   }
   [[gnu::always_inline]] static RowLanes load(const double* p) {
     RowLanes r;
-    for (int i = 0; i < N; ++i) std::memcpy(&r.v[i], p + 4 * i, sizeof(V4));
-    for (int i = 0; i < R; ++i) r.t[i] = p[4 * N + i];
+    for (int i = 0; i < N8; ++i) std::memcpy(&r.w[i], p + 8 * i, sizeof(V8));
+    for (int i = 0; i < N4; ++i) std::memcpy(&r.v[i], p + O4 + 4 * i, sizeof(V4));
+    for (int i = 0; i < R; ++i) r.t[i] = p[OR + i];
     return r;
   }
   [[gnu::always_inline]] void store(double* p) const {
-    for (int i = 0; i < N; ++i) std::memcpy(p + 4 * i, &v[i], sizeof(V4));
-    for (int i = 0; i < R; ++i) p[4 * N + i] = t[i];
+    for (int i = 0; i < N8; ++i) std::memcpy(p + 8 * i, &w[i], sizeof(V8));
+    for (int i = 0; i < N4; ++i) std::memcpy(p + O4 + 4 * i, &v[i], sizeof(V4));
+    for (int i = 0; i < R; ++i) p[OR + i] = t[i];
   }
   // this += k x
   [[gnu::always_inline]] void add(double k, const RowLanes& x) {
-    for (int i = 0; i < N; ++i) v[i] += k * x.v[i];
+    for (int i = 0; i < N8; ++i) w[i] += k * x.w[i];
+    for (int i = 0; i < N4; ++i) v[i] += k * x.v[i];
     for (int i = 0; i < R; ++i) t[i] += k * x.t[i];
   }
-  [[gnu::always_inline]] double operator[](int l) const { return l < 4 * N ? v[l / 4][l % 4] : t[l - 4 * N]; }
+  [[gnu::always_inline]] double operator[](int l) const {
+    return l < O4 ? w[l / 8][l % 8] : l < OR ? v[(l - O4) / 4][l % 4] : t[l - OR];
+  }
 };
 
 }  // namespace skred

@@ -4,30 +4,9 @@
 
 #include "core/types.hpp"
 #include "material/material.hpp"
+#include "solver/kinematics_3d.hpp"
 
 namespace skred {
-
-// Push-forward sigma = dF S dF^T / det(dF) (Thesis eq. 4.4).
-template <int D>
-[[gnu::always_inline]] inline Sym3 push_forward(const Mat<D>& dF, const Sym3& S) {
-  if constexpr (D == 2) {
-    const double J = dF.determinant();
-    Mat<2> s2;
-    s2 << S[0], S[3], S[3], S[1];
-    const Mat<2> r = dF * s2 * dF.transpose() / J;
-    Sym3 out;
-    out << r(0, 0), r(1, 1), S[2] / J, 0.5 * (r(0, 1) + r(1, 0)), 0.0, 0.0;
-    return out;
-  } else {
-    return to_voigt(dF * to_matrix(S) * dF.transpose() / dF.determinant());
-  }
-}
-
-struct StressUpdateResult {
-  double strain_energy = 0.0;  // stored: V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p)  (eq. 4.16)
-  double dissipation = 0.0;    // plastic work V (sigma^{k+1} + sigma^k)/2 : d_eps_p
-  double volume = 0.0;         // V_p^{k+1} = det(F^{k+1}) V_p^0
-};
 
 // The end of a plane-strain update, after the material's return (eq. 4.4, 3.2, Post eq.
 // 72-73, 4.16): dt grad v = [g00 g01; g10 g11], sigma^k = (o0, o1, o2, o3), d_eps_p =
@@ -194,27 +173,28 @@ template <int D>
     return finish_plane_update<true>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0, stress, F,
                                      Fe);
   } else {
-    const Mat<D> G = dt * grad_v;
-    const Sym3 deps = sym_voigt<D>(G);
+    // 3D in scalars (kinematics_3d.hpp), the same steps as the plane-strain branch.
+    double g[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) g[i][j] = dt * grad_v(i, j);
+    const Sym3 deps = kinematics3::strain_increment(g);
     const Sym3 old = stress;
-    const Mat<D> dF = Mat<D>::Identity() + G;
-    Sym3 deps_p = Sym3::Zero();
-    if (mat.model == Model::LinearElastic && mat.hyperelastic) {  // as in plane strain above
+    if (mat.model == Model::LinearElastic && !mat.hyperelastic) {  // eq. 2.5
+      stress += elastic_increment(mat.elastic_constants, deps);
+      kinematics3::push_forward(g, stress);
+      return kinematics3::finish<false>(g, deps, deps, old, volume0, stress, F, Fe);
+    } else if (mat.model == Model::LinearElastic) {  // hyperelastic, as in plane strain above
       const double lam = mat.elastic_constants.lambda, two_g = mat.elastic_constants.two_g;
+      const Mat<D> dF = Mat<D>::Identity() + dt * grad_v;
       const Sym3 rest = F.determinant() * stress - biot_kirchhoff<D>(F, lam, two_g);
       const Mat<D> F1 = dF * F;
       stress = (to_voigt(dF * to_matrix(rest) * dF.transpose()) + biot_kirchhoff<D>(F1, lam, two_g)) /
                F1.determinant();
-    } else {
-      deps_p = update_stress(mat, stress, deps, state);
-      stress = push_forward<D>(dF, stress);
+      return kinematics3::finish<false>(g, deps, deps, old, volume0, stress, F, Fe);
     }
-    F = dF * F;
-    const Sym3 deps_e = deps - deps_p;
-    Fe = (Mat<D>::Identity() + sym_block<D>(deps_e)) * Fe;
-    const double volume = volume0 * F.determinant();
-    const Sym3 mid = 0.5 * volume * (old + stress);
-    return {contract(mid, deps_e), contract(mid, deps_p), volume};
+    const Sym3 deps_p = update_stress(mat, stress, deps, state);
+    kinematics3::push_forward(g, stress);
+    return kinematics3::finish<true>(g, deps, deps_p, old, volume0, stress, F, Fe);
   }
 }
 

@@ -172,6 +172,14 @@ template <class V>
   return room > 0.0 && j2 * (1.0 + k.sin_phi * k.sin_phi / 3.0) < room * room && cut > 0.0 &&
          (cut == std::numeric_limits<double>::infinity() || 4.0 * j2 < 3.0 * cut * cut);
 }
+
+// The elastic check on bounds of sigma_1 and sigma_3 (principal_bounds): f grows with sigma_3
+// and falls with sigma_1 (eq. 5.1), so f(lo, hi) <= 0 and hi <= t make the trial admissible;
+// the margin 1e-10 of the stress magnitude covers the round-off of the bounds.
+[[gnu::always_inline]] inline bool elastic_by_bounds(const MohrCoulombConstants& k,
+                                                     const PrincipalBounds& b) {
+  return mohr_coulomb_admissible(k, Vec3(b.lo, 0.5 * (b.lo + b.hi), b.hi), -1e-10);
+}
 }  // namespace detail
 
 // Stress update: `stress` in = sigma^k, out = the returned stress; `deps` = total strain
@@ -185,9 +193,9 @@ template <class V>
                                                        MohrCoulombRegion* region = nullptr) {
   state.volume_strain += deps[0] + deps[1] + deps[2];
   const Sym3 trial = stress + elastic_increment(e, deps);
-  // Screening: exact principal values in plane strain (tolerance kYieldRelTol); in 3D the fast
-  // closed-form values, trusted only for clearly elastic trials (margin kScreenRelMargin); near
-  // or beyond the surface the plastic path decides with the accurate decomposition.
+  // Screening: exact principal values in plane strain (tolerance kYieldRelTol); in 3D two
+  // sufficient checks, from p and J2 alone and from bounds on sigma_1 and sigma_3; near or beyond
+  // the surface the plastic path decides with the accurate decomposition.
   if (is_plane(trial)) {
     const PlanePrincipal pp = plane_principal(trial);
     if (detail::mohr_coulomb_admissible(k, Vec3(pp.v[0], pp.v[1], pp.v[2]), kYieldRelTol)) {
@@ -198,8 +206,7 @@ template <class V>
     }
     return detail::mohr_coulomb_plastic_plane(e, k, stress, trial, pp, state, region);
   }
-  if (detail::clearly_elastic(k, trial) ||
-      detail::mohr_coulomb_admissible(k, principal_values_screen(trial), -kScreenRelMargin)) {
+  if (detail::clearly_elastic(k, trial) || detail::elastic_by_bounds(k, principal_bounds(trial))) {
     stress = trial;
     state.yielding = 0;
     if (region) *region = MohrCoulombRegion::Elastic;
