@@ -8,7 +8,9 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <numbers>
+#include <tuple>
 
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
@@ -125,9 +127,10 @@ namespace {
 // of the block along the slope after `time` and checks the contact work every step.
 struct InclineRun {
   double travel = 0, min_step_work = 0;
+  double half_travel = 0;  // the travel at half the time
 };
 
-std::string incline_text(double theta_deg, double mu, double offset, const char* scheme) {
+std::string incline_text(double theta_deg, double mu, double offset, const char* scheme, double ramp) {
   const double th = theta_deg * kDeg, c = std::cos(th), s = std::sin(th);
   const Vec<2> a(0.1, 1.75 + offset);  // top of the incline
   const Vec<2> t(c, -s), n(s, c);      // downhill, normal
@@ -163,20 +166,43 @@ bodies = ["base", "block"]
 friction = {}
 [gravity]
 acceleration = [0.0, -9.81]
+ramp_time = {}
 [solver]
 scheme = "{}"
 time_step = 1.5e-4
 end_time = 0.5
 )",
-                     pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, scheme);
+                     pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, ramp, scheme);
 }
 
-InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0,
-                   const char* scheme = "usf") {
-  const Scenario s = parse_scenario(incline_text(theta_deg, mu, offset, scheme), "incline.toml");
+InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0, const char* scheme = "usf",
+                   bool outline = true, double ramp = 0.0, bool block_first = false) {
+  std::string text = incline_text(theta_deg, mu, offset, scheme, ramp);
+  if (block_first) {  // the block is the master, the rigid base the second body of the hierarchy
+    const auto base = text.find("[[body]]\nname = \"base\""), block = text.find("[[body]]\nname = \"block\"");
+    const auto end = text.find("[[contact]]");
+    text = text.substr(0, base) + text.substr(block, end - block) + text.substr(base, block - base) +
+           text.substr(end);
+  }
+  const int moving = block_first ? 0 : 1;
+  const Scenario s = parse_scenario(text, "incline.toml");
   Particles<2> P = build_particles(s);
-  ExplicitSolver<2> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), solver_settings(s), 1);
+  SolverSettings<2> st = solver_settings(s);
+  if (!outline) st.contact.outline_normal.assign(2, {});  // normals from the mass gradients
+  ExplicitSolver<2> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), st, 1);
   EXPECT_TRUE(solver.contact_on());
+  const Vec<2> t(std::cos(theta_deg * kDeg), -std::sin(theta_deg * kDeg));
+  const auto travel = [&] {
+    double u = 0.0;
+    long n = 0;
+    for (std::size_t p = 0; p < P.size(); ++p)
+      if (P.body[p] == moving) {
+        u += (P.x[p] - P.x_ref[p]).dot(t), ++n;
+      } else {
+        EXPECT_EQ(P.x[p], P.x_ref[p]);  // the rigid base does not move
+      }
+    return u / n;
+  };
   const long steps = std::lround(time / solver.dt());
   InclineRun r;
   for (long k = 0; k < steps; ++k) {
@@ -184,66 +210,83 @@ InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0
     EXPECT_TRUE(status.ok) << status.reason;
     if (!status.ok) break;
     r.min_step_work = std::min(r.min_step_work, solver.contact_step().friction);
+    if (k + 1 == steps / 2) r.half_travel = travel();
   }
-  const Vec<2> t(std::cos(theta_deg * kDeg), -std::sin(theta_deg * kDeg));
-  double u = 0.0;
-  long n = 0;
-  for (std::size_t p = 0; p < P.size(); ++p)
-    if (P.body[p] == 1) {
-      u += (P.x[p] - P.x_ref[p]).dot(t), ++n;
-    } else {
-      EXPECT_EQ(P.x[p], P.x_ref[p]);  // the rigid base does not move
-    }
-  r.travel = u / n;
+  r.travel = travel();
   return r;
 }
 
 }  // namespace
 
-// For mu < tan(theta) the block slides with a = g (sin theta - mu cos theta), at 20 and 30
-// degrees and at an incline shifted off the grid lines. On a sloped rigid body the points of
-// both bodies resolve the surface as a staircase (4 x 4 points per cell here), and the
-// contact normals from the mass gradients (smoothed over 5 nodes) still scatter by a few
-// degrees: that acts as a little extra friction. Checked: the acceleration within 0.04 g
-// cos(theta) of the exact one (the apparent mu within 0.04 of mu); the measured deviation
-// is printed (about 0.025-0.035, i.e. 4-16 % of the travel). On grid-aligned surfaces
-// (BlockSlidesOnARigidBaseUnderTiltedGravity) the travel is within 2 %.
+// For mu < tan(theta) the block slides with a = g (sin theta - mu cos theta) (issue 11: within
+// 2 %), at 20 and 30 degrees and at 27 degrees shifted off the grid lines by a third of a
+// cell, with and without friction. The base is a rigid polygon, so its contact normal is
+// its outline's (docs/method.md, "Contact"); the travel after 0.5 s must be within 2 % of
+// a t^2 / 2 (measured: 0.02-0.07 % in every scheme, 4 x 4 points per cell). With the
+// normals from the mass gradients instead (no outline) it is 4-16 % short, which fails
+// this check. Friction never does negative work in a step.
 struct InclineCase {
   double theta, mu, offset;
+  const char* scheme = "usf";
 };
-static void check_incline(const InclineCase& k) {
-  {
-    const double time = 0.5, c = std::cos(k.theta * kDeg);
-    const double a = g * (std::sin(k.theta * kDeg) - k.mu * c);
-    const double exact = 0.5 * a * time * time;
-    const InclineRun r = incline(k.theta, k.mu, time, k.offset);
-    const double apparent_dmu = (exact - r.travel) * 2.0 / (time * time) / (g * c);
-    std::printf(
-        "incline %.0f deg (offset %.4f m), mu %.1f: travel %.5f m, exact %.5f m (%+.2f %%), "
-        "apparent extra friction %.4f\n",
-        k.theta, k.offset, k.mu, r.travel, exact, 100 * (r.travel - exact) / exact, apparent_dmu);
-    EXPECT_LT(std::abs(apparent_dmu), 0.04);
-    EXPECT_GE(r.min_step_work, 0.0);
-  }
+static double incline_error(const InclineCase& k, bool outline = true, bool block_first = false) {
+  const double time = 0.5, c = std::cos(k.theta * kDeg);
+  const double a = g * (std::sin(k.theta * kDeg) - k.mu * c);
+  const double exact = 0.5 * a * time * time;
+  const InclineRun r = incline(k.theta, k.mu, time, k.offset, k.scheme, outline, 0.0, block_first);
+  const double error = (r.travel - exact) / exact;
+  std::printf("incline %.0f deg (offset %.4f m), mu %.1f, %s%s%s: travel %.5f m, exact %.5f m (%+.2f %%)\n",
+              k.theta, k.offset, k.mu, k.scheme, outline ? "" : ", mass-gradient normals",
+              block_first ? ", block first" : "", r.travel, exact, 100 * error);
+  EXPECT_GE(r.min_step_work, 0.0);
+  return error;
 }
+static void check_incline(const InclineCase& k) { EXPECT_LT(std::abs(incline_error(k)), 0.02); }
 
 TEST(ContactIncline, BlockSlidesWithTheAnalyticAcceleration30) {
   check_incline({30, 0.0, 0.0});
   check_incline({30, 0.2, 0.0});
 }
-TEST(ContactIncline, BlockSlidesWithTheAnalyticAcceleration20AndOffGrid) {
+TEST(ContactIncline, BlockSlidesWithTheAnalyticAcceleration20) {
+  check_incline({20, 0.0, 0.0});
   check_incline({20, 0.2, 0.0});
-  check_incline({27, 0.3, 0.0173});
+}
+TEST(ContactIncline, BlockSlidesWithTheAnalyticAccelerationOffGrid) {
+  check_incline({27, 0.0, 0.0173});
+  for (const char* scheme : {"usf", "usl", "averaged"}) check_incline({27, 0.3, 0.0173, scheme});
 }
 
-// For mu >= tan(theta) (tan 20 deg = 0.364, tan 30 deg = 0.577) the block stays put: less
-// than 5 mm (it settles into the other body's staircase surface by a few mm), against
-// 190-610 mm of travel when it slides over the same time.
+// The same with the block first in the [[body]] order: the block is the master, and the rigid
+// base, second, takes its own outline's normal.
+TEST(ContactIncline, RigidBaseBelowTheMasterKeepsItsOutlineNormal) {
+  EXPECT_LT(std::abs(incline_error({27, 0.3, 0.0173}, true, true)), 0.02);
+}
+
+// Without an outline (a rigid body whose shape gives none, e.g. a layer) the normals come
+// from the mass gradients, which scatter by a few degrees on a sloped staircase of points:
+// that acts as extra friction, the travel is short by 4-16 % (here 6.5 %). Checked only
+// that this fallback still slides and is not longer than the exact travel.
+TEST(ContactIncline, MassGradientNormalsActAsExtraFriction) {
+  const double error = incline_error({30, 0.2, 0.0}, false);
+  EXPECT_LT(error, 0.0);
+  EXPECT_GT(error, -0.1);
+}
+
+// For mu >= tan(theta) (tan 20 deg = 0.364, tan 27 deg = 0.510, tan 30 deg = 0.577) the block
+// stays put. Gravity is ramped up over 0.1 s (Thesis eq. 4.13): applied at once it sets off
+// elastic waves in the block that unload the interface for moments, and the block then
+// ratchets down the slope by slips of a few um each (3.8 mm in 0.5 s at 30 deg, mu = 0.8, as
+// a real elastic block under suddenly applied gravity would). Checked: the block moves less
+// than 0.1 mm (the elastic shear of the block, measured 5-15 um), against 190-610 mm when it
+// slides, and not at all (< 1 um) over the second half of the 0.5 s.
 TEST(ContactIncline, BlockStaysPutWhenFrictionSuffices) {
-  for (const auto& [theta, mu] : {std::pair{20.0, 0.5}, std::pair{30.0, 0.8}}) {
-    const InclineRun r = incline(theta, mu, 0.5);
-    std::printf("incline %.0f deg, mu %.1f: travel %.3e m\n", theta, mu, r.travel);
-    EXPECT_LT(std::abs(r.travel), 5e-3);
+  for (const auto& [theta, mu, offset] :
+       {std::tuple{20.0, 0.5, 0.0}, std::tuple{30.0, 0.6, 0.0}, std::tuple{27.0, 0.55, 0.0173}}) {
+    const InclineRun r = incline(theta, mu, 0.5, offset, "usf", true, 0.1);
+    std::printf("incline %.0f deg (offset %.4f m), mu %.2f: travel %.3e m, over the second half %.3e m\n",
+                theta, offset, mu, r.travel, r.travel - r.half_travel);
+    EXPECT_LT(std::abs(r.travel), 1e-4);
+    EXPECT_LT(std::abs(r.travel - r.half_travel), 1e-6);
     EXPECT_GE(r.min_step_work, 0.0);
   }
 }
@@ -429,6 +472,32 @@ TEST(ContactRule, StickSlipSeparateBondedRigid) {
     EXPECT_NEAR(vb[1], 0.0, 1e-15);
     EXPECT_NEAR(vb[0], 0.75, 1e-15);
   }
+}
+
+// The outline normal of a rigid body (shape_normal): the gradient of the signed distance to the
+// outline, for either orientation of a polygon, round a corner outside, the nearest face inside.
+TEST(ContactRule, OutlineNormals) {
+  const double r = std::sqrt(0.5);
+  for (bool clockwise : {false, true}) {
+    Polygon p{{Vec<2>(0, 0), Vec<2>(2, 0), Vec<2>(2, 1), Vec<2>(0, 1)}};
+    if (clockwise) std::reverse(p.vertices.begin(), p.vertices.end());
+    EXPECT_LT((shape_normal(Shape(p), Vec<2>(1.0, 1.2)) - Vec<2>(0, 1)).norm(), 1e-15);  // above the top
+    EXPECT_LT((shape_normal(Shape(p), Vec<2>(1.0, 0.9)) - Vec<2>(0, 1)).norm(), 1e-15);  // inside, near it
+    EXPECT_LT((shape_normal(Shape(p), Vec<2>(1.9, 0.5)) - Vec<2>(1, 0)).norm(),
+              1e-15);  // inside, near the right
+    EXPECT_LT((shape_normal(Shape(p), Vec<2>(2.1, 1.1)) - Vec<2>(r, r)).norm(), 1e-15);    // round the corner
+    EXPECT_LT((shape_normal(Shape(p), Vec<2>(1.0, -0.3)) - Vec<2>(0, -1)).norm(), 1e-15);  // below
+  }
+  const Shape slope = Rectangle{Vec<2>(0, 0), Vec<2>(1, 1)};
+  EXPECT_LT((shape_normal(slope, Vec<2>(-0.2, 0.5)) - Vec<2>(-1, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(Shape(Disc{Vec<2>(0, 0), 1.0}), Vec<2>(0.3, 0.4)) - Vec<2>(0.6, 0.8)).norm(),
+            1e-15);
+  EXPECT_EQ(shape_normal(Shape(Layer{}), Vec<2>(0.3, 0.4)), Vec<2>::Zero());  // none
+  const Shape3 box = Box{Vec<3>(0, 0, 0), Vec<3>(1, 1, 1)};
+  EXPECT_LT((shape_normal(box, Vec<3>(0.5, 0.5, 0.9)) - Vec<3>(0, 0, 1)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(box, Vec<3>(0.5, -0.5, 0.5)) - Vec<3>(0, -1, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(Shape3(Sphere{Vec<3>(1, 1, 1), 1.0}), Vec<3>(1, 1, 3)) - Vec<3>(0, 0, 1)).norm(),
+            1e-15);
 }
 
 // [[contact]] tables: pairs by name or "all", mu per pair, rigid bodies; clear errors.

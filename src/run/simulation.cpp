@@ -50,6 +50,10 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
       st.contact.rigid[b] = s.bodies[b].rigid;
       st.contact.rigid_velocity[b] = s.bodies[b].velocity;
+      if (s.bodies[b].rigid)
+        st.contact.outline_normal[b] = [shape = s.bodies[b].shape](const Vec<D>& x) {
+          return shape_normal(shape, x);
+        };
     }
     for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
   }

@@ -32,6 +32,13 @@ bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
 bool shape_contains(const Shape& shape, const Vec<2>& x);
 bool shape_contains(const Shape3& shape, const Vec<3>& x);
 
+// The outward unit normal of a shape at x (shape_normal.cpp): the gradient of the signed
+// distance to its outline (round a corner outside it, the nearest face's inside). Rectangles,
+// polygons, discs; boxes, spheres. Zero for the other shapes (layers, cylinders, extruded
+// polygons), which have no outline normal here.
+Vec<2> shape_normal(const Shape& shape, const Vec<2>& x);
+Vec<3> shape_normal(const Shape3& shape, const Vec<3>& x);
+
 // Axis-aligned bounding box of a shape.
 template <int D>
 struct ShapeBox {

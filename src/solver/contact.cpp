@@ -162,7 +162,8 @@ void ExplicitSolver<D>::clear_body_mass_momentum() {
 // (where v_i^CM - v_i^c != 0 can hold, eq. C.36). The continua present are taken in the
 // order of the hierarchy: the master's outward normal is minus its mass gradient, the
 // second's is the opposite, n = grad m^1 / |grad m^1|, and continuum k's is the normalised
-// gradient of the combined mass of the k - 1 before it (York et al. 1999; Paper III). Each
+// gradient of the combined mass of the k - 1 before it (York et al. 1999; Paper III); a fixed
+// rigid body with an outline gives its exact normal instead (prepare_contact). Each
 // pair (j, k), j < k, is then resolved with k's normal by the Coulomb rule of resolve_pair
 // (contact.hpp) on the velocities get(f, i) of the bodies' fields f at node i; set(f, i, v)
 // stores the result of each deformable body. Equal and opposite impulses: momentum is
@@ -181,7 +182,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     for (int b : c.order)
       if (bodies_[static_cast<std::size_t>(b)].mass[i] > 0.0) present[count++] = b;
     if (count < 2) return;
-    Vec<D> v[kMaxContactBodies], v0[kMaxContactBodies], grad[kMaxContactBodies];
+    Vec<D> v[kMaxContactBodies], v0[kMaxContactBodies], grad[kMaxContactBodies], outline[kMaxContactBodies];
     double m[kMaxContactBodies];
     const auto ij = g.unflatten(i);
     for (int k = 0; k < count; ++k) {
@@ -191,6 +192,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       v[k] = c.rigid[b] ? c.rigid_velocity[b] : get(f, i);
       v0[k] = c.rigid[b] ? c.rigid_velocity[b] : start(f, i);
       grad[k] = mass_gradient<D>(g, f.mass.data(), i, ij);
+      outline[k] = outline_normals_[b].empty() ? Vec<D>::Zero() : outline_normals_[b][i];
     }
     // Volume check (Nairn 2013): the continua are in contact at the node only when together
     // they fill kContactFill of its support (h^D, halved per axis at a wall node). Nodes
@@ -208,8 +210,13 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     ContactLoss sum;
     Vec<D> upper = grad[0];  // gradient of the combined mass of the continua above k
     for (int k = 1; k < count; ++k) {
-      const double len = upper.norm();
-      const Vec<D> n = len > 0.0 ? Vec<D>(upper / len) : Vec<D>::Zero();
+      // A fixed rigid body's outline gives the exact normal: its own as continuum k, or the
+      // master's (n = -n^1) for the second continuum at the node.
+      const Vec<D> exact = outline[k].squaredNorm() > 0.0 ? outline[k]
+                           : k == 1                       ? Vec<D>(-outline[0])
+                                                          : Vec<D>::Zero();
+      const double len = exact.squaredNorm() > 0.0 ? 1.0 : upper.norm();
+      const Vec<D> n = exact.squaredNorm() > 0.0 ? exact : len > 0.0 ? Vec<D>(upper / len) : Vec<D>::Zero();
       for (int j = 0; j < k; ++j) {
         const double mu = c.mu(present[j], present[k]);
         if (mu >= 0.0 && !(len > 0.0)) continue;  // no normal: no contact to resolve
@@ -279,6 +286,14 @@ void ExplicitSolver<D>::prepare_contact() {
   c.volume_per_mass.assign(mass.size(), 0.0);
   for (std::size_t b = 0; b < mass.size(); ++b)
     c.volume_per_mass[b] = mass[b] > 0.0 ? volume[b] / mass[b] : 0.0;
+  // The outline normals of the fixed rigid bodies at every node, once (they do not move).
+  outline_normals_.assign(mass.size(), {});
+  for (std::size_t b = 0; b < mass.size() && b < c.outline_normal.size(); ++b) {
+    if (!c.rigid[b] || !c.outline_normal[b] || c.rigid_velocity[b].squaredNorm() > 0.0) continue;
+    std::vector<Vec<D>>& n = outline_normals_[b];
+    n.resize(grid().node_count());
+    for (std::size_t i = 0; i < n.size(); ++i) n[i] = c.outline_normal[b](grid().node_position(i));
+  }
 }
 
 // The rigid bodies' points (contact runs): v_p = the body's prescribed velocity.

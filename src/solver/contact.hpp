@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "core/types.hpp"
@@ -30,6 +31,10 @@ struct ContactSettings {
   // Per body id: rigid (prescribed constant velocity `rigid_velocity`, no stress update).
   std::vector<char> rigid;
   std::vector<Vec<D>> rigid_velocity;
+  // Per body id (may be empty): the outward unit normal of a fixed rigid body's outline at a
+  // point, or zero where it has none (the scenario's shape_normal). Where such a body is in
+  // contact its exact normal replaces the mass gradient's (docs/method.md, "Contact").
+  std::vector<std::function<Vec<D>(const Vec<D>&)>> outline_normal;
   // mu for each pair (a, b), row-major n x n and symmetric; kBonded for bonded pairs.
   std::vector<double> friction;
   // Body ids in the master-slave hierarchy (Paper III §C.2.7): order[0] is the master.
@@ -45,6 +50,7 @@ struct ContactSettings {
   void resize(int n) {
     rigid.assign(static_cast<std::size_t>(n), 0);
     rigid_velocity.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
+    outline_normal.assign(static_cast<std::size_t>(n), {});
     friction.assign(static_cast<std::size_t>(n * n), kBonded);
     order.clear();
     for (int b = 0; b < n; ++b) order.push_back(b);

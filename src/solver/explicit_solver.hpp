@@ -251,7 +251,9 @@ class ExplicitSolver {
   std::vector<BodyFields<D>> bodies_;
   NodeBox<D> body_box_;               // where the body fields were last written
   std::vector<double> contact_sums_;  // per-thread work sums of the contact phase
-  ContactLoss contact_step_;          // the last step's contact work
+  // Per body: the outline normal at each node of a fixed rigid body with an outline (else empty)
+  std::vector<std::vector<Vec<D>>> outline_normals_;
+  ContactLoss contact_step_;  // the last step's contact work
   PhaseTimer timer_;
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
