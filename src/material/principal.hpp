@@ -14,6 +14,7 @@
 #include <cmath>
 #include <utility>
 
+#include "core/inline.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -30,8 +31,7 @@ namespace detail {
 // In-plane 2 x 2 block [[a, b], [b, d]]: eigenvalues lo <= hi and the unit direction (cx, cy) of
 // hi (the direction of lo is (-cy, cx)). The eigenvector formula is chosen per sign of a - d so
 // that it involves no cancellation.
-[[gnu::always_inline]] inline void eig2(double a, double d, double b, double& lo, double& hi, double& cx,
-                                        double& cy) {
+SKRED_INLINE void eig2(double a, double d, double b, double& lo, double& hi, double& cx, double& cy) {
   const double m = 0.5 * (a + d), h = 0.5 * (a - d);
   const double r = std::sqrt(h * h + b * b);  // stresses in Pa: no overflow concern
   lo = m - r;
@@ -56,7 +56,7 @@ namespace detail {
 }
 
 // Sorts three (value, slot) pairs ascending with three compare-swaps.
-[[gnu::always_inline]] inline void sort3(double (&v)[3], int (&k)[3]) {
+SKRED_INLINE void sort3(double (&v)[3], int (&k)[3]) {
   if (v[1] < v[0]) {
     std::swap(v[0], v[1]);
     std::swap(k[0], k[1]);
@@ -73,7 +73,7 @@ namespace detail {
 
 }  // namespace detail
 
-[[gnu::always_inline]] inline bool is_plane(const Sym3& s) { return s[4] == 0.0 && s[5] == 0.0; }
+SKRED_INLINE bool is_plane(const Sym3& s) { return s[4] == 0.0 && s[5] == 0.0; }
 
 // Plane strain decomposition for the return mappings: the ascending values of {in-plane minor,
 // in-plane major, sigma_zz}, the slot each came from (0, 1, 2 in that order), and the major
@@ -87,7 +87,7 @@ struct PlanePrincipal {
   // Sum over the three slots of values[i] times the dyad of slot i's direction, as a Voigt
   // vector V: Sym3, or the four plane-strain components [xx, yy, zz, xy].
   template <class V>
-  [[gnu::always_inline]] V rebuild(const double (&by_slot)[3]) const {
+  SKRED_INLINE V rebuild(const double (&by_slot)[3]) const {
     const double c2 = r > 0.0 ? h / r : 1.0, s2 = r > 0.0 ? b / r : 0.0;
     const double xx = 0.5 * (1.0 + c2), yy = 0.5 * (1.0 - c2), xy = 0.5 * s2;
     const double lo = by_slot[0], hi = by_slot[1];
@@ -101,7 +101,7 @@ struct PlanePrincipal {
 };
 
 template <class V>
-[[gnu::always_inline]] inline PlanePrincipal plane_principal(const V& s) {
+SKRED_INLINE PlanePrincipal plane_principal(const V& s) {
   PlanePrincipal p;
   const double m = 0.5 * (s[0] + s[1]);
   p.h = 0.5 * (s[0] - s[1]);
@@ -118,7 +118,7 @@ template <class V>
 }
 
 // Principal values only, ascending (the cheap check on the elastic path).
-[[gnu::always_inline]] inline Vec3 principal_values(const Sym3& s) {
+SKRED_INLINE Vec3 principal_values(const Sym3& s) {
   if (is_plane(s)) {
     double lo, hi, cx, cy;
     detail::eig2(s[0], s[1], s[3], lo, hi, cx, cy);
@@ -135,7 +135,7 @@ template <class V>
 // in plane strain; in 3D Eigen's closed-form computeDirect, about 5x faster than the QR solver
 // but only accurate to ~1e-8 |s| near repeated eigenvalues (measured worst 9e-9 |s|), so callers
 // must use it with a margin and decide close cases with principal_decomposition.
-[[gnu::always_inline]] inline Vec3 principal_values_screen(const Sym3& s) {
+SKRED_INLINE Vec3 principal_values_screen(const Sym3& s) {
   if (is_plane(s)) return principal_values(s);
   Eigen::SelfAdjointEigenSolver<Mat3> es;
   es.computeDirect(to_matrix(s), Eigen::EigenvaluesOnly);
@@ -170,7 +170,7 @@ inline Principal principal_decomposition(const Sym3& s) {
 
 // Inverse: sum_i values[i] v_i v_i^T in Voigt storage (tensor shear components). Exact zeros
 // are preserved for plane-strain directions (v_z = 0 in-plane, e_z out of plane).
-[[gnu::always_inline]] inline Sym3 from_principal(const Vec3& values, const Mat3& V) {
+SKRED_INLINE Sym3 from_principal(const Vec3& values, const Mat3& V) {
   Sym3 s = Sym3::Zero();
   for (int i = 0; i < 3; ++i) {
     const double l = values[i];

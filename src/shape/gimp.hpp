@@ -5,13 +5,14 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "shape/separable.hpp"
 
 namespace skred {
 
 // 1D GIMP weighting function and its gradient for node distance r = x_p - x_i, cell size L
 // and particle half-length l (Thesis eq. 3.14; requires l <= L/2).
-[[gnu::always_inline]] inline void gimp_1d(double r, double L, double l, double& w, double& g) {
+SKRED_INLINE void gimp_1d(double r, double L, double l, double& w, double& g) {
   if (r <= -L - l || r >= L + l) {
     w = 0.0;
     g = 0.0;
@@ -38,7 +39,7 @@ namespace skred {
 // Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
 // is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length. Nodes n - 1,
 // n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d, without branches.
-[[gnu::always_inline]] inline void gimp_3nodes(double e, double lam, double* w, double* g) {
+SKRED_INLINE void gimp_3nodes(double e, double lam, double* w, double* g) {
   const double inv = 1.0 / lam;
   const double sl = std::max(lam - e, 0.0), sr = std::max(lam + e, 0.0);  // overlaps of the tails
   const bool left = e <= -lam, right = e >= lam;  // the point's domain lies within one cell
@@ -58,8 +59,8 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   using typename SeparableKernel<GimpKernel<D>, D, 3, 1>::Shape;
   static constexpr const char* name = "gimp";
 
-  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
-                                    const Mat<D>& F, Shape& sh) const {
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                          Shape& sh) const {
     const double J = F.determinant();
     const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : std::cbrt(J);
     const double inv_h = 1.0 / g.h;

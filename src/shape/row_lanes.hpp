@@ -7,6 +7,8 @@
 #pragma once
 #include <cstring>
 
+#include "core/inline.hpp"
+
 namespace skred {
 
 template <int L>
@@ -16,28 +18,28 @@ struct RowLanes {
   V4 v[N > 0 ? N : 1];
   double t[R > 0 ? R : 1];
 
-  [[gnu::always_inline]] static RowLanes zero() {
+  SKRED_INLINE static RowLanes zero() {
     RowLanes r;
     for (int i = 0; i < N; ++i) r.v[i] = V4{0.0, 0.0, 0.0, 0.0};
     for (int i = 0; i < R; ++i) r.t[i] = 0.0;
     return r;
   }
-  [[gnu::always_inline]] static RowLanes load(const double* p) {
+  SKRED_INLINE static RowLanes load(const double* p) {
     RowLanes r;
     for (int i = 0; i < N; ++i) std::memcpy(&r.v[i], p + 4 * i, sizeof(V4));
     for (int i = 0; i < R; ++i) r.t[i] = p[4 * N + i];
     return r;
   }
-  [[gnu::always_inline]] void store(double* p) const {
+  SKRED_INLINE void store(double* p) const {
     for (int i = 0; i < N; ++i) std::memcpy(p + 4 * i, &v[i], sizeof(V4));
     for (int i = 0; i < R; ++i) p[4 * N + i] = t[i];
   }
   // this += k x
-  [[gnu::always_inline]] void add(double k, const RowLanes& x) {
+  SKRED_INLINE void add(double k, const RowLanes& x) {
     for (int i = 0; i < N; ++i) v[i] += k * x.v[i];
     for (int i = 0; i < R; ++i) t[i] += k * x.t[i];
   }
-  [[gnu::always_inline]] double operator[](int l) const { return l < 4 * N ? v[l / 4][l % 4] : t[l - 4 * N]; }
+  SKRED_INLINE double operator[](int l) const { return l < 4 * N ? v[l / 4][l % 4] : t[l - 4 * N]; }
 };
 
 }  // namespace skred
