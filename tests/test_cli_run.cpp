@@ -152,8 +152,13 @@ TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   text.replace(text.find("end_time = 3.0"), 14, "end_time = 30.0");
   write(d / "discs.toml", text);
   const std::string run = kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
-  const Outcome killed = sh("timeout -s KILL 1 " + run);
-  ASSERT_EQ(killed.code, 137) << "the run must take longer than 1 s: " << killed.output;  // timeout's report
+  // SIGKILL 0.5 s after the first frame is indexed, not after a fixed time, which a slow build
+  // (scripts/sanitize.sh) may spend before its first frame.
+  const Outcome killed =
+      sh("{ " + run + " & pid=$!; while [ ! -e " + q(d / "out" / "particles.pvd") +
+         " ] && kill -0 $pid 2>/dev/null; do sleep 0.05; done; sleep 0.5; kill -KILL $pid; "
+         "wait $pid; }");
+  ASSERT_EQ(killed.code, 137) << "the run must take longer than its first frame and 0.5 s: " << killed.output;
   ASSERT_TRUE(fs::exists(d / "out" / "particles.pvd"));
   // Every frame the index names is complete (files are renamed into place when written).
   const std::string pvd = read(d / "out" / "particles.pvd");

@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
@@ -113,6 +114,28 @@ TEST(Schema, AKeyAMillionPartsDeepIsASyntaxErrorNotACrash) {
                        "q.r.s.t.u.v.w.x.y.z.a.b.c.d\n";
   EXPECT_EQ(error_of(values), "");
   EXPECT_EQ(error_of("title = \"" + std::string(200, '.') + "\"\n" + kMinimal), "");
+}
+
+// toml++ also parses a table header's dotted name, nested arrays and nested inline tables
+// recursively: 50,000 levels of each are refused (a dotted name by check_key_depth, nested
+// values by toml++'s own limit of 256) before the stack runs out, also under AddressSanitizer,
+// whose larger frames overflow it sooner (scripts/sanitize.sh).
+TEST(Schema, FiftyThousandNestingLevelsAreASyntaxErrorNotACrash) {
+  const int n = 50000;
+  std::string header = "[a", quoted = "\"a\"", tables = "a = ";
+  for (int i = 0; i < n; ++i) {
+    header += ".a";
+    quoted += ".\"a\"";
+    tables += "{b = ";
+  }
+  const std::vector<std::string> inputs = {header + "]\nb = 1\n", quoted + " = 1\n",
+                                           "a = " + std::string(n, '[') + std::string(n, ']') + "\n",
+                                           tables + "1" + std::string(n, '}') + "\n"};
+  for (const std::string& body : inputs) {
+    const std::string e = error_of("title = \"x\"\n" + body);
+    EXPECT_NE(e.find("t.toml:2:"), std::string::npos) << e.substr(0, 200);
+    EXPECT_NE(e.find("syntax error"), std::string::npos) << e.substr(0, 200);
+  }
 }
 
 TEST(Schema, ATimeStepAboveTheStableOneIsRefusedUnlessAllowed) {

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/inline.hpp"
+
 namespace skred {
 
 template <int D>
@@ -24,7 +26,7 @@ template <int D>
 using PointStress = Eigen::Matrix<double, D == 2 ? 4 : 6, 1>;
 
 template <int D>
-[[gnu::always_inline]] inline Sym3 full_stress(const PointStress<D>& s) {
+SKRED_INLINE Sym3 full_stress(const PointStress<D>& s) {
   if constexpr (D == 2) {
     Sym3 o;
     o << s[0], s[1], s[2], s[3], 0.0, 0.0;
@@ -34,7 +36,7 @@ template <int D>
   }
 }
 template <int D>
-[[gnu::always_inline]] inline PointStress<D> stored_stress(const Sym3& s) {
+SKRED_INLINE PointStress<D> stored_stress(const Sym3& s) {
   if constexpr (D == 2) {
     return s.template head<4>();
   } else {
@@ -58,7 +60,7 @@ inline Sym3 to_voigt(const Mat3& m) {
 }
 
 // Double contraction a : b of two symmetric tensors in Voigt storage.
-[[gnu::always_inline]] inline double contract(const Sym3& a, const Sym3& b) {
+SKRED_INLINE double contract(const Sym3& a, const Sym3& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + 2.0 * (a[3] * b[3] + a[4] * b[4] + a[5] * b[5]);
 }
 
@@ -74,7 +76,7 @@ inline Mat3 embed3(const Mat<D>& a, double fill) {
 // Symmetric part of a D x D tensor embedded in 3D Voigt form (plane strain: zero
 // out-of-plane components).
 template <int D>
-[[gnu::always_inline]] inline Sym3 sym_voigt(const Mat<D>& a) {
+SKRED_INLINE Sym3 sym_voigt(const Mat<D>& a) {
   Sym3 s = Sym3::Zero();
   s[0] = a(0, 0);
   s[1] = a(1, 1);
@@ -89,7 +91,7 @@ template <int D>
 
 // The D x D block of a symmetric 3D tensor in Voigt form (Sym3 or a stored PointStress).
 template <int D, class V>
-[[gnu::always_inline]] inline Mat<D> sym_block(const V& s) {
+SKRED_INLINE Mat<D> sym_block(const V& s) {
   if constexpr (D == 2) {
     Mat<2> m;
     m << s[0], s[3], s[3], s[1];

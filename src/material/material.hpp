@@ -11,6 +11,7 @@
 #pragma once
 #include <string>
 
+#include "core/inline.hpp"
 #include "core/types.hpp"
 #include "material/elastic/elastic.hpp"
 #include "material/elastic/info.hpp"
@@ -80,8 +81,7 @@ struct Material {
 // C : d_eps, then the model's return, eq. 5.2-5.4) and returns the plastic strain increment
 // (zero when the step is elastic). `state` is updated by the plastic models; the linear
 // elastic model leaves it untouched.
-[[gnu::always_inline]] inline Sym3 update_stress(const Material& m, Sym3& stress, const Sym3& deps,
-                                                 PointState& state) {
+SKRED_INLINE Sym3 update_stress(const Material& m, Sym3& stress, const Sym3& deps, PointState& state) {
   switch (m.model) {
     case Model::LinearElastic:  // no state: an elastic point never yields
       stress += elastic_increment(m.elastic_constants, deps);

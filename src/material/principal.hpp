@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <utility>
+#include "core/inline.hpp"
 
 #include "core/types.hpp"
 
@@ -31,8 +32,7 @@ namespace detail {
 // In-plane 2 x 2 block [[a, b], [b, d]]: eigenvalues lo <= hi and the unit direction (cx, cy) of
 // hi (the direction of lo is (-cy, cx)). The eigenvector formula is chosen per sign of a - d so
 // that it involves no cancellation.
-[[gnu::always_inline]] inline void eig2(double a, double d, double b, double& lo, double& hi, double& cx,
-                                        double& cy) {
+SKRED_INLINE void eig2(double a, double d, double b, double& lo, double& hi, double& cx, double& cy) {
   const double m = 0.5 * (a + d), h = 0.5 * (a - d);
   const double r = std::sqrt(h * h + b * b);  // stresses in Pa: no overflow concern
   lo = m - r;
@@ -57,7 +57,7 @@ namespace detail {
 }
 
 // Sorts three (value, slot) pairs ascending with three compare-swaps.
-[[gnu::always_inline]] inline void sort3(double (&v)[3], int (&k)[3]) {
+SKRED_INLINE void sort3(double (&v)[3], int (&k)[3]) {
   if (v[1] < v[0]) {
     std::swap(v[0], v[1]);
     std::swap(k[0], k[1]);
@@ -74,7 +74,7 @@ namespace detail {
 
 }  // namespace detail
 
-[[gnu::always_inline]] inline bool is_plane(const Sym3& s) { return s[4] == 0.0 && s[5] == 0.0; }
+SKRED_INLINE bool is_plane(const Sym3& s) { return s[4] == 0.0 && s[5] == 0.0; }
 
 // Plane strain decomposition for the return mappings: the ascending values of {in-plane minor,
 // in-plane major, sigma_zz}, the slot each came from (0, 1, 2 in that order), and the major
@@ -88,7 +88,7 @@ struct PlanePrincipal {
   // Sum over the three slots of values[i] times the dyad of slot i's direction, as a Voigt
   // vector V: Sym3, or the four plane-strain components [xx, yy, zz, xy].
   template <class V>
-  [[gnu::always_inline]] V rebuild(const double (&by_slot)[3]) const {
+  SKRED_INLINE V rebuild(const double (&by_slot)[3]) const {
     const double c2 = r > 0.0 ? h / r : 1.0, s2 = r > 0.0 ? b / r : 0.0;
     const double xx = 0.5 * (1.0 + c2), yy = 0.5 * (1.0 - c2), xy = 0.5 * s2;
     const double lo = by_slot[0], hi = by_slot[1];
@@ -102,7 +102,7 @@ struct PlanePrincipal {
 };
 
 template <class V>
-[[gnu::always_inline]] inline PlanePrincipal plane_principal(const V& s) {
+SKRED_INLINE PlanePrincipal plane_principal(const V& s) {
   PlanePrincipal p;
   const double m = 0.5 * (s[0] + s[1]);
   p.h = 0.5 * (s[0] - s[1]);
@@ -119,7 +119,7 @@ template <class V>
 }
 
 // Principal values only, ascending (the cheap check on the elastic path).
-[[gnu::always_inline]] inline Vec3 principal_values(const Sym3& s) {
+SKRED_INLINE Vec3 principal_values(const Sym3& s) {
   if (is_plane(s)) {
     double lo, hi, cx, cy;
     detail::eig2(s[0], s[1], s[3], lo, hi, cx, cy);
@@ -143,7 +143,7 @@ template <class V>
 struct PrincipalBounds {
   double lo, hi;
 };
-[[gnu::always_inline]] inline PrincipalBounds principal_bounds(const Sym3& s) {
+SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s) {
   const double p = (s[0] + s[1] + s[2]) / 3.0;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
@@ -189,7 +189,7 @@ inline Principal principal_decomposition(const Sym3& s) {
 
 // Inverse: sum_i values[i] v_i v_i^T in Voigt storage (tensor shear components). Exact zeros
 // are preserved for plane-strain directions (v_z = 0 in-plane, e_z out of plane).
-[[gnu::always_inline]] inline Sym3 from_principal(const Vec3& values, const Mat3& V) {
+SKRED_INLINE Sym3 from_principal(const Vec3& values, const Mat3& V) {
   Sym3 s = Sym3::Zero();
   for (int i = 0; i < 3; ++i) {
     const double l = values[i];

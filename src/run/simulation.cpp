@@ -74,6 +74,16 @@ GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
 
 namespace {
 
+// Steps of a stage, ceil(duration / dt), at most 1e15 (0 for a NaN). Scenario files are
+// refused above 1e9 steps (parser.cpp), but a run set up in code may bring a 1e-300 s step,
+// whose step count does not fit a long (converting it, or summing the stages', is undefined).
+long stage_step_count(double duration, double dt) {
+  constexpr double kMaxStageSteps = 1e15;
+  const double n = std::ceil(duration / dt - 1e-9);
+  if (!(n > 0.0)) return 0;
+  return static_cast<long>(std::min(n, kMaxStageSteps));
+}
+
 std::string hms(double seconds) {
   if (!std::isfinite(seconds) || seconds < 0) return "--:--";
   const long s = std::lround(seconds);
@@ -204,7 +214,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     stop_unstable(std::move(above), -1);
   long total_steps = 0;  // upper bound: every stage to its full duration
   if (unstable.ok)
-    for (const Stage& st : s.stages) total_steps += static_cast<long>(std::ceil(st.duration / dt - 1e-9));
+    for (const Stage& st : s.stages) total_steps += stage_step_count(st.duration, dt);
   const bool tty = isatty(fileno(stderr));
   RunResult res;
 
@@ -219,7 +229,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     Stage as_plastic = st;
     as_plastic.elastic = false;
     strength = material_strengths(stage_materials(s, as_plastic));
-    const long stage_steps = static_cast<long>(std::ceil(st.duration / dt - 1e-9));
+    const long stage_steps = stage_step_count(st.duration, dt);
     const bool begins = !at.in_stage;  // false for the stage a restart continues
     solver.set_local_damping(st.local_damping);
     if (begins) {

@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "shape/separable.hpp"
 
 namespace skred {
@@ -67,8 +68,8 @@ struct BsplineKernel : SeparableKernel<BsplineKernel<D>, D, 4, 1> {
   using typename SeparableKernel<BsplineKernel<D>, D, 4, 1>::Shape;
   static constexpr const char* name = "bspline";
 
-  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
-                                    const Mat<D>& /*F*/, Shape& sh) const {
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
+                          const Mat<D>& /*F*/, Shape& sh) const {
     std::array<int, D> start{};
     const double inv_h = 1.0 / g.h;
     for (int d = 0; d < D; ++d) {

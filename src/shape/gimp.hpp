@@ -7,13 +7,14 @@
 #include <cmath>
 #include <cstdint>
 
+#include "core/inline.hpp"
 #include "shape/separable.hpp"
 
 namespace skred {
 
 // 1D GIMP weighting function and its gradient for node distance r = x_p - x_i, cell size L
 // and particle half-length l (Thesis eq. 3.14; requires l <= L/2).
-[[gnu::always_inline]] inline void gimp_1d(double r, double L, double l, double& w, double& g) {
+SKRED_INLINE void gimp_1d(double r, double L, double l, double& w, double& g) {
   if (r <= -L - l || r >= L + l) {
     w = 0.0;
     g = 0.0;
@@ -40,7 +41,7 @@ namespace skred {
 // Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
 // is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length. Nodes n - 1,
 // n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d, without branches.
-[[gnu::always_inline]] inline void gimp_3nodes(double e, double lam, double* w, double* g) {
+SKRED_INLINE void gimp_3nodes(double e, double lam, double* w, double* g) {
   const double inv = 1.0 / lam;
   const double sl = std::max(lam - e, 0.0), sr = std::max(lam + e, 0.0);  // overlaps of the tails
   const bool left = e <= -lam, right = e >= lam;  // the point's domain lies within one cell
@@ -58,7 +59,7 @@ namespace skred {
 // refined by two Halley steps y <- y (y^3 + 2J)/(2y^3 + J), each cubing the relative error
 // (4e-2 -> 1e-5 -> 1e-14), and a Newton step, which squares it. Zero, negative, non-finite or extreme J go to
 // std::cbrt.
-[[gnu::always_inline]] inline double gimp_cube_root(double J) {
+SKRED_INLINE double gimp_cube_root(double J) {
   if (!(J > 1e-200 && J < 1e200)) return std::cbrt(J);
   double y = std::bit_cast<double>(std::bit_cast<std::uint64_t>(J) / 3 + 0x2A9F7893782DA1CEull);
   for (int k = 0; k < 2; ++k) {
@@ -75,8 +76,8 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   using typename SeparableKernel<GimpKernel<D>, D, 3, 1>::Shape;
   static constexpr const char* name = "gimp";
 
-  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
-                                    const Mat<D>& F, Shape& sh) const {
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                          Shape& sh) const {
     const double J = F.determinant();
     const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : gimp_cube_root(J);
     const double inv_h = 1.0 / g.h;

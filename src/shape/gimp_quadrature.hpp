@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "shape/linear.hpp"
 #include "shape/separable.hpp"
 
@@ -48,8 +49,8 @@ struct GimpQuadratureKernel {
   static constexpr const char* name = "gimp-quadrature";
 
   void store(Packed& p, const Shape& /*sh*/, const Mat<D>& F) const { p.F = F; }
-  [[gnu::always_inline]] void load(const Packed& p, const GridGeometry<D>& g, const Vec<D>& x,
-                                   const Vec<D>& half0, Shape& sh) const {
+  SKRED_INLINE void load(const Packed& p, const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
+                         Shape& sh) const {
     shape(g, x, half0, p.F, sh);
   }
   bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
@@ -57,8 +58,8 @@ struct GimpQuadratureKernel {
     return shape(g, x, half0, F, st);
   }
 
-  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0,
-                                    const Mat<D>& F, StencilT& st) const {
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                          StencilT& st) const {
     const double inv_h = 1.0 / g.h;
     // Gauss point positions (in cell units) and their normalised weights (sum 1).
     Vec<D> xi_gp[NGP];

@@ -2,13 +2,14 @@
 #pragma once
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "shape/separable.hpp"
 
 namespace skred {
 
 // 1D linear weights for a point at xi (cell units, measured from the low wall). Returns the
 // padded index of the first of the two nodes.
-[[gnu::always_inline]] inline int linear_1d(double xi, int cells, double inv_h, double* w, double* g) {
+SKRED_INLINE int linear_1d(double xi, int cells, double inv_h, double* w, double* g) {
   int c = static_cast<int>(std::floor(xi));
   if (c == cells) c = cells - 1;  // a point exactly on the high wall belongs to the last cell
   const double f = xi - c;
@@ -26,8 +27,8 @@ struct LinearKernel : SeparableKernel<LinearKernel<D>, D, 2, 0> {
   using typename SeparableKernel<LinearKernel<D>, D, 2, 0>::Shape;
   static constexpr const char* name = "linear";
 
-  [[gnu::always_inline]] bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
-                                    const Mat<D>& /*F*/, Shape& sh) const {
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
+                          const Mat<D>& /*F*/, Shape& sh) const {
     std::array<int, D> start{};
     const double inv_h = 1.0 / g.h;
     for (int d = 0; d < D; ++d)

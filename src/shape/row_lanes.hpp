@@ -7,6 +7,8 @@
 #pragma once
 #include <cstring>
 
+#include "core/inline.hpp"
+
 namespace skred {
 
 template <int L>
@@ -20,32 +22,32 @@ struct RowLanes {
   V4 v[N4 > 0 ? N4 : 1];
   double t[R > 0 ? R : 1];
 
-  [[gnu::always_inline]] static RowLanes zero() {
+  SKRED_INLINE static RowLanes zero() {
     RowLanes r;
     for (int i = 0; i < N8; ++i) r.w[i] = V8{};
     for (int i = 0; i < N4; ++i) r.v[i] = V4{};
     for (int i = 0; i < R; ++i) r.t[i] = 0.0;
     return r;
   }
-  [[gnu::always_inline]] static RowLanes load(const double* p) {
+  SKRED_INLINE static RowLanes load(const double* p) {
     RowLanes r;
     for (int i = 0; i < N8; ++i) std::memcpy(&r.w[i], p + 8 * i, sizeof(V8));
     for (int i = 0; i < N4; ++i) std::memcpy(&r.v[i], p + O4 + 4 * i, sizeof(V4));
     for (int i = 0; i < R; ++i) r.t[i] = p[OR + i];
     return r;
   }
-  [[gnu::always_inline]] void store(double* p) const {
+  SKRED_INLINE void store(double* p) const {
     for (int i = 0; i < N8; ++i) std::memcpy(p + 8 * i, &w[i], sizeof(V8));
     for (int i = 0; i < N4; ++i) std::memcpy(p + O4 + 4 * i, &v[i], sizeof(V4));
     for (int i = 0; i < R; ++i) p[OR + i] = t[i];
   }
   // this += k x
-  [[gnu::always_inline]] void add(double k, const RowLanes& x) {
+  SKRED_INLINE void add(double k, const RowLanes& x) {
     for (int i = 0; i < N8; ++i) w[i] += k * x.w[i];
     for (int i = 0; i < N4; ++i) v[i] += k * x.v[i];
     for (int i = 0; i < R; ++i) t[i] += k * x.t[i];
   }
-  [[gnu::always_inline]] double operator[](int l) const {
+  SKRED_INLINE double operator[](int l) const {
     return l < O4 ? w[l / 8][l % 8] : l < OR ? v[(l - O4) / 4][l % 4] : t[l - OR];
   }
 };

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <type_traits>
 
+#include "core/inline.hpp"
 #include "shape/row_lanes.hpp"
 #include "shape/stencil.hpp"
 
@@ -30,7 +31,7 @@ struct PackedSeparable {
   double w[D][S - 1];
   double g[D][S - 1];
 
-  [[gnu::always_inline]] void pack(const Separable<D, S>& s) {
+  SKRED_INLINE void pack(const Separable<D, S>& s) {
     base = static_cast<std::int64_t>(s.base);
     for (int d = 0; d < D; ++d)
       for (int a = 0, j = 0; a < S; ++a)
@@ -39,7 +40,7 @@ struct PackedSeparable {
           g[d][j++] = s.g[d][a];
         }
   }
-  [[gnu::always_inline]] void unpack(Separable<D, S>& s) const {
+  SKRED_INLINE void unpack(Separable<D, S>& s) const {
     s.base = static_cast<std::size_t>(base);
     for (int d = 0; d < D; ++d) {
       double sw = 0.0, sg = 0.0;
@@ -65,8 +66,8 @@ struct SeparableKernel {
   using Packed = PackedSeparable<D, S, Skip>;
 
   static void store(Packed& p, const Shape& sh, const Mat<D>& /*F*/) { p.pack(sh); }
-  [[gnu::always_inline]] static void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
-                                          const Vec<D>& /*half0*/, Shape& sh) {
+  SKRED_INLINE static void load(const Packed& p, const GridGeometry<D>& /*g*/, const Vec<D>& /*x*/,
+                                const Vec<D>& /*half0*/, Shape& sh) {
     p.unpack(sh);
   }
   bool operator()(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
@@ -84,8 +85,7 @@ struct NodeStrides {
 
 // Calls fn(node, N_ip, grad N_ip) for every node of the point's block (eq. 3.15).
 template <int D, int S, class Fn>
-[[gnu::always_inline]] inline void for_each_node(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                                 Fn&& fn) {
+SKRED_INLINE void for_each_node(const Separable<D, S>& sh, const NodeStrides<D>& st, Fn&& fn) {
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
       const std::size_t row = sh.base + b * st.s[1];
@@ -107,7 +107,7 @@ template <int D, int S, class Fn>
 
 // The same walk over a general (non-separable) stencil.
 template <int D, int S, class Fn>
-[[gnu::always_inline]] inline void for_each_node(const Stencil<D, S>& sh, const NodeStrides<D>& st, Fn&& fn) {
+SKRED_INLINE void for_each_node(const Stencil<D, S>& sh, const NodeStrides<D>& st, Fn&& fn) {
   for (int k = 0; k < Stencil<D, S>::size; ++k) {
     std::size_t off = 0;
     int r = k;
@@ -130,16 +130,14 @@ namespace lanes3 {
 template <int S>
 using Row = RowLanes<3 * S>;
 template <int S, class T>
-[[gnu::always_inline]] inline T* row(T* f, const Separable<3, S>& sh, const NodeStrides<3>& st, int b,
-                                     int c) {
+SKRED_INLINE T* row(T* f, const Separable<3, S>& sh, const NodeStrides<3>& st, int b, int c) {
   return f + 3 * (sh.base + b * st.s[1] + c * st.s[2]);
 }
 }  // namespace lanes3
 
 // sum_i N_ip f_i (eq. 2.56, Post eq. 31).
 template <int D, int S, class T>
-[[gnu::always_inline]] inline T gather(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                       const T* __restrict f) {
+SKRED_INLINE T gather(const Separable<D, S>& sh, const NodeStrides<D>& st, const T* __restrict f) {
   T out = T::Zero();
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
@@ -175,9 +173,8 @@ template <int D, int S, class T>
 // The gathers sum_i N_ip f_i and sum_i N_ip g_i of two nodal fields in one walk (the point
 // update reads the acceleration and the moving velocity with the same weights).
 template <int D, int S>
-[[gnu::always_inline]] inline void gather_pair(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                               const Vec<D>* __restrict f, const Vec<D>* __restrict g,
-                                               Vec<D>& out_f, Vec<D>& out_g) {
+SKRED_INLINE void gather_pair(const Separable<D, S>& sh, const NodeStrides<D>& st, const Vec<D>* __restrict f,
+                              const Vec<D>* __restrict g, Vec<D>& out_f, Vec<D>& out_g) {
   if constexpr (D == 2) {
     out_f = gather(sh, st, f);
     out_g = gather(sh, st, g);
@@ -203,8 +200,8 @@ template <int D, int S>
 
 // sum_i v_i (x) grad N_ip: the velocity gradient of eq. 2.20.
 template <int D, int S>
-[[gnu::always_inline]] inline Mat<D> gather_gradient(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                                     const Vec<D>* __restrict v) {
+SKRED_INLINE Mat<D> gather_gradient(const Separable<D, S>& sh, const NodeStrides<D>& st,
+                                    const Vec<D>* __restrict v) {
   Mat<D> out = Mat<D>::Zero();
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
@@ -240,8 +237,7 @@ template <int D, int S>
 
 // f_i += N_ip x (mass and momentum maps, eq. 2.53-2.54).
 template <int D, int S, class T>
-[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, const T& x,
-                                           T* __restrict f) {
+SKRED_INLINE void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, const T& x, T* __restrict f) {
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
       T* r = f + sh.base + b * st.s[1];
@@ -271,15 +267,15 @@ template <int D, int S, class T>
   }
 }
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, double x,
-                                           double* __restrict f) {
+SKRED_INLINE void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, double x,
+                          double* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 
 // f_i += A grad N_ip (internal force with A = -sigma_p V_p, eq. 2.51).
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter_gradient(const Separable<D, S>& sh, const NodeStrides<D>& st,
-                                                    const Mat<D>& A, Vec<D>* __restrict f) {
+SKRED_INLINE void scatter_gradient(const Separable<D, S>& sh, const NodeStrides<D>& st, const Mat<D>& A,
+                                   Vec<D>* __restrict f) {
   if constexpr (D == 2) {
     for (int b = 0; b < S; ++b) {
       Vec<2>* r = f + sh.base + b * st.s[1];
@@ -312,40 +308,36 @@ template <int D, int S>
 
 // The same transfers on a general stencil.
 template <int D, int S, class T>
-[[gnu::always_inline]] inline T gather(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                       const T* __restrict f) {
+SKRED_INLINE T gather(const Stencil<D, S>& sh, const NodeStrides<D>& st, const T* __restrict f) {
   T out = T::Zero();
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { out += w * f[i]; });
   return out;
 }
 template <int D, int S>
-[[gnu::always_inline]] inline Mat<D> gather_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                                     const Vec<D>* __restrict v) {
+SKRED_INLINE Mat<D> gather_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st,
+                                    const Vec<D>* __restrict v) {
   Mat<D> out = Mat<D>::Zero();
   for_each_node(sh, st,
                 [&](std::size_t i, double, const Vec<D>& g) { out.noalias() += v[i] * g.transpose(); });
   return out;
 }
 template <int D, int S, class T>
-[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, const T& x,
-                                           T* __restrict f) {
+SKRED_INLINE void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, const T& x, T* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, double x,
-                                           double* __restrict f) {
+SKRED_INLINE void scatter(const Stencil<D, S>& sh, const NodeStrides<D>& st, double x, double* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double w, const Vec<D>&) { f[i] += w * x; });
 }
 template <int D, int S>
-[[gnu::always_inline]] inline void scatter_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                                    const Mat<D>& A, Vec<D>* __restrict f) {
+SKRED_INLINE void scatter_gradient(const Stencil<D, S>& sh, const NodeStrides<D>& st, const Mat<D>& A,
+                                   Vec<D>* __restrict f) {
   for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) { f[i].noalias() += A * g; });
 }
 
 template <int D, int S>
-[[gnu::always_inline]] inline void gather_pair(const Stencil<D, S>& sh, const NodeStrides<D>& st,
-                                               const Vec<D>* __restrict f, const Vec<D>* __restrict g,
-                                               Vec<D>& out_f, Vec<D>& out_g) {
+SKRED_INLINE void gather_pair(const Stencil<D, S>& sh, const NodeStrides<D>& st, const Vec<D>* __restrict f,
+                              const Vec<D>* __restrict g, Vec<D>& out_f, Vec<D>& out_g) {
   out_f = gather(sh, st, f);
   out_g = gather(sh, st, g);
 }

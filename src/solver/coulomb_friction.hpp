@@ -2,6 +2,7 @@
 // eq. 52-55), for one node against one surface: a wall of the grid uses it, and so can a
 // sloped rigid base.
 #pragma once
+#include "core/inline.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -24,7 +25,7 @@ namespace skred {
 // tangential part that at most stops: |v| <= |v_trial| and the surface dissipates
 // (1/2) m (|v_trial|^2 - |v|^2) >= 0. In velocity terms m and dt cancel.
 template <int D>
-[[gnu::always_inline]] inline Vec<D> coulomb_contact(const Vec<D>& v_trial, const Vec<D>& n, double mu) {
+SKRED_INLINE Vec<D> coulomb_contact(const Vec<D>& v_trial, const Vec<D>& n, double mu) {
   const double vn = v_trial.dot(n);  // m vn / dt = f_n
   if (vn <= 0.0) return v_trial;     // no compressive normal force: separation, no friction
   const Vec<D> vt = v_trial - vn * n;

@@ -3,6 +3,7 @@
 // column-major Mat3 and the 6-vector round trips through to_matrix/to_voigt cost more than
 // the arithmetic. g = dt grad v (row i, column j: dt dv_i/dx_j), dF = I + g.
 #pragma once
+#include "core/inline.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -16,7 +17,7 @@ struct StressUpdateResult {
 namespace kinematics3 {
 
 // d_eps = sym(g) (Thesis eq. 2.20) in Voigt order [xx, yy, zz, xy, yz, xz].
-[[gnu::always_inline]] inline Sym3 strain_increment(const double (&g)[3][3]) {
+SKRED_INLINE Sym3 strain_increment(const double (&g)[3][3]) {
   Sym3 e;
   e << g[0][0], g[1][1], g[2][2], 0.5 * (g[0][1] + g[1][0]), 0.5 * (g[1][2] + g[2][1]),
       0.5 * (g[0][2] + g[2][0]);
@@ -24,7 +25,7 @@ namespace kinematics3 {
 }
 
 // sigma = dF S dF^T / det dF (Thesis eq. 4.4) in place on the Voigt components.
-[[gnu::always_inline]] inline void push_forward(const double (&g)[3][3], Sym3& s) {
+SKRED_INLINE void push_forward(const double (&g)[3][3], Sym3& s) {
   double a[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) a[i][j] = g[i][j] + (i == j ? 1.0 : 0.0);
@@ -46,9 +47,9 @@ namespace kinematics3 {
 // trapezoidal stress work (eq. 4.16) split into its stored and dissipated parts, given the
 // updated stress. Plastic = false: d_eps_p = 0.
 template <bool Plastic>
-[[gnu::always_inline]] inline StressUpdateResult finish(const double (&g)[3][3], const Sym3& deps,
-                                                        const Sym3& deps_p, const Sym3& old, double volume0,
-                                                        const Sym3& stress, Mat3& F, Mat3& Fe) {
+SKRED_INLINE StressUpdateResult finish(const double (&g)[3][3], const Sym3& deps, const Sym3& deps_p,
+                                       const Sym3& old, double volume0, const Sym3& stress, Mat3& F,
+                                       Mat3& Fe) {
   double f[3][3], h[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) f[i][j] = F(i, j), h[i][j] = Fe(i, j);

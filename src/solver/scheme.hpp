@@ -1,5 +1,5 @@
 // The stress-update schemes of Thesis §4.4 as small types that order the phases of the
-// explicit step. The phases themselves (explicit_solver.cpp, grid_phases.cpp) do not know
+// explicit step. The phases themselves (explicit_solver_impl.hpp, grid_phases.cpp) do not know
 // which scheme calls them. Every scheme starts from the grid's mass and momentum of the
 // step (eq. 2.53-2.54), mapped by the last phase of the step before or by
 // ExplicitSolver::map_grid, and ends by mapping the next step's (the fused map).

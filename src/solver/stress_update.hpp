@@ -1,6 +1,7 @@
 // The stress update of one material point from a grid velocity gradient.
 #pragma once
 #include <cmath>
+#include "core/inline.hpp"
 
 #include "core/types.hpp"
 #include "material/material.hpp"
@@ -13,14 +14,14 @@ namespace skred {
 // (p0, p1, p2, p3); `stress` holds the unrotated update S^{k+1}. Inlined once per material
 // branch; Plastic = false (d_eps_p = 0) drops the plastic terms.
 template <bool Plastic>
-[[gnu::always_inline]] inline StressUpdateResult finish_plane_kinematics(
-    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3, double p0,
-    double p1, double p2, double p3, double volume0, const PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe);
+SKRED_INLINE StressUpdateResult finish_plane_kinematics(double g00, double g01, double g10, double g11,
+                                                        double o0, double o1, double o2, double o3, double p0,
+                                                        double p1, double p2, double p3, double volume0,
+                                                        const PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe);
 
 // Push-forward sigma = dF S dF^T / det dF (eq. 4.4) of plane-strain stress components in place.
-[[gnu::always_inline]] inline void push_forward_plane(double g00, double g01, double g10, double g11,
-                                                      double inv_J, double& s0, double& s1, double& s2,
-                                                      double& s3) {
+SKRED_INLINE void push_forward_plane(double g00, double g01, double g10, double g11, double inv_J, double& s0,
+                                     double& s1, double& s2, double& s3) {
   const double a00 = 1.0 + g00, a11 = 1.0 + g11;
   const double b00 = a00 * s0 + g01 * s3, b01 = a00 * s3 + g01 * s1;  // dF S
   const double b10 = g10 * s0 + a11 * s3, b11 = g10 * s3 + a11 * s1;
@@ -31,9 +32,10 @@ template <bool Plastic>
 }
 
 template <bool Plastic>
-[[gnu::always_inline]] inline StressUpdateResult finish_plane_update(
-    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3, double p0,
-    double p1, double p2, double p3, double volume0, PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe) {
+SKRED_INLINE StressUpdateResult finish_plane_update(double g00, double g01, double g10, double g11, double o0,
+                                                    double o1, double o2, double o3, double p0, double p1,
+                                                    double p2, double p3, double volume0,
+                                                    PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe) {
   const double inv_J = 1.0 / ((1.0 + g00) * (1.0 + g11) - g01 * g10);
   push_forward_plane(g00, g01, g10, g11, inv_J, stress[0], stress[1], stress[2], stress[3]);
   return finish_plane_kinematics<Plastic>(g00, g01, g10, g11, o0, o1, o2, o3, p0, p1, p2, p3, volume0, stress,
@@ -43,9 +45,10 @@ template <bool Plastic>
 // F <- dF F (eq. 3.2), Fe <- (I + d_eps_e) Fe (Post eq. 72-73), the volume and the trapezoidal
 // stress work (eq. 4.16), given the updated stress.
 template <bool Plastic>
-[[gnu::always_inline]] inline StressUpdateResult finish_plane_kinematics(
-    double g00, double g01, double g10, double g11, double o0, double o1, double o2, double o3, double p0,
-    double p1, double p2, double p3, double volume0, const PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe) {
+SKRED_INLINE StressUpdateResult finish_plane_kinematics(double g00, double g01, double g10, double g11,
+                                                        double o0, double o1, double o2, double o3, double p0,
+                                                        double p1, double p2, double p3, double volume0,
+                                                        const PointStress<2>& stress, Mat<2>& F, Mat<2>& Fe) {
   const double e0 = g00, e1 = g11, e3 = 0.5 * (g01 + g10);
   const double a00 = 1.0 + g00, a11 = 1.0 + g11;
   // F <- dF F (eq. 3.2) and Fe <- (I + d_eps_e) Fe (Post eq. 72-73).
@@ -76,8 +79,7 @@ template <bool Plastic>
 // strain): tau = 2G (V - I) V + lambda tr(V - I) V with the left stretch V = sqrt(F F^T). In
 // uniaxial strain its Cauchy stress is exactly E (l - 1). Plane strain (V_zz = 1): (xx, yy,
 // zz, xy), with the 2 x 2 square root in closed form, V = (B + J I) / sqrt(tr B + 2J).
-[[gnu::always_inline]] inline Eigen::Vector4d biot_kirchhoff_plane(const Mat<2>& F, double lambda,
-                                                                   double two_g) {
+SKRED_INLINE Eigen::Vector4d biot_kirchhoff_plane(const Mat<2>& F, double lambda, double two_g) {
   const double b00 = F(0, 0) * F(0, 0) + F(0, 1) * F(0, 1), b11 = F(1, 0) * F(1, 0) + F(1, 1) * F(1, 1);
   const double b01 = F(0, 0) * F(1, 0) + F(0, 1) * F(1, 1);
   const double J = F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0), inv_t = 1.0 / std::sqrt(b00 + b11 + 2.0 * J);
@@ -110,11 +112,9 @@ inline Sym3 biot_kirchhoff(const Mat<D>& F, double lambda, double two_g) {
 // updated by Fe <- (I + d_eps - d_eps_p) Fe (Post eq. 72-73). The trapezoidal stress work
 // splits exactly into the stored (elastic) part and the plastic dissipation.
 template <int D>
-[[gnu::always_inline]] inline StressUpdateResult update_point_stress(const Material& mat,
-                                                                     const Mat<D>& grad_v, double dt,
-                                                                     double volume0, PointStress<D>& stress,
-                                                                     PointState& state, Mat<D>& F,
-                                                                     Mat<D>& Fe) {
+SKRED_INLINE StressUpdateResult update_point_stress(const Material& mat, const Mat<D>& grad_v, double dt,
+                                                    double volume0, PointStress<D>& stress, PointState& state,
+                                                    Mat<D>& F, Mat<D>& Fe) {
   if constexpr (D == 2) {
     // Plane strain written out in scalars: this runs twice per point and step.
     const double g00 = dt * grad_v(0, 0), g01 = dt * grad_v(0, 1);

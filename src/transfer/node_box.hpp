@@ -9,6 +9,7 @@
 #include <cstdint>
 
 #include "core/grid.hpp"
+#include "core/inline.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -40,7 +41,7 @@ struct NodeBox {
 template <int D>
 struct Extent {
   Vec<D> lo = Vec<D>::Constant(INFINITY), hi = Vec<D>::Constant(-INFINITY);
-  [[gnu::always_inline]] void add(const Vec<D>& x) {
+  SKRED_INLINE void add(const Vec<D>& x) {
     lo = lo.cwiseMin(x);
     hi = hi.cwiseMax(x);
   }
@@ -58,7 +59,7 @@ struct Extent {
 // Lowest and highest stencil base (flat node index) a thread scattered to.
 struct BaseSpan {
   std::size_t lo = SIZE_MAX, hi = 0;
-  [[gnu::always_inline]] void add(std::size_t base) {
+  SKRED_INLINE void add(std::size_t base) {
     lo = std::min(lo, base);
     hi = std::max(hi, base);
   }

@@ -8,6 +8,7 @@
 #include <climits>
 #include <cstdint>
 
+#include "core/inline.hpp"
 #include "core/particles.hpp"
 #include "transfer/transfer.hpp"
 #include "transfer/velocity_filters.hpp"
@@ -17,24 +18,22 @@ namespace skred {
 // Which points a map covers: all of them, or the points of one body (continuum, Paper III
 // §C.2.7) in a run with contact.
 struct AllPoints {
-  [[gnu::always_inline]] bool operator()(long) const { return true; }
+  SKRED_INLINE bool operator()(long) const { return true; }
 };
 struct BodyPoints {
   const std::int16_t* __restrict body;
   int id;
-  [[gnu::always_inline]] bool operator()(long p) const { return body[p] == id; }
+  SKRED_INLINE bool operator()(long p) const { return body[p] == id; }
 };
 
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
 // rest of the step, and its mass and momentum mapped to the nodes (with an affine velocity C,
 // if given: APIC). False if the point's stencil does not fit in the grid.
 template <int D, class K>
-[[gnu::always_inline]] inline bool map_point(const K& kernel, const GridGeometry<D>& grid,
-                                             const NodeStrides<D>& strides, const Vec<D>& x,
-                                             const Vec<D>& half0, const Mat<D>& F, double m, const Vec<D>& v,
-                                             typename K::Packed& store, double* __restrict mass,
-                                             Vec<D>* __restrict mom, BaseSpan& span,
-                                             const Mat<D>* C = nullptr) {
+SKRED_INLINE bool map_point(const K& kernel, const GridGeometry<D>& grid, const NodeStrides<D>& strides,
+                            const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F, double m, const Vec<D>& v,
+                            typename K::Packed& store, double* __restrict mass, Vec<D>* __restrict mom,
+                            BaseSpan& span, const Mat<D>* C = nullptr) {
   typename K::Shape sh;
   if (!kernel.shape(grid, x, half0, F, sh)) return false;
   kernel.store(store, sh, F);

@@ -3,6 +3,7 @@
 #pragma once
 #include <omp.h>
 
+#include "core/inline.hpp"
 #include "core/particles.hpp"
 #include "transfer/transfer.hpp"
 
@@ -12,9 +13,9 @@ namespace skred {
 // The node positions x_i are the grid's degrees of freedom (Greville abscissae for the
 // B-spline).
 template <int D, class Shape>
-[[gnu::always_inline]] inline void scatter_affine(const Shape& sh, const GridGeometry<D>& g,
-                                                  const NodeStrides<D>& strides, const Vec<D>& x, double m,
-                                                  const Vec<D>& v, const Mat<D>& C, Vec<D>* __restrict mom) {
+SKRED_INLINE void scatter_affine(const Shape& sh, const GridGeometry<D>& g, const NodeStrides<D>& strides,
+                                 const Vec<D>& x, double m, const Vec<D>& v, const Mat<D>& C,
+                                 Vec<D>* __restrict mom) {
   const Vec<D> mv = m * v;
   const Mat<D> mC = m * C;
   for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {

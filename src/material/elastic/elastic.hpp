@@ -1,6 +1,7 @@
 // Isotropic linear elasticity in 3D Voigt form (plane strain is the 2D case with
 // zero out-of-plane strain; the out-of-plane stress follows from it).
 #pragma once
+#include "core/inline.hpp"
 #include "core/types.hpp"
 
 namespace skred {
@@ -25,7 +26,7 @@ struct ElasticConstants {
 };
 
 // d_sigma = C : d_eps (Thesis eq. 2.5); strain in tensor components.
-[[gnu::always_inline]] inline Sym3 elastic_increment(const ElasticConstants& e, const Sym3& deps) {
+SKRED_INLINE Sym3 elastic_increment(const ElasticConstants& e, const Sym3& deps) {
   const double lam = e.lambda, two_g = e.two_g;
   const double tr = deps[0] + deps[1] + deps[2];
   Sym3 ds = two_g * deps;

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <limits>
 
+#include "core/inline.hpp"
 #include "material/elastic/elastic.hpp"
 #include "material/mohr_coulomb/params.hpp"
 #include "material/principal.hpp"
@@ -70,7 +71,7 @@ enum class MohrCoulombRegion : std::uint8_t {
 };
 
 // Yield function eq. 5.1 of ascending principal stresses (tension positive).
-[[gnu::always_inline]] inline double mohr_coulomb_yield(const MohrCoulombConstants& k, const Vec3& p) {
+SKRED_INLINE double mohr_coulomb_yield(const MohrCoulombConstants& k, const Vec3& p) {
   return 0.5 * (p[2] - p[0]) + 0.5 * (p[0] + p[2]) * k.sin_phi - k.c_cos_phi;
 }
 inline double mohr_coulomb_yield(const MohrCoulombParams& mc, const Vec3& principal_ascending) {
@@ -94,7 +95,7 @@ namespace detail {
 Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants& k, Sym3& stress,
                           const Sym3& trial, PointState& state, MohrCoulombRegion* region);
 // Plastic bookkeeping of the state: engineering shear 2 sqrt(J2) and volume of d_eps_p.
-[[gnu::always_inline]] inline void record_plastic_strain(const Vec3& ep, PointState& state) {
+SKRED_INLINE void record_plastic_strain(const Vec3& ep, PointState& state) {
   const double j2 = ((ep[0] - ep[1]) * (ep[0] - ep[1]) + (ep[1] - ep[2]) * (ep[1] - ep[2]) +
                      (ep[2] - ep[0]) * (ep[2] - ep[0])) /
                     6.0;
@@ -107,10 +108,9 @@ Sym3 mohr_coulomb_plastic(const ElasticConstants& e, const MohrCoulombConstants&
 // rest through mohr_coulomb_return; the rotation back uses the in-plane angle of the trial.
 // V: Sym3, or the four stored plane-strain components.
 template <class V>
-[[gnu::always_inline]] inline V mohr_coulomb_plastic_plane(const ElasticConstants& e,
-                                                           const MohrCoulombConstants& k, V& stress,
-                                                           const V& trial, const PlanePrincipal& pp,
-                                                           PointState& state, MohrCoulombRegion* region) {
+SKRED_INLINE V mohr_coulomb_plastic_plane(const ElasticConstants& e, const MohrCoulombConstants& k, V& stress,
+                                          const V& trial, const PlanePrincipal& pp, PointState& state,
+                                          MohrCoulombRegion* region) {
   // Dilation cut-off (Paper III §C.3.2): psi = 0 once e = (1 + e0) exp(eps_v) - 1 >= e_max,
   // evaluated with the updated volume strain.
   const double sq = state.volume_strain >= k.max_volume_strain ? 0.0 : k.sin_psi;
@@ -151,8 +151,7 @@ template <class V>
 }
 
 // The elastic check: f <= tol and sigma_3 - t <= tol, relative to the stress magnitude.
-[[gnu::always_inline]] inline bool mohr_coulomb_admissible(const MohrCoulombConstants& k, const Vec3& p,
-                                                           double tol) {
+SKRED_INLINE bool mohr_coulomb_admissible(const MohrCoulombConstants& k, const Vec3& p, double tol) {
   const double scale = k.c_cos_phi + std::max(std::abs(p[0]), std::abs(p[2]));
   return mohr_coulomb_yield(k, p) <= tol * scale &&
          p[2] - k.tension_cutoff <= tol * (scale + std::abs(k.tension_cutoff));
@@ -163,7 +162,7 @@ template <class V>
 // f = a + (p - m/2) sin(phi) - c cos(phi) (eq. 5.1), whose largest value over all Lode angles
 // is sqrt(J2) sqrt(1 + sin^2(phi)/3) + p sin(phi) - c cos(phi); and sigma_3 <= p + 2 sqrt(J2/3).
 // Both bounds below zero: elastic, whatever the Lode angle.
-[[gnu::always_inline]] inline bool clearly_elastic(const MohrCoulombConstants& k, const Sym3& s) {
+SKRED_INLINE bool clearly_elastic(const MohrCoulombConstants& k, const Sym3& s) {
   const double p = (s[0] + s[1] + s[2]) / 3.0;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
@@ -176,8 +175,7 @@ template <class V>
 // The elastic check on bounds of sigma_1 and sigma_3 (principal_bounds): f grows with sigma_3
 // and falls with sigma_1 (eq. 5.1), so f(lo, hi) <= 0 and hi <= t make the trial admissible;
 // the margin 1e-10 of the stress magnitude covers the round-off of the bounds.
-[[gnu::always_inline]] inline bool elastic_by_bounds(const MohrCoulombConstants& k,
-                                                     const PrincipalBounds& b) {
+SKRED_INLINE bool elastic_by_bounds(const MohrCoulombConstants& k, const PrincipalBounds& b) {
   return mohr_coulomb_admissible(k, Vec3(b.lo, 0.5 * (b.lo + b.hi), b.hi), -1e-10);
 }
 }  // namespace detail
@@ -187,10 +185,9 @@ template <class V>
 // State: volume_strain += tr(d_eps) always; when plastic plastic_shear_strain +=
 // 2 sqrt(J2(d_eps_p)), plastic_volume_strain += tr(d_eps_p), yielding = 1; else yielding = 0.
 // `region` (optional) receives the return region.
-[[gnu::always_inline]] inline Sym3 mohr_coulomb_update(const ElasticConstants& e,
-                                                       const MohrCoulombConstants& k, Sym3& stress,
-                                                       const Sym3& deps, PointState& state,
-                                                       MohrCoulombRegion* region = nullptr) {
+SKRED_INLINE Sym3 mohr_coulomb_update(const ElasticConstants& e, const MohrCoulombConstants& k, Sym3& stress,
+                                      const Sym3& deps, PointState& state,
+                                      MohrCoulombRegion* region = nullptr) {
   state.volume_strain += deps[0] + deps[1] + deps[2];
   const Sym3 trial = stress + elastic_increment(e, deps);
   // Screening: exact principal values in plane strain (tolerance kYieldRelTol); in 3D two
@@ -217,11 +214,9 @@ template <class V>
 
 // Plane strain on the stored components [xx, yy, zz, xy] (the solver's hot path): the same
 // update as above with d_eps = (e0, e1, 0, e3). Returns d_eps_p in the same four components.
-[[gnu::always_inline]] inline Eigen::Vector4d mohr_coulomb_update_plane(const ElasticConstants& e,
-                                                                        const MohrCoulombConstants& k,
-                                                                        Eigen::Vector4d& stress, double e0,
-                                                                        double e1, double e3,
-                                                                        PointState& state) {
+SKRED_INLINE Eigen::Vector4d mohr_coulomb_update_plane(const ElasticConstants& e,
+                                                       const MohrCoulombConstants& k, Eigen::Vector4d& stress,
+                                                       double e0, double e1, double e3, PointState& state) {
   const double tr = e0 + e1, lam = e.lambda * tr;
   state.volume_strain += tr;
   const Eigen::Vector4d trial(stress[0] + lam + e.two_g * e0, stress[1] + lam + e.two_g * e1, stress[2] + lam,

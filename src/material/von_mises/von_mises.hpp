@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "material/elastic/elastic.hpp"
 #include "material/state.hpp"
 #include "material/von_mises/params.hpp"
@@ -14,12 +15,12 @@
 namespace skred {
 
 // c(kappa) = max(c_r, c_p + H_s kappa) (Acosta §3.2).
-[[gnu::always_inline]] inline double von_mises_cohesion(const VonMisesParams& vm, double kappa) {
+SKRED_INLINE double von_mises_cohesion(const VonMisesParams& vm, double kappa) {
   return std::max(vm.cohesion_residual, vm.cohesion_peak + vm.softening_modulus * kappa);
 }
 
 // J2 = s:s/2 of a symmetric tensor (tensor shear components).
-[[gnu::always_inline]] inline double second_invariant(const Sym3& s) {
+SKRED_INLINE double second_invariant(const Sym3& s) {
   const double p = (s[0] + s[1] + s[2]) / 3.0;
   const double a = s[0] - p, b = s[1] - p, c = s[2] - p;
   return 0.5 * (a * a + b * b + c * c) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
@@ -37,8 +38,8 @@ Sym3 von_mises_plastic(const ElasticConstants& e, const VonMisesParams& vm, Sym3
 // (tensor components); returns the plastic strain increment (zero when elastic). State updates as
 // mohr_coulomb_update: volume_strain += tr(d_eps); when plastic plastic_shear_strain += dl,
 // plastic_volume_strain += tr(d_eps_p) (= 0 to round-off), yielding = 1; else yielding = 0.
-[[gnu::always_inline]] inline Sym3 von_mises_update(const ElasticConstants& e, const VonMisesParams& vm,
-                                                    Sym3& stress, const Sym3& deps, PointState& state) {
+SKRED_INLINE Sym3 von_mises_update(const ElasticConstants& e, const VonMisesParams& vm, Sym3& stress,
+                                   const Sym3& deps, PointState& state) {
   state.volume_strain += deps[0] + deps[1] + deps[2];
   const Sym3 trial = stress + elastic_increment(e, deps);
   const double q = std::sqrt(second_invariant(trial));

@@ -4,6 +4,9 @@
 // point by point (the stress update with the force map, the position update with the next
 // step's map); their transfers are the transfer layer's (src/transfer), lock-free. Grid
 // phases: grid_phases.cpp; totals, smoothing and stage starts: solver_results.cpp.
+// Included only by explicit_solver_2d.cpp and explicit_solver_3d.cpp, which instantiate the
+// solver for one dimension each: two smaller translation units that build in parallel.
+#pragma once
 #include "solver/explicit_solver.hpp"
 
 #include <omp.h>
@@ -12,6 +15,7 @@
 #include <climits>
 #include <cmath>
 
+#include "core/inline.hpp"
 #include "solver/gravity.hpp"
 #include "solver/stress_update.hpp"
 #include "transfer/transfers.hpp"
@@ -26,8 +30,8 @@ namespace {
 // it by a fraction of a step). False if the point left the grid through a free side or its
 // velocity is not finite.
 template <int D>
-[[gnu::always_inline]] inline bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls, Vec<D>& x,
-                                              const Vec<D>& dx, const Vec<D>& v) {
+SKRED_INLINE bool move_point(const GridGeometry<D>& grid, const WallBox<D>& walls, Vec<D>& x,
+                             const Vec<D>& dx, const Vec<D>& v) {
   x += dx;
   for (int d = 0; d < D; ++d) x[d] = std::min(std::max(x[d], walls.lo[d]), walls.hi[d]);
   return grid.inside(x) && std::isfinite(v.sum());
@@ -36,7 +40,7 @@ template <int D>
 // After a stress update: false if the point's volume collapsed or inverted (det F <= 0) or its
 // stress is not finite.
 template <class V>
-[[gnu::always_inline]] inline bool sound_point(const StressUpdateResult& r, const V& stress) {
+SKRED_INLINE bool sound_point(const StressUpdateResult& r, const V& stress) {
   return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
@@ -63,7 +67,7 @@ struct StressArrays {
         mats(materials.data()),
         single(materials.size() == 1) {}
 
-  [[gnu::always_inline]] StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
+  SKRED_INLINE StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
     return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
                                   F[p], Fe[p]);
   }
@@ -76,10 +80,9 @@ struct StressArrays {
 // form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains (1/2) m_p
 // (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
 template <class Shape, int D>
-[[gnu::always_inline]] inline Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides,
-                                                       const Vec<D>& v, double dt, const Vec<D>& acc_p,
-                                                       const Vec<D>* __restrict vnext, double alpha,
-                                                       Mat<D>* affine, double m, double& lost) {
+SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides, const Vec<D>& v,
+                                      double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
+                                      double alpha, Mat<D>* affine, double m, double& lost) {
   const Vec<D> flip = v + dt * acc_p;
   if (alpha <= 0.0) return flip;
   Vec<D> vp;
@@ -587,8 +590,5 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
   transfer_.for_box([&](std::size_t i) { vnext[i] = star[i] + dt * acc[i]; });
   boundaries_.constrain_velocity(fields_.velocity_next);
 }
-
-template class ExplicitSolver<2>;
-template class ExplicitSolver<3>;
 
 }  // namespace skred
