@@ -59,10 +59,11 @@ double gap(const Particles<2>& P) {
 struct DiscRun {
   double e0 = 0, e_end = 0, max_momentum = 0, contact_work = 0, rebound = 0, gap_end = 0;
   double min_step_work = 0;  // most negative friction work of a step
+  double transfer_loss = 0;  // what the velocity transfer took (APIC, XPIC)
 };
 
 // R3: two elastic discs, bodies 0 and 1, with frictionless contact (or bonded: one field).
-DiscRun run_discs(StressScheme scheme, bool contact) {
+DiscRun run_discs(StressScheme scheme, bool contact, VelocityTransfer transfer = VelocityTransfer::Flip) {
   const Material m = elastic(1000.0, 1000.0, 0.3);
   const double h = 0.05;
   Particles<2> P;
@@ -71,6 +72,7 @@ DiscRun run_discs(StressScheme scheme, bool contact) {
   SolverSettings<2> st;
   st.scheme = scheme;
   st.dt = 0.001;
+  st.velocity_transfer = transfer;
   if (contact) {
     st.contact.resize(2);
     st.contact.set_friction(0, 1, 0.0);
@@ -87,6 +89,7 @@ DiscRun run_discs(StressScheme scheme, bool contact) {
   }
   r.e_end = solver.totals().kinetic_energy + solver.energy().strain_energy;
   r.contact_work = solver.energy().contact_work;
+  r.transfer_loss = solver.energy().transfer_dissipation;
   r.rebound = body_velocity(P, 0)[0];
   r.gap_end = gap(P);
   return r;
@@ -119,6 +122,27 @@ TEST(ContactDiscs, FrictionlessDiscsCollideAndPartAveraged) { check_discs(Stress
 TEST(ContactDiscs, FrictionlessDiscsCollideAndPartUSL) { check_discs(StressScheme::USL); }
 TEST(ContactDiscs, FrictionlessDiscsCollideAndPartUSF) { check_discs(StressScheme::USF); }
 
+// The same collision with APIC and XPIC(2) (averaged scheme): the discs rebound and part (at
+// least a cell apart at the end), momentum to round-off, friction work >= 0, and no energy
+// from nowhere. Both transfers take the discs' grid-scale vibration that FLIP keeps (measured:
+// kinetic + strain energy -39 % with APIC, -46 % with XPIC over the run); what they took is
+// booked as transfer dissipation only in part (docs/method.md, "Velocity transfers").
+TEST(ContactDiscs, FrictionlessDiscsCollideAndPartApicXpic) {
+  for (const VelocityTransfer vt : {VelocityTransfer::Apic, VelocityTransfer::Xpic}) {
+    const DiscRun r = run_discs(StressScheme::Averaged, true, vt);
+    const double change = (r.e_end - r.e0) / r.e0, balance = (r.e_end + r.transfer_loss - r.e0) / r.e0;
+    std::printf(
+        "%s: rebound vx %.4f, gap %.3f m, energy change %.3f %%, with the transfer's loss %.3f %%, "
+        "momentum %.2e\n",
+        to_string(vt), r.rebound, r.gap_end, 100 * change, 100 * balance, r.max_momentum);
+    EXPECT_LT(r.max_momentum, 1e-12 * 125.66 * 0.1);
+    EXPECT_LT(r.rebound, -0.05);
+    EXPECT_GT(r.gap_end, 0.05);  // h
+    EXPECT_GE(r.min_step_work, 0.0);
+    EXPECT_LE(change, 0.0);  // no energy from nowhere
+  }
+}
+
 namespace {
 
 // A block (0.4 m x 0.2 m, stiff elastic) on a rigid slab inclined at theta, vertical gravity;
@@ -130,7 +154,8 @@ struct InclineRun {
   double half_travel = 0;  // the travel at half the time
 };
 
-std::string incline_text(double theta_deg, double mu, double offset, const char* scheme, double ramp) {
+std::string incline_text(double theta_deg, double mu, double offset, const char* scheme, double ramp,
+                         const char* transfer = "flip") {
   const double th = theta_deg * kDeg, c = std::cos(th), s = std::sin(th);
   const Vec<2> a(0.1, 1.75 + offset);  // top of the incline
   const Vec<2> t(c, -s), n(s, c);      // downhill, normal
@@ -169,15 +194,18 @@ acceleration = [0.0, -9.81]
 ramp_time = {}
 [solver]
 scheme = "{}"
+velocity_transfer = "{}"
 time_step = 1.5e-4
 end_time = 0.5
 )",
-                     pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, ramp, scheme);
+                     pt(b0), pt(b1), pt(b2), pt(b3), pt(k0), pt(k1), pt(k2), pt(k3), mu, ramp, scheme,
+                     transfer);
 }
 
 InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0, const char* scheme = "usf",
-                   bool outline = true, double ramp = 0.0, bool block_first = false) {
-  std::string text = incline_text(theta_deg, mu, offset, scheme, ramp);
+                   bool outline = true, double ramp = 0.0, bool block_first = false,
+                   const char* transfer = "flip") {
+  std::string text = incline_text(theta_deg, mu, offset, scheme, ramp, transfer);
   if (block_first) {  // the block is the master, the rigid base the second body of the hierarchy
     const auto base = text.find("[[body]]\nname = \"base\""), block = text.find("[[body]]\nname = \"block\"");
     const auto end = text.find("[[contact]]");
@@ -228,16 +256,19 @@ InclineRun incline(double theta_deg, double mu, double time, double offset = 0.0
 struct InclineCase {
   double theta, mu, offset;
   const char* scheme = "usf";
+  const char* transfer = "flip";
 };
 static double incline_error(const InclineCase& k, bool outline = true, bool block_first = false) {
   const double time = 0.5, c = std::cos(k.theta * kDeg);
   const double a = g * (std::sin(k.theta * kDeg) - k.mu * c);
   const double exact = 0.5 * a * time * time;
-  const InclineRun r = incline(k.theta, k.mu, time, k.offset, k.scheme, outline, 0.0, block_first);
+  const InclineRun r =
+      incline(k.theta, k.mu, time, k.offset, k.scheme, outline, 0.0, block_first, k.transfer);
   const double error = (r.travel - exact) / exact;
-  std::printf("incline %.0f deg (offset %.4f m), mu %.1f, %s%s%s: travel %.5f m, exact %.5f m (%+.2f %%)\n",
-              k.theta, k.offset, k.mu, k.scheme, outline ? "" : ", mass-gradient normals",
-              block_first ? ", block first" : "", r.travel, exact, 100 * error);
+  std::printf(
+      "incline %.0f deg (offset %.4f m), mu %.1f, %s, %s%s%s: travel %.5f m, exact %.5f m (%+.2f %%)\n",
+      k.theta, k.offset, k.mu, k.scheme, k.transfer, outline ? "" : ", mass-gradient normals",
+      block_first ? ", block first" : "", r.travel, exact, 100 * error);
   EXPECT_GE(r.min_step_work, 0.0);
   return error;
 }
@@ -254,6 +285,12 @@ TEST(ContactIncline, BlockSlidesWithTheAnalyticAcceleration20) {
 TEST(ContactIncline, BlockSlidesWithTheAnalyticAccelerationOffGrid) {
   check_incline({27, 0.0, 0.0173});
   for (const char* scheme : {"usf", "usl", "averaged"}) check_incline({27, 0.3, 0.0173, scheme});
+}
+// The same law with the velocity transfers beyond FLIP (APIC, XPIC(2)): their nodal
+// velocities v_i^{k+1} are the contact phase's coupled ones, per body.
+TEST(ContactIncline, BlockSlidesWithTheAnalyticAccelerationApicXpic) {
+  for (const char* transfer : {"apic", "xpic"})
+    for (const char* scheme : {"usf", "averaged"}) check_incline({27, 0.3, 0.0173, scheme, transfer});
 }
 
 // The same with the block first in the [[body]] order: the block is the master, and the rigid

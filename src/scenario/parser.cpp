@@ -471,9 +471,6 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
   parse_initial_stress(root, s);
   parse_solver(root, s);
   const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
-  if ((!s.contacts.empty() || rigid) && s.velocity_transfer != VelocityTransfer::Flip)
-    fail(s.source, root.table("solver", true)->where("velocity_transfer"), "solver.velocity_transfer",
-         "\"xpic\" and \"apic\" do not work with [[contact]] or rigid bodies yet; use \"flip\"");
   parse_stages(root, s);
   if (!s.contacts.empty() || rigid)  // the damping acts on the centre-of-mass grid update only
     for (std::size_t i = 0; i < s.stages.size(); ++i)

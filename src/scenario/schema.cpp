@@ -423,7 +423,7 @@ std::vector<Section> make_sections() {
             .choices = "flip|xpic|apic",
             .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
                    "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
-                   "al. 2015); xpic and apic not with [[contact]] yet"},
+                   "al. 2015); all three work with [[contact]] and rigid bodies"},
            {.name = "xpic_order",
             .type = Type::Integer,
             .def = value(2),

@@ -97,7 +97,7 @@ void ExplicitSolver<D>::body_grid_update() {
   const ContactSettings<D>& c = settings_.contact;
   const Vec<D> g = gravity_now_;
   const double dt = settings_.dt, half_dt = 0.5 * dt;
-  const bool pic = settings_.pic_fraction > 0.0;
+  const bool pic = forms_velocity_next();
   for (int b = 0; b < c.bodies(); ++b) {
     BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
     if (c.rigid[static_cast<std::size_t>(b)]) {
@@ -114,7 +114,9 @@ void ExplicitSolver<D>::body_grid_update() {
       f.acceleration[i] = a;
       f.velocity_move[i] = f.velocity[i] + half_dt * a;
     });
-    boundaries_.constrain_end_of_step(f, dt);
+    const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
+    assert(walls.work >= 0.0);  // friction never creates energy
+    energy_.friction_work += walls.work;
     if (pic)
       transfer_.for_box([&](std::size_t i) {
         const double m = f.mass[i];
@@ -252,7 +254,7 @@ void ExplicitSolver<D>::contact() {
   if (!contact_on()) return;
   timer_.time(Phase::Contact, [&] {
     const double dt = settings_.dt;
-    const bool pic = settings_.pic_fraction > 0.0;
+    const bool pic = forms_velocity_next();
     // v_i^k,b as the points' accelerations see it: the mapped velocity, not the coupled one
     const auto base = [](const BodyFields<D>& f, std::size_t i) {
       return Vec<D>(f.momentum[i] / f.mass[i] + f.velocity_shift[i]);

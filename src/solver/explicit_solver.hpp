@@ -218,6 +218,11 @@ class ExplicitSolver {
   double pic_share() const {
     return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
   }
+  // Whether the grid update forms v_i^{k+1} = p_i / m_i + dt a_i (velocity_next): for a PIC share
+  // of FLIP and for APIC (XPIC forms its own, xpic_grid_velocity).
+  bool forms_velocity_next() const {
+    return settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic;
+  }
   void clear_mass_momentum();
   // The grid phases per body in a run with contact (contact.cpp).
   void body_nodal_velocity();

@@ -119,8 +119,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     walls_.hi[d] = closed_hi ? hi : INFINITY;
   }
   const VelocityTransfer vt = settings_.velocity_transfer;
-  const bool pic = settings_.pic_fraction > 0.0 || vt == VelocityTransfer::Apic;
-  fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, vt == VelocityTransfer::Xpic);
+  const bool pic = forms_velocity_next(), xpic = vt == VelocityTransfer::Xpic;
+  fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, xpic);
   // APIC's affine velocities start at zero; other transfers carry none.
   if (vt == VelocityTransfer::Apic)
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
@@ -128,7 +128,7 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     particles_.affine.clear();
   if (contact_on()) {  // every body's fields, from zero pages (only where it reaches)
     bodies_.resize(static_cast<std::size_t>(settings_.contact.bodies()));
-    for (auto& b : bodies_) b.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF);
+    for (auto& b : bodies_) b.resize(g.node_count(), pic || xpic, settings_.scheme != StressScheme::USF);
     contact_sums_.assign(static_cast<std::size_t>(16 * transfer_.threads()), 0.0);
     prepare_contact();
   }
@@ -577,18 +577,21 @@ long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
 
 // XPIC(m) (Hammerquist & Nairn 2017): the points take sum N_ip (v_i^{k+1} - p_i / m_i + v*_i),
 // i.e. FLIP without the part of v_p^k the grid cannot represent; under the velocity conditions.
+// With contact, each deformable body's v* from its own m_i^b, p_i^b and points, and its
+// accelerations after the contact phase (Paper III §C.2.7).
 template <int D>
 template <class K>
 void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
   if (settings_.velocity_transfer != VelocityTransfer::Xpic) return;
-  Vec<D>* const star = fields_.xpic_star.data();
-  xpic_velocity(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data(),
-                settings_.xpic_order, star, fields_.xpic_work.data());
   const double dt = settings_.dt;
-  Vec<D>* __restrict vnext = fields_.velocity_next.data();
-  const Vec<D>* __restrict acc = fields_.acceleration.data();
-  transfer_.for_box([&](std::size_t i) { vnext[i] = star[i] + dt * acc[i]; });
-  boundaries_.constrain_velocity(fields_.velocity_next);
+  for_each_continuum([&](GridFields<D>& f, auto sel) {
+    Vec<D>* const star = f.velocity_next.data();  // v*_i, then v_i^{k+1} - p_i / m_i + v*_i in place
+    xpic_velocity(transfer_, kernel, particles_, f.mass.data(), f.momentum.data(), settings_.xpic_order, star,
+                  fields_.xpic_work.data(), sel);
+    const Vec<D>* __restrict acc = f.acceleration.data();
+    transfer_.for_box([&](std::size_t i) { star[i] += dt * acc[i]; });
+    boundaries_.constrain_velocity(f.velocity_next);
+  });
 }
 
 }  // namespace skred

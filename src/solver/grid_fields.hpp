@@ -23,8 +23,8 @@ struct GridFields {
   // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update and
   // APIC; for XPIC(m), v_i^{k+1} - p_i / m_i + v*_i (allocated only when the transfer uses it).
   GridArray<Vec<D>> velocity_next;
-  // XPIC(m): v*_i and a scratch array (allocated only for XPIC).
-  GridArray<Vec<D>> xpic_star, xpic_work;
+  // XPIC(m): a scratch array (allocated only for XPIC; v*_i is formed in velocity_next).
+  GridArray<Vec<D>> xpic_work;
   // The double mapping of USL and the averaged scheme (Thesis §4.4 step 6): the updated
   // particle momenta mapped back, p~_i = sum N_ip m_p v_p^{k+1}, and v~_i = p~_i / m_i, which
   // the second stress update reads (allocated only for those schemes).
@@ -36,10 +36,7 @@ struct GridFields {
     for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move}) f->resize(n);
     mass.resize(n);
     if (pic || xpic) velocity_next.resize(n);
-    if (xpic) {
-      xpic_star.resize(n);
-      xpic_work.resize(n);
-    }
+    if (xpic) xpic_work.resize(n);
     if (remap) {
       momentum_remap.resize(n);
       velocity_remap.resize(n);

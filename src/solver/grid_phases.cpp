@@ -78,7 +78,7 @@ void ExplicitSolver<D>::grid_update() {
     const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
     assert(walls.work >= 0.0);  // friction never creates energy
     energy_.friction_work += walls.work;
-    if (settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic) {
+    if (forms_velocity_next()) {
       // v_i^{k+1} for the PIC share of the particle update, or APIC's
       transfer_.for_box([&](std::size_t i) {
         const double m = fields_.mass[i];

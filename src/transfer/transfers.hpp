@@ -10,21 +10,11 @@
 
 #include "core/inline.hpp"
 #include "core/particles.hpp"
+#include "transfer/point_selection.hpp"
 #include "transfer/transfer.hpp"
 #include "transfer/velocity_filters.hpp"
 
 namespace skred {
-
-// Which points a map covers: all of them, or the points of one body (continuum, Paper III
-// §C.2.7) in a run with contact.
-struct AllPoints {
-  SKRED_INLINE bool operator()(long) const { return true; }
-};
-struct BodyPoints {
-  const std::int16_t* __restrict body;
-  int id;
-  SKRED_INLINE bool operator()(long p) const { return body[p] == id; }
-};
 
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
 // rest of the step, and its mass and momentum mapped to the nodes (with an affine velocity C,

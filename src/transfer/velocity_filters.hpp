@@ -5,6 +5,7 @@
 
 #include "core/inline.hpp"
 #include "core/particles.hpp"
+#include "transfer/point_selection.hpp"
 #include "transfer/transfer.hpp"
 
 namespace skred {
@@ -28,10 +29,11 @@ SKRED_INLINE void scatter_affine(const Shape& sh, const GridGeometry<D>& g, cons
 // with v^L = p_i / m_i (lumped) and G v = M_L^-1 sum_p N_ip m_p sum_j N_jp v_j (a g2p and a
 // mass-weighted p2g: G = M_L^-1 M_C, so v* tends to M_C^-1 p as m grows; m = 1 gives v^L, PIC).
 // Horner form: v* <- v^L + v* - G v*, m - 1 times, each one pass over the points with their
-// stored weighting functions. `work` is a zeroed nodal array, zeroed again on return.
-template <int D, class K>
+// stored weighting functions. `work` is a zeroed nodal array, zeroed again on return. `sel`
+// picks the points whose fields m, p are (one body's, with contact).
+template <int D, class K, class Sel = AllPoints>
 void xpic_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const double* mass,
-                   const Vec<D>* mom, int order, Vec<D>* star, Vec<D>* work) {
+                   const Vec<D>* mom, int order, Vec<D>* star, Vec<D>* work, Sel sel = {}) {
   T.for_box([&](std::size_t i) { star[i] = mass[i] > 0.0 ? Vec<D>(mom[i] / mass[i]) : Vec<D>::Zero(); });
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
@@ -45,6 +47,7 @@ void xpic_velocity(Transfer<D>& T, const K& kernel, const Particles<D>& P, const
       BaseSpan span;
 #pragma omp for schedule(static) nowait
       for (long q = 0; q < n; ++q) {
+        if (!sel(q)) continue;
         typename K::Shape sh;
         kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
         scatter(sh, strides, Vec<D>(P.mass[q] * gather(sh, strides, star)), out);
