@@ -4,6 +4,9 @@
 // of Thesis §5.1 coming to rest.
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
+
 #include <filesystem>
 
 #include "run/simulation.hpp"
@@ -68,9 +71,9 @@ TEST(VelocityTransfer, DiscEnergyWithTheTransferDissipationBooked) {
         "R3 discs, %s: KE + strain energy %+.3f %%, transfer dissipation %.3f %%, balance "
         "%+.3f %%; KE after the rebound %.4f vs %.4f before\n",
         to_string(t), 100 * drift, 100 * r.transfer / r.e0, 100 * booked, r.ke_after, r.ke_before);
-    // APIC's booked loss is against the FLIP update of v_p alone, without the kinetic energy of
-    // its affine velocity C_p, which is not in eq. 4.15: its balance closes to 2 %.
-    EXPECT_LT(std::abs(booked), t == VelocityTransfer::Apic ? 0.02 : 0.01);
+    // APIC's kinetic energy includes its affine velocity's, 1/2 m_p sum_i N_ip |C_p (x_i - x_p)|^2,
+    // and its booked loss is against that (docs/method.md, "Velocity transfers").
+    EXPECT_LT(std::abs(booked), 0.01);
     EXPECT_LE(r.ke_after, r.ke_before);  // no energy from nowhere through the rebound
   }
 }
@@ -89,13 +92,33 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
     opt.progress = false;
     opt.threads = 2;
     const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
+    // The energy balance of the last series row: total_energy (kinetic + strain + every
+    // dissipation - gravity work) against the gravity work.
+    std::ifstream series(out / "series.csv");
+    std::string header, line, last;
+    std::getline(series, header);
+    while (std::getline(series, line)) last = line;
     fs::remove_all(out);
     ASSERT_TRUE(r.completed) << r.message;
+    const auto column = [](const std::string& row, const std::string& hdr, const std::string& key) {
+      std::stringstream h(hdr), v(row);
+      std::string name, value;
+      while (std::getline(h, name, ',') && std::getline(v, value, ','))
+        if (name == key) return std::stod(value);
+      ADD_FAILURE() << key << " not in series.csv";
+      return 0.0;
+    };
+    const double balance = column(last, header, "total_energy") / column(last, header, "gravity_work");
     const StageMeasures& m = r.stages[0];
-    std::printf("soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m\n", t,
-                m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout);
+    std::printf(
+        "soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m, energy "
+        "balance %+.2f %% of the gravity work\n",
+        t, m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout, 100 * balance);
     if (std::string(t) == "apic") {
       EXPECT_EQ(m.ended_by, "rest");
+      // issue 12: closes within 1 % with the transfer's loss (measured +0.66 %). XPIC's booked
+      // loss overstates what it takes here (+5.7 %; docs/method.md, "Velocity transfers").
+      EXPECT_LT(std::abs(balance), 0.01);
     }
   }
 }

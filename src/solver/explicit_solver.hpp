@@ -127,6 +127,7 @@ class ExplicitSolver {
   double dt() const { return settings_.dt; }
   const EnergyTotals& energy() const { return energy_; }
   ParticleTotals<D> totals() const;
+  double affine_kinetic_energy() const;  // APIC's share of the kinetic energy
   const GridGeometry<D>& grid() const { return transfer_.grid(); }
   const GridFields<D>& fields() const { return fields_; }
   // Per-body mass and momentum of the step's start (settings.body_fields, or contact), indexed

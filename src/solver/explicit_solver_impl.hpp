@@ -77,8 +77,10 @@ struct StressArrays {
 // N_ip a_i (acc_p = sum N_ip a_i, gathered by the caller), blended with a PIC share alpha of sum N_ip
 // v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal
 // velocity in vnext; APIC also takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient
-// form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains (1/2) m_p
-// (|v_p^FLIP|^2 - |v_p|^2), what the transfer took from the FLIP update.
+// form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains what the
+// transfer took from the FLIP update: (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2), and under APIC the affine
+// velocity's share of the FLIP-updated kinetic energy (affine_trial_energy; the new C_p's share is
+// taken off where the point is next mapped, at its new position).
 template <class Shape, int D>
 SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides, const Vec<D>& v,
                                       double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
@@ -345,6 +347,8 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
             if (!sel(p)) continue;
             typename K::Shape sh;
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+            if constexpr (apic)
+              lost += affine_trial_energy(sh, g, strides, P.x[p], affine[p], acc, dt, pmass[p]);
             const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, gather(sh, strides, acc), vnext, alpha,
                                                 apic ? affine + p : nullptr, pmass[p], lost);
             v[p] = vp;
@@ -396,11 +400,11 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
       const Mat<D>* const affine =
           settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
-      double work = 0.0, dissipation = 0.0;
+      double work = 0.0, dissipation = 0.0, affine_ke = 0.0;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
       Extent<D> extent;  // of the moved points
-#pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(vsum : mdx) \
+#pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation, affine_ke) reduction(vsum : mdx) \
     reduction(min : bad) reduction(merge : extent)
       {
         const int t = omp_get_thread_num();
@@ -420,7 +424,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           mdx += pmass[p] * dt * vmove;
           if (!sound_point(r, S.stress[p]) || !move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), v[p]) ||
               !map_point(kernel, g, strides, x[p], half0[p], S.F[p], pmass[p], v[p], shape[p], mass, mom,
-                         span, affine ? affine + p : nullptr))
+                         span, affine ? affine + p : nullptr, affine ? &affine_ke : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);
         }
@@ -430,6 +434,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       transfer_.reduce(f.mass.data(), f.momentum.data());
       energy_.strain_energy += work;
       energy_.plastic_dissipation += dissipation;
+      energy_.transfer_dissipation -= affine_ke;  // the new C_p's share (particle_velocity)
       energy_.gravity_work += gravity_now_.dot(mdx);
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
@@ -481,9 +486,10 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
-      Extent<D> extent;  // of the moved points
+      double affine_ke = 0.0;  // the new C_p's share of the kinetic energy (particle_velocity)
+      Extent<D> extent;        // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent) reduction(+ : lost)
+    reduction(merge : extent) reduction(+ : lost, affine_ke)
       {
         const int t = omp_get_thread_num();
         double* __restrict mass = buffers.mass_target(t, f.mass.data());
@@ -496,13 +502,14 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           kernel.load(shape[p], g, x[p], half0[p], sh);
           Vec<D> acc_p, vmove;
           gather_pair(sh, strides, acc, vel, acc_p, vmove);
+          if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
           const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc_p, vnext, alpha,
                                               affine ? affine + p : nullptr, pmass[p], lost);
           v[p] = vp;
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
               !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span,
-                         affine ? affine + p : nullptr))
+                         affine ? affine + p : nullptr, affine ? &affine_ke : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);
         }
@@ -511,6 +518,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       transfer_.set_box(extent);  // the reduction must cover the moved points' reach
       transfer_.reduce(f.mass.data(), f.momentum.data());
       energy_.gravity_work += gravity_now_.dot(mdx);
+      lost -= affine_ke;
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
     });

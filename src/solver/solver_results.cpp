@@ -3,8 +3,10 @@
 #include <omp.h>
 
 #include <cmath>
+#include <type_traits>
 
 #include "solver/explicit_solver.hpp"
+#include "transfer/velocity_filters.hpp"
 
 namespace skred {
 
@@ -28,12 +30,34 @@ ParticleTotals<D> ExplicitSolver<D>::totals() const {
   }
   ParticleTotals<D> t;
   t.mass = mass;
-  t.kinetic_energy = ke;
+  t.kinetic_energy = ke + affine_kinetic_energy();
   t.momentum = mom;
   t.mean_speed = mass > 0.0 ? speed_mass / mass : 0.0;
   t.max_speed = vmax;
   t.yielding = yielding;
   return t;
+}
+
+// APIC: the kinetic energy the points' affine velocities carry besides 1/2 m_p |v_p|^2,
+// sum_p 1/2 m_p sum_i N_ip |C_p (x_i - x_p)|^2 (affine_energy), at the points' current positions.
+template <int D>
+double ExplicitSolver<D>::affine_kinetic_energy() const {
+  const auto& P = particles_;
+  if (settings_.velocity_transfer != VelocityTransfer::Apic || P.affine.size() != P.size()) return 0.0;
+  return with_kernel<D>(settings_.interpolation, settings_.quadrature_points, [&](const auto& kernel) {
+    using K = std::decay_t<decltype(kernel)>;
+    const GridGeometry<D>& g = grid();
+    const NodeStrides<D> strides(g);
+    const long n = static_cast<long>(P.size());
+    double e = 0.0;
+#pragma omp parallel for num_threads(threads()) reduction(+ : e)
+    for (long p = 0; p < n; ++p) {
+      typename K::Shape sh;
+      if (kernel.shape(g, P.x[p], P.half0[p], P.F[p], sh))
+        e += 0.5 * P.mass[p] * affine_energy(sh, g, strides, P.x[p], P.affine[p]);
+    }
+    return e;
+  });
 }
 
 template <int D>
@@ -102,6 +126,7 @@ void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double grav
 
 #define SKRED_RESULTS(D)                                                \
   template ParticleTotals<D> ExplicitSolver<D>::totals() const;         \
+  template double ExplicitSolver<D>::affine_kinetic_energy() const;     \
   template void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>&); \
   template void ExplicitSolver<D>::reset_reference();                   \
   template void ExplicitSolver<D>::begin_stage(std::vector<Material>, double);

@@ -18,19 +18,20 @@ namespace skred {
 
 // Thesis eq. 2.53-2.54 for one point: its weighting functions are evaluated, stored for the
 // rest of the step, and its mass and momentum mapped to the nodes (with an affine velocity C,
-// if given: APIC). False if the point's stencil does not fit in the grid.
+// if given: APIC; then `affine_energy`, if given, gains 1/2 m sum_i N_ip |C (x_i - x_p)|^2). False if
+// the point's stencil does not fit in the grid.
 template <int D, class K>
 SKRED_INLINE bool map_point(const K& kernel, const GridGeometry<D>& grid, const NodeStrides<D>& strides,
                             const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F, double m, const Vec<D>& v,
                             typename K::Packed& store, double* __restrict mass, Vec<D>* __restrict mom,
-                            BaseSpan& span, const Mat<D>* C = nullptr) {
+                            BaseSpan& span, const Mat<D>* C = nullptr, double* affine_energy = nullptr) {
   typename K::Shape sh;
   if (!kernel.shape(grid, x, half0, F, sh)) return false;
   kernel.store(store, sh, F);
   span.add(sh.base);
   scatter(sh, strides, m, mass);
   if (C)
-    scatter_affine(sh, grid, strides, x, m, v, *C, mom);
+    scatter_affine(sh, grid, strides, x, m, v, *C, mom, affine_energy);
   else
     scatter(sh, strides, Vec<D>(m * v), mom);
   return true;
