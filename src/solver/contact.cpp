@@ -164,7 +164,7 @@ void ExplicitSolver<D>::clear_body_mass_momentum() {
 // (where v_i^CM - v_i^c != 0 can hold, eq. C.36). The continua present are taken in the
 // order of the hierarchy: the master's outward normal is minus its mass gradient, the
 // second's is the opposite, n = grad m^1 / |grad m^1|, and continuum k's is the normalised
-// gradient of the combined mass of the k - 1 before it (York et al. 1999; Paper III); a fixed
+// gradient of the combined mass of the k - 1 before it (York et al. 1999; Paper III); a
 // rigid body with an outline gives its exact normal instead (prepare_contact). Each
 // pair (j, k), j < k, is then resolved with k's normal by the Coulomb rule of resolve_pair
 // (contact.hpp) on the velocities get(f, i) of the bodies' fields f at node i; set(f, i, v)
@@ -175,6 +175,16 @@ template <class Get, class Set, class Start>
 ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start) {
   const ContactSettings<D>& c = settings_.contact;
   const GridGeometry<D>& g = grid();
+  // A rigid body moving at its constant velocity with an outline: its outline normal at node i,
+  // that of the shape as built, translated by v t (its points have moved by v dt each step, and
+  // are where the step found them: at v times the time of the step's start).
+  const auto moving_outline = [&](std::size_t b) {
+    return c.rigid[b] && b < c.outline_normal.size() && c.outline_normal[b] &&
+           c.rigid_velocity[b].squaredNorm() > 0.0;
+  };
+  const auto moving_outline_normal = [&](std::size_t b, std::size_t i) {
+    return c.outline_normal[b](Vec<D>(g.node_position(i) - time_ * c.rigid_velocity[b]));
+  };
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
   std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
   transfer_.for_box([&](std::size_t i) {
@@ -194,7 +204,9 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       v[k] = c.rigid[b] ? c.rigid_velocity[b] : get(f, i);
       v0[k] = c.rigid[b] ? c.rigid_velocity[b] : start(f, i);
       grad[k] = mass_gradient<D>(g, f.mass.data(), i, ij);
-      outline[k] = outline_normals_[b].empty() ? Vec<D>::Zero() : outline_normals_[b][i];
+      outline[k] = !outline_normals_[b].empty() ? outline_normals_[b][i]
+                   : moving_outline(b)          ? moving_outline_normal(b, i)
+                                                : Vec<D>::Zero();
     }
     // Volume check (Nairn 2013): the continua are in contact at the node only when together
     // they fill kContactFill of its support (h^D, halved per axis at a wall node). Nodes
