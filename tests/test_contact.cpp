@@ -588,12 +588,37 @@ TEST(ContactRule, OutlineNormals) {
   EXPECT_LT((shape_normal(slope, Vec<2>(-0.2, 0.5)) - Vec<2>(-1, 0)).norm(), 1e-15);
   EXPECT_LT((shape_normal(Shape(Disc{Vec<2>(0, 0), 1.0}), Vec<2>(0.3, 0.4)) - Vec<2>(0.6, 0.8)).norm(),
             1e-15);
-  EXPECT_EQ(shape_normal(Shape(Layer{}), Vec<2>(0.3, 0.4)), Vec<2>::Zero());  // none
+  EXPECT_EQ(shape_normal(Shape(Layer{}), Vec<2>(0.3, 0.4)), Vec<2>::Zero());  // no profiles: none
+  // A layer between y = 0 and y = 2 under a surface y = 3 - x/2 that cuts it at x = 2: its
+  // outline is the bottom, the top left of x = 2 and the surface right of it.
+  const auto line = [](double x0, double y0, double x1, double y1) {
+    return Profile{{Vec<2>(x0, y0), Vec<2>(x1, y1)}};
+  };
+  const Shape layer = Layer{line(0, 2, 4, 2), line(0, 0, 4, 0), line(0, 3, 4, 1)};
+  const Vec<2> surface_n = Vec<2>(0.5, 1.0).normalized();
+  EXPECT_LT((shape_normal(layer, Vec<2>(1.0, 2.3)) - Vec<2>(0, 1)).norm(), 1e-15);   // above the top
+  EXPECT_LT((shape_normal(layer, Vec<2>(3.0, 1.6)) - surface_n).norm(), 1e-15);      // above the surface
+  EXPECT_LT((shape_normal(layer, Vec<2>(3.0, 1.45)) - surface_n).norm(), 1e-15);     // inside, under it
+  EXPECT_LT((shape_normal(layer, Vec<2>(2.0, 0.1)) - Vec<2>(0, -1)).norm(), 1e-15);  // inside, on the bottom
+  EXPECT_LT((shape_normal(layer, Vec<2>(4.2, 0.5)) - Vec<2>(1, 0)).norm(), 1e-15);   // beyond the right end
   const Shape3 box = Box{Vec<3>(0, 0, 0), Vec<3>(1, 1, 1)};
   EXPECT_LT((shape_normal(box, Vec<3>(0.5, 0.5, 0.9)) - Vec<3>(0, 0, 1)).norm(), 1e-15);
   EXPECT_LT((shape_normal(box, Vec<3>(0.5, -0.5, 0.5)) - Vec<3>(0, -1, 0)).norm(), 1e-15);
   EXPECT_LT((shape_normal(Shape3(Sphere{Vec<3>(1, 1, 1), 1.0}), Vec<3>(1, 1, 3)) - Vec<3>(0, 0, 1)).norm(),
             1e-15);
+  // A unit square extruded over 0 <= z < 2, and a cylinder of radius 1 and length 2 along y.
+  const Shape3 prism =
+      ExtrudedPolygon{Polygon{{Vec<2>(0, 0), Vec<2>(1, 0), Vec<2>(1, 1), Vec<2>(0, 1)}}, 0.0, 2.0};
+  EXPECT_LT((shape_normal(prism, Vec<3>(0.5, 0.5, 2.5)) - Vec<3>(0, 0, 1)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(prism, Vec<3>(0.9, 0.5, 1.0)) - Vec<3>(1, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(prism, Vec<3>(0.5, 0.5, 0.05)) - Vec<3>(0, 0, -1)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(prism, Vec<3>(1.5, 0.5, 2.5)) - Vec<3>(r, 0, r)).norm(), 1e-15);  // round the edge
+  const Shape3 cylinder = Cylinder{Vec<3>::Zero(), Vec<3>::UnitY(), 1.0, 2.0};
+  EXPECT_LT((shape_normal(cylinder, Vec<3>(0, 1.5, 0)) - Vec<3>(0, 1, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(cylinder, Vec<3>(0, 0, 2)) - Vec<3>(0, 0, 1)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(cylinder, Vec<3>(0.9, 0, 0)) - Vec<3>(1, 0, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(cylinder, Vec<3>(0, -0.95, 0.1)) - Vec<3>(0, -1, 0)).norm(), 1e-15);
+  EXPECT_LT((shape_normal(cylinder, Vec<3>(2, 2, 0)) - Vec<3>(r, r, 0)).norm(), 1e-15);
 }
 
 // [[contact]] tables: pairs by name or "all", mu per pair, rigid bodies; clear errors.

@@ -144,8 +144,8 @@ std::vector<Section> make_sections() {
             .type = Type::Boolean,
             .def = derived("false"),
             .doc = "a rigid body: moves with its constant `velocity` (0: fixed), no stress update, a "
-                   "contact partner of infinite mass; a rectangle, polygon or disc (3D: box, sphere) gives "
-                   "the exact contact normal of its outline, moving with it"},
+                   "contact partner of infinite mass; its shape's outline gives the exact contact normal, "
+                   "moving with it"},
            {.name = "split",
             .type = Type::Boolean,
             .def = derived("false"),

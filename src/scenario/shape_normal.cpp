@@ -3,6 +3,8 @@
 // normal defines the interface; docs/method.md, "Contact").
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <initializer_list>
 #include <limits>
 #include <vector>
 
@@ -14,8 +16,10 @@ namespace {
 
 // The closed polygon v (either orientation): outside it the unit vector from the nearest
 // point of the outline to x (the outline's normal off an edge, turning round a corner);
-// inside the outward normal of the nearest edge.
-Vec<2> polygon_normal(const std::vector<Vec<2>>& v, const Vec<2>& x, bool inside) {
+// inside the outward normal of the nearest edge. `distance`, if given, gets x's distance to
+// the outline.
+Vec<2> polygon_normal(const std::vector<Vec<2>>& v, const Vec<2>& x, bool inside,
+                      double* distance = nullptr) {
   const std::size_t m = v.size();
   double area2 = 0.0;
   for (std::size_t k = 0; k < m; ++k) area2 += v[k][0] * v[(k + 1) % m][1] - v[(k + 1) % m][0] * v[k][1];
@@ -34,7 +38,52 @@ Vec<2> polygon_normal(const std::vector<Vec<2>>& v, const Vec<2>& x, bool inside
     const Vec<2> edge = turn * Vec<2>(e[1], -e[0]) / std::sqrt(len2);
     normal = inside || !(d2 > 1e-24 * len2) ? edge : Vec<2>(r / std::sqrt(d2));
   }
+  if (distance) *distance = std::sqrt(best);
   return normal;
+}
+
+// A layer's outline (Layer: bottom(x) <= y < min(top(x), surface(x)) over the x span of its
+// profiles) as a polygon: the bottom profile left to right, then the lower of top and
+// surface right to left, with the points where those two cross.
+std::vector<Vec<2>> layer_outline(const Layer& l) {
+  double lo = std::max(l.top.points.front()[0], l.bottom.points.front()[0]);
+  double hi = std::min(l.top.points.back()[0], l.bottom.points.back()[0]);
+  if (l.surface)
+    lo = std::max(lo, l.surface->points.front()[0]), hi = std::min(hi, l.surface->points.back()[0]);
+  const auto upper = [&](double x) {
+    return l.surface ? std::min(l.top.at(x), l.surface->at(x)) : l.top.at(x);
+  };
+  const auto xs_of = [&](std::initializer_list<const Profile*> profiles) {
+    std::vector<double> xs{lo, hi};
+    for (const Profile* p : profiles)
+      for (const Vec<2>& q : p->points)
+        if (q[0] > lo && q[0] < hi) xs.push_back(q[0]);
+    std::sort(xs.begin(), xs.end());
+    xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
+    return xs;
+  };
+  std::vector<Vec<2>> v;
+  for (double x : xs_of({&l.bottom})) v.emplace_back(x, l.bottom.at(x));
+  std::vector<double> xs = l.surface ? xs_of({&l.top, &*l.surface}) : xs_of({&l.top});
+  if (l.surface)  // where top and surface cross between two abscissae, both are linear
+    for (std::size_t k = 0, n = xs.size(); k + 1 < n; ++k) {
+      const double a = l.top.at(xs[k]) - l.surface->at(xs[k]),
+                   b = l.top.at(xs[k + 1]) - l.surface->at(xs[k + 1]);
+      if (a * b < 0.0) xs.push_back(xs[k] + (xs[k + 1] - xs[k]) * a / (a - b));
+    }
+  std::sort(xs.begin(), xs.end(), std::greater<>());
+  for (double x : xs) v.emplace_back(x, upper(x));
+  return v;
+}
+
+// Outward normal from the distances outside (> 0) or inside (< 0) two families of faces
+// meeting at right angles, with their unit normals n1, n2: inside, the nearer face's; outside
+// one, that face's; outside both, from the nearest edge.
+Vec<3> right_angle_normal(double d1, const Vec<3>& n1, double d2, const Vec<3>& n2) {
+  if (d1 > 0.0 && d2 > 0.0) return (d1 * n1 + d2 * n2).normalized();
+  if (d1 > 0.0) return n1;
+  if (d2 > 0.0) return n2;
+  return d1 > d2 ? n1 : n2;
 }
 
 std::vector<Vec<2>> corners(const Vec<2>& lo, const Vec<2>& hi) {
@@ -52,7 +101,9 @@ Vec<2> shape_normal(const Shape& shape, const Vec<2>& x) {
     const Vec<2> r = x - c->center;
     return r.norm() > 0.0 ? Vec<2>(r.normalized()) : Vec<2>::Zero();
   }
-  return Vec<2>::Zero();  // a layer: no outline normal
+  const Layer& l = std::get<Layer>(shape);
+  if (l.top.points.size() < 2 || l.bottom.points.size() < 2) return Vec<2>::Zero();  // no outline
+  return polygon_normal(layer_outline(l), x, shape_contains(shape, x));
 }
 
 Vec<3> shape_normal(const Shape3& shape, const Vec<3>& x) {
@@ -73,7 +124,24 @@ Vec<3> shape_normal(const Shape3& shape, const Vec<3>& x) {
       }
     return n;
   }
-  return Vec<3>::Zero();  // a cylinder, an extruded polygon: no outline normal here
+  if (const auto* e = std::get_if<ExtrudedPolygon>(&shape)) {
+    // The section's outline in x-y and the end faces in z, at right angles.
+    const Vec<2> xy(x[0], x[1]);
+    const bool in = shape_contains(Shape(e->section), xy);
+    double d = 0.0;
+    const Vec<2> n = polygon_normal(e->section.vertices, xy, in, &d);
+    const double dz = std::max(e->z_min - x[2], x[2] - e->z_max);
+    const Vec<3> nz(0.0, 0.0, x[2] - e->z_min < e->z_max - x[2] ? -1.0 : 1.0);
+    return right_angle_normal(in ? -d : d, Vec<3>(n[0], n[1], 0.0), dz, nz);
+  }
+  const auto& c = std::get<Cylinder>(shape);
+  // The mantle (radial) and the end faces (along the axis), at right angles.
+  const Vec<3> r = x - c.center;
+  const double s = r.dot(c.axis);
+  const Vec<3> radial = r - s * c.axis;
+  const Vec<3> na = s < 0.0 ? Vec<3>(-c.axis) : c.axis;
+  if (!(radial.norm() > 0.0)) return na;
+  return right_angle_normal(radial.norm() - c.radius, radial.normalized(), std::abs(s) - 0.5 * c.length, na);
 }
 
 }  // namespace skred
