@@ -1,0 +1,241 @@
+// The scenario schema's sections of the run (see schema.cpp): initial stress, gravity,
+// boundaries, solver, stages and output.
+#include "scenario/output_fields.hpp"
+#include "scenario/schema_sections.hpp"
+
+namespace skred::schema::detail {
+
+void add_run_sections(std::vector<Section>& s) {
+  s.push_back({"initial_stress",
+               "initial-stress",
+               {
+                   {.name = "k0",
+                    .type = Type::K0,
+                    .range = Range::closed(0.0, 10.0),
+                    .choices = "poisson|jaky",
+                    .doc = "\"poisson\": K0 = nu/(1 - nu) (Thesis eq. 5.7); \"jaky\": K0 = 1 - sin(phi) "
+                           "(Post eq. 51; materials without friction use nu/(1 - nu)); or a number"},
+               }});
+  s.push_back({"gravity",
+               "gravity",
+               {
+                   {.name = "acceleration",
+                    .type = Type::Vector,
+                    .unit = "m/s^2",
+                    .def = derived("0"),
+                    .range = Range::closed(-kMaxGravity, kMaxGravity),
+                    .doc = "g, for example [0, -9.81]"},
+                   {.name = "ramp_time",
+                    .unit = "s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxTime),
+                    .doc = "sine ramp of Thesis eq. 4.13; 0: full gravity from the first step"},
+               }});
+  s.push_back(
+      {"boundary",
+       "boundary",
+       {
+           {.name = "x_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall x = origin_x"},
+           {.name = "x_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "the wall x = origin_x + Lx"},
+           {.name = "y_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall y = origin_y"},
+           {.name = "y_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "the wall y = origin_y + Ly"},
+           {.name = "z_min", .type = Type::Side, .def = derived("\"free\""), .doc = "3D only: z = origin_z"},
+           {.name = "z_max",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "3D only: z = origin_z + Lz"},
+       }});
+  s.push_back(
+      {"boundary.side",
+       "boundary-side",
+       {
+           {.name = "type",
+            .type = Type::Choice,
+            .choices = "free|fixed|roller|friction",
+            .doc = "free: no constraint; fixed: no-slip; roller: free slip; friction: Coulomb friction "
+                   "(Thesis eq. 5.8-5.11)"},
+           {.name = "friction",
+            .unit = "-",
+            .def = derived("required with type = \"friction\""),
+            .range = Range::non_negative(10.0),
+            .doc = "the coefficient mu; only with type = \"friction\""},
+       }});
+  s.push_back(
+      {"solver",
+       "solver",
+       {
+           {.name = "interpolation",
+            .type = Type::Choice,
+            .def = derived("\"gimp\""),
+            .choices = "linear|gimp|gimp-quadrature|bspline",
+            .doc = "the weighting functions (Thesis §2.2, §3.3)"},
+           {.name = "quadrature_points",
+            .type = Type::Integer,
+            .def = value(2),
+            .range = Range::closed(1, 3),
+            .doc = "points per direction for \"gimp-quadrature\" (Thesis eq. 3.16-3.22); ignored otherwise"},
+           {.name = "scheme",
+            .type = Type::Choice,
+            .def = derived("\"averaged\""),
+            .choices = "usf|usl|averaged",
+            .doc = "the stress update scheme (Thesis §4.4)"},
+           {.name = "end_time",
+            .unit = "s",
+            .def = derived("required without [[stage]]"),
+            .range = Range::positive(kMaxTime),
+            .doc = "not allowed with [[stage]] tables: their durations add up to the end time"},
+           {.name = "time_step",
+            .unit = "s",
+            .def = none("from `cfl`"),
+            .range = Range::closed(kMinTimeStep, kMaxTimeStep),
+            .doc = "a fixed time step; must not exceed the stable step h / c (see below)"},
+           {.name = "cfl",
+            .unit = "-",
+            .def = value(0.3),
+            .range = Range{0.0, 1.0, true, false},
+            .doc = "dt = cfl h / (c + v0), c the fastest P-wave speed, v0 the fastest initial speed"},
+           {.name = "allow_unstable_time_step",
+            .type = Type::Boolean,
+            .def = derived("false"),
+            .doc = "true accepts a `time_step` above the stable step with a warning"},
+           {.name = "elastic_update",
+            .type = Type::Choice,
+            .def = derived("\"incremental\""),
+            .choices = "incremental|hyperelastic",
+            .doc = "linear-elastic materials: \"incremental\", sigma^k + C : d_eps pushed forward "
+                   "through dF (Thesis eq. 4.1-4.4), or \"hyperelastic\", the stress of the stored "
+                   "energy W = G sum (l_i - 1)^2 + lambda/2 (sum (l_i - 1))^2 of F, which stores and "
+                   "returns exactly the energy of F at large elastic strains (docs/method.md)"},
+           {.name = "velocity_transfer",
+            .type = Type::Choice,
+            .def = derived("\"flip\""),
+            .choices = "flip|xpic|apic",
+            .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
+                   "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
+                   "al. 2015); all three work with [[contact]] and rigid bodies"},
+           {.name = "xpic_order",
+            .type = Type::Integer,
+            .def = value(2),
+            .range = Range::closed(1, 20),
+            .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
+                   "over the points"},
+           {.name = "pic_fraction",
+            .unit = "-",
+            .def = value(0),
+            .range = Range::closed(0.0, 1.0),
+            .doc = "PIC share a of the particle velocity update: v_p = (1 - a) v_FLIP + a sum N_ip "
+                   "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56; \"flip\" only"},
+       }});
+  s.push_back(
+      {"stage",
+       "stage",
+       {
+           {.name = "name", .type = Type::String, .def = derived("\"stage-I\""), .doc = "any"},
+           {.name = "duration",
+            .unit = "s",
+            .range = Range::positive(kMaxTime),
+            .doc = "the stage ends at this time at the latest"},
+           {.name = "gravity_ramp_time",
+            .unit = "s",
+            .def = value(0),
+            .range = Range::non_negative(kMaxTime),
+            .doc = "<= duration; sine ramp of Thesis eq. 4.13 from the stage start; 0: full gravity"},
+           {.name = "elastic",
+            .type = Type::Boolean,
+            .def = derived("false"),
+            .doc = "true holds every material linear elastic (an equilibrium stage)"},
+           {.name = "strength_reduction",
+            .unit = "-",
+            .def = value(1),
+            .range = Range::closed(1.0, 100.0),
+            .doc = "c, tan(phi) and tan(psi) are divided by it"},
+           {.name = "material",
+            .type = Type::Tables,
+            .def = none(),
+            .doc = "strength changes for this stage (stage.material, below)"},
+           {.name = "rest_speed",
+            .unit = "m/s",
+            .def = value(0),
+            .range = Range::non_negative(kMaxSpeed),
+            .doc = "0: off; the stage also ends once the mean speed (Thesis eq. 5.12) has stayed "
+                   "below it for `rest_time`"},
+           {.name = "rest_time",
+            .unit = "s",
+            .def = derived("required with rest_speed"),
+            .range = Range::positive(kMaxTime),
+            .doc = "see `rest_speed`"},
+           {.name = "local_damping",
+            .unit = "-",
+            .def = value(0),
+            .range = Range::closed(0.0, 0.99),
+            .doc = "0: off; Cundall-type local damping alpha for an equilibrium stage: each node feels "
+                   "-alpha |f| sign(v) per component (f its unbalanced force); its work is the "
+                   "series.csv column `damping_work`; not with contact"},
+       }});
+  s.push_back({"stage.material",
+               "stage-material",
+               {
+                   {.name = "name", .type = Type::String, .doc = "the `name` of a [[material]]"},
+                   {.name = "friction",
+                    .unit = "deg",
+                    .def = none("the material's"),
+                    .range = Range{0.0, 90.0, false, true},
+                    .doc = "phi; mohr-coulomb only"},
+                   {.name = "cohesion",
+                    .unit = "Pa",
+                    .def = none("the material's"),
+                    .range = Range::non_negative(1e12),
+                    .doc = "c (> 0 for tresca and von-mises, whose residual cohesion it scales too)"},
+                   {.name = "dilation",
+                    .unit = "deg",
+                    .def = none("the material's"),
+                    .range = Range{0.0, 90.0, false, true},
+                    .doc = "psi <= phi; mohr-coulomb only"},
+                   {.name = "density",
+                    .unit = "kg/m^3",
+                    .def = none("unchanged"),
+                    .range = Range::closed(1e-3, 1e6),
+                    .doc = "a trigger (Paper III §C.3, rainfall): the points' density becomes this, over "
+                           "`density_ramp_time`, and stays so in later stages"},
+                   {.name = "density_ramp_time",
+                    .unit = "s",
+                    .def = value(0),
+                    .range = Range::non_negative(kMaxTime),
+                    .doc = "<= the stage duration; the density follows (1 - cos(pi t / T)) / 2 from the "
+                           "stage start; 0: at once"},
+               }});
+  s.push_back({"output",
+               "output",
+               {
+                   {.name = "interval",
+                    .unit = "s",
+                    .def = derived("end_time / 20"),
+                    .range = Range::positive(kMaxTime),
+                    .doc = "simulated time between particle frames; at most 100000 frames"},
+                   {.name = "series_interval",
+                    .unit = "s",
+                    .def = derived("interval / 10"),
+                    .range = Range::positive(kMaxTime),
+                    .doc = "simulated time between rows of series.csv; at most 10^7 rows"},
+                   {.name = "fields",
+                    .type = Type::Fields,
+                    .def = derived(output_fields::kDefault),
+                    .choices = output_fields::kAll,
+                    .doc = "the cell fields of each particle frame: `\"default\"` (the default column), "
+                           "`\"all\"`, or a list of names, which may hold `\"default\"`; "
+                           "docs/post-processing.md describes each"},
+                   {.name = "compression",
+                    .type = Type::Boolean,
+                    .def = derived("true"),
+                    .doc = "zlib-compress the arrays of the particle and grid frames (VTK's "
+                           "vtkZLibDataCompressor; ParaView reads both)"},
+               }});
+}
+
+}  // namespace skred::schema::detail
