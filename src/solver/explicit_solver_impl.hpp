@@ -535,54 +535,6 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
   });
 }
 
-// The rigid bodies' points (contact runs): no stress update; x_p += dt v (only when the body
-// moves), then their mass and momentum mapped into their body's fields for the next step
-// (their mass gives the contact normal). `all` grows by their extent. Returns the first point
-// that left the grid, or LONG_MAX.
-template <int D>
-template <class K>
-long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
-  const ContactSettings<D>& c = settings_.contact;
-  const GridGeometry<D>& g = grid();
-  const NodeStrides<D> strides = transfer_.strides();
-  auto& P = particles_;
-  const long n = static_cast<long>(P.size());
-  const double dt = settings_.dt;
-  typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-  ScatterBuffers<D>& buffers = transfer_.scatter();
-  long first_bad = LONG_MAX;
-  for (int b = 0; b < c.bodies(); ++b) {
-    if (!c.rigid[static_cast<std::size_t>(b)]) continue;
-    GridFields<D>& f = bodies_[static_cast<std::size_t>(b)];
-    const Vec<D> vr = c.rigid_velocity[static_cast<std::size_t>(b)];
-    const bool moving = vr.squaredNorm() > 0.0;
-    long bad = LONG_MAX;
-    Extent<D> extent;
-#pragma omp parallel num_threads(threads()) reduction(min : bad) reduction(merge : extent)
-    {
-      const int t = omp_get_thread_num();
-      double* __restrict mass = buffers.mass_target(t, f.mass.data());
-      Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
-      BaseSpan span;
-#pragma omp for schedule(static) nowait
-      for (long p = 0; p < n; ++p) {
-        if (P.body[p] != b) continue;
-        if (moving) P.x[p] += dt * vr;
-        if (!g.inside(P.x[p]) || !map_point(kernel, g, strides, P.x[p], P.half0[p], P.F[p], P.mass[p], vr,
-                                            shape[p], mass, mom, span))
-          bad = std::min(bad, p);
-        extent.add(P.x[p]);
-      }
-      buffers.touched(t, span);
-    }
-    transfer_.set_box(extent);
-    transfer_.reduce(f.mass.data(), f.momentum.data());
-    first_bad = std::min(first_bad, bad);
-    all.merge(extent);
-  }
-  return first_bad;
-}
-
 // XPIC(m) (Hammerquist & Nairn 2017): the points take sum N_ip (v_i^{k+1} - p_i / m_i + v*_i),
 // i.e. FLIP without the part of v_p^k the grid cannot represent; under the velocity conditions.
 // With contact, each deformable body's v* from its own m_i^b, p_i^b and points, and its
@@ -603,3 +555,5 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
 }
 
 }  // namespace skred
+
+#include "solver/contact_impl.hpp"  // the kernel-templated phases of contact runs

@@ -1,0 +1,62 @@
+// The kernel-templated phases of a run with contact (Paper III §C.2.7): the rigid bodies'
+// points. Included only by explicit_solver_impl.hpp; the grid phases of contact are in
+// contact.cpp.
+#pragma once
+#include <omp.h>
+
+#include <climits>
+
+#include "solver/explicit_solver.hpp"
+#include "transfer/transfers.hpp"
+
+namespace skred {
+
+// The rigid bodies' points (contact runs): no stress update; x_p += dt v (only when the body
+// moves), then their mass and momentum mapped into their body's fields for the next step
+// (their mass gives the contact normal). `all` grows by their extent. Returns the first point
+// that left the grid, or LONG_MAX.
+template <int D>
+template <class K>
+long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
+  const ContactSettings<D>& c = settings_.contact;
+  const GridGeometry<D>& g = grid();
+  const NodeStrides<D> strides = transfer_.strides();
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  const double dt = settings_.dt;
+  typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+  ScatterBuffers<D>& buffers = transfer_.scatter();
+  long first_bad = LONG_MAX;
+  for (int b = 0; b < c.bodies(); ++b) {
+    if (!c.rigid[static_cast<std::size_t>(b)]) continue;
+    GridFields<D>& f = bodies_[static_cast<std::size_t>(b)];
+    const Vec<D> vr = c.rigid_velocity[static_cast<std::size_t>(b)];
+    const bool moving = vr.squaredNorm() > 0.0;
+    long bad = LONG_MAX;
+    Extent<D> extent;
+#pragma omp parallel num_threads(threads()) reduction(min : bad) reduction(merge : extent)
+    {
+      const int t = omp_get_thread_num();
+      double* __restrict mass = buffers.mass_target(t, f.mass.data());
+      Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
+      BaseSpan span;
+#pragma omp for schedule(static) nowait
+      for (long p = 0; p < n; ++p) {
+        if (P.body[p] != b) continue;
+        if (moving) P.x[p] += dt * vr;
+        if (!g.inside(P.x[p]) || !map_point(kernel, g, strides, P.x[p], P.half0[p], P.F[p], P.mass[p], vr,
+                                            shape[p], mass, mom, span))
+          bad = std::min(bad, p);
+        extent.add(P.x[p]);
+      }
+      buffers.touched(t, span);
+    }
+    transfer_.set_box(extent);
+    transfer_.reduce(f.mass.data(), f.momentum.data());
+    first_bad = std::min(first_bad, bad);
+    all.merge(extent);
+  }
+  return first_bad;
+}
+
+}  // namespace skred
