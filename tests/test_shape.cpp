@@ -84,6 +84,16 @@ TEST(Shape, Quadrature1x1) { check_invariants<2>(GimpQuadratureKernel<2, 1>{}, f
 TEST(Shape, Quadrature2x2) { check_invariants<2>(GimpQuadratureKernel<2, 2>{}, false, shear<2>(), 0.1); }
 TEST(Shape, Quadrature3x3) { check_invariants<2>(GimpQuadratureKernel<2, 3>{}, false, shear<2>(), 0.1); }
 TEST(Shape, Quadrature3D) { check_invariants<3>(GimpQuadratureKernel<3, 2>{}, false, shear<3>(), 0.1); }
+// A needle voxel (stretched 12 times along a sheared axis: 6 cells long) is drawn in to fit
+// the kernel's block instead of being refused ("left the grid"), keeping every invariant.
+TEST(Shape, QuadratureNeedleVoxelIsDrawnIn) {
+  Mat<2> F = shear<2>();
+  F.col(0) *= 12.0;
+  check_invariants<2>(GimpQuadratureKernel<2, 2>{}, false, F, 0.3);
+  Mat<3> F3 = shear<3>();
+  F3.col(1) *= 12.0;
+  check_invariants<3>(GimpQuadratureKernel<3, 2>{}, false, F3, 0.3);
+}
 
 // Thesis fig. 3.9-3.10: L = 1, l_p = 1/4 (2 x 2 points per cell). One Gauss point gives the
 // linear shape functions; 2x2 and 3x3 approach the analytic GIMP functions, and a voxel

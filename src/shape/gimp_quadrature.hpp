@@ -86,12 +86,34 @@ struct GimpQuadratureKernel {
         hi[d] = std::max(hi[d], c);
       }
     }
+    // A voxel drawn out over more than three cells along an axis (a needle) has its Gauss
+    // points drawn in towards x_p along it until they span less than two cells, as GIMP caps
+    // its half-length (gimp.hpp): the weights keep their sum and first moment (the points are
+    // symmetric about x_p), and a needle does not stop the run.
+    for (int d = 0; d < D; ++d) {
+      double a = xi_gp[0][d], b = a;  // (the cells of lo, hi are clamped at the high wall)
+      for (int k = 1; k < NGP; ++k) a = std::min(a, xi_gp[k][d]), b = std::max(b, xi_gp[k][d]);
+      if (std::floor(b) - std::floor(a) <= S - 2) continue;
+      const double xc = (x[d] - g.origin[d]) * inv_h;
+      double reach = 0.0;
+      for (int k = 0; k < NGP; ++k) reach = std::max(reach, std::abs(xi_gp[k][d] - xc));
+      const double scale = 0.99 / reach;
+      lo[d] = 1 << 30;
+      hi[d] = -(1 << 30);
+      for (int k = 0; k < NGP; ++k) {
+        xi_gp[k][d] = xc + (xi_gp[k][d] - xc) * scale;
+        int c = static_cast<int>(std::floor(xi_gp[k][d]));
+        if (c == g.cells[d]) c = g.cells[d] - 1;
+        lo[d] = std::min(lo[d], c);
+        hi[d] = std::max(hi[d], c);
+      }
+    }
     std::array<int, D> start{};
     for (int d = 0; d < D; ++d) {
       // Shift the block inwards at the high wall so it stays inside the grid.
       start[d] = std::clamp(lo[d] + GridGeometry<D>::pad, 0, g.nodes(d) - S);
       if (lo[d] + GridGeometry<D>::pad < start[d] || hi[d] + GridGeometry<D>::pad + 1 > start[d] + S - 1)
-        return false;  // outside the grid, or the voxel spans more than three cells
+        return false;  // outside the grid
     }
     if (!block_base<D, S>(g, start, st.base)) return false;
     st.w.fill(0.0);
