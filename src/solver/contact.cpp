@@ -276,16 +276,20 @@ void ExplicitSolver<D>::prepare_contact() {
   ContactSettings<D>& c = settings_.contact;
   std::vector<double> mass(static_cast<std::size_t>(c.bodies()), 0.0), volume(mass);
   const auto& P = particles_;
+  // A dilated continuum's points count with its parent's (Paper III §C.3.2).
+  const auto family = [&](std::size_t b) {
+    return b < c.parent.size() && c.parent[b] >= 0 ? static_cast<std::size_t>(c.parent[b]) : b;
+  };
   for (std::size_t p = 0; p < P.size(); ++p) {
     const auto b = static_cast<std::size_t>(P.body[p]);
     if (b >= mass.size()) continue;
-    mass[b] += P.mass[p];
-    volume[b] += P.volume0[p];
+    mass[family(b)] += P.mass[p];
+    volume[family(b)] += P.volume0[p];
   }
   for (BodyFields<D>& f : bodies_) f.velocity_shift.resize(grid().node_count());
   c.volume_per_mass.assign(mass.size(), 0.0);
   for (std::size_t b = 0; b < mass.size(); ++b)
-    c.volume_per_mass[b] = mass[b] > 0.0 ? volume[b] / mass[b] : 0.0;
+    c.volume_per_mass[b] = mass[family(b)] > 0.0 ? volume[family(b)] / mass[family(b)] : 0.0;
   // The outline normals of the fixed rigid bodies at every node, once (they do not move).
   outline_normals_.assign(mass.size(), {});
   for (std::size_t b = 0; b < mass.size() && b < c.outline_normal.size(); ++b) {

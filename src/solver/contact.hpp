@@ -42,6 +42,10 @@ struct ContactSettings {
   // Per body id: reference volume per unit mass (1 / mean density of its points), set by the
   // solver from the points; turns a nodal mass into the volume it fills.
   std::vector<double> volume_per_mass;
+  // Per body id (may be empty): the body a dilated continuum takes its points from (Paper III
+  // §C.3.2), else -1. The two share one volume_per_mass, from the points of both, which stays
+  // the same as points move from one to the other (and is there while the continuum is empty).
+  std::vector<int> parent;
 
   int bodies() const { return static_cast<int>(rigid.size()); }
   bool enabled() const { return !rigid.empty(); }
@@ -52,6 +56,7 @@ struct ContactSettings {
     rigid_velocity.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
     outline_normal.assign(static_cast<std::size_t>(n), {});
     friction.assign(static_cast<std::size_t>(n * n), kBonded);
+    parent.assign(static_cast<std::size_t>(n), -1);
     order.clear();
     for (int b = 0; b < n; ++b) order.push_back(b);
   }
