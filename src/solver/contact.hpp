@@ -23,12 +23,13 @@ inline constexpr double kContactFill = 0.8;
 
 // A dilated continuum (Paper III §C.3.2) that fills less than this fraction of the support of
 // every node within two nodes of a node (per axis) moves with its parent at the node, as if
-// its points had not left it. Its own contact needs a region of dilated points: alone, a
-// point in its own continuum has no neighbours to balance its stress, whose nodal forces the
-// mass-gradient normals of the sand around it turn into a net push (in Rubjerg Knude one such
-// point reached 52 m/s and the run became unstable). A lone point fills at most 0.11 of a
-// node (3 x 3 points per cell; 0.25 with 2 x 2), a cell full of them 0.25; a region two
-// cells across fills a node entirely, and a band's interface nodes half.
+// its points had not left it: it has contact of its own only as a region about two cells
+// across (which fills its inner nodes entirely). Alone, or as a string or band one cell
+// thick (at most 0.11 of a node for a lone point with 3 x 3 points per cell, 0.25 for a cell
+// full of them, 0.5 for a band a cell thick), a point in its own continuum has too few
+// neighbours to balance its stress, whose nodal forces the mass-gradient normals of the
+// sand around it turn into a net push: in Rubjerg Knude such points reached 50-150 m/s and
+// the run became unstable with 0.3 (and with no limit).
 inline constexpr double kDilatedFill = 0.6;
 
 // Friction coefficient that marks a bonded pair: the two bodies share one velocity at their
