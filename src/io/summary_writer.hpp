@@ -32,6 +32,10 @@ struct StageMeasures {
   // Stage time after which the mean speed stayed below the rest speed (or, without a rest
   // criterion, below 1 % of its peak); empty if the material was still moving at the end.
   std::optional<double> stop_time;
+  // Dilation cut-off as a new continuum (Paper III §C.3.2): the points that joined a dilated
+  // continuum during the stage, and the stage times of the first and the last move.
+  long dilated_points = 0;
+  std::optional<double> dilated_first_time, dilated_last_time;
 };
 
 struct Summary {

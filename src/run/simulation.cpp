@@ -20,6 +20,7 @@
 #include "post/material_strength.hpp"
 #include "run/checkpointing.hpp"
 #include "run/density_trigger.hpp"
+#include "run/dilation_continuum.hpp"
 #include "run/slide_measures.hpp"
 #include "run/stability.hpp"
 #include "run/version.hpp"
@@ -43,7 +44,8 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   st.boundaries = s.boundaries;
   st.pic_fraction = s.pic_fraction;
   // Contact (Paper III §C.2.7): every body its own fields when a pair has contact or a body
-  // is rigid; pairs without a [[contact]] entry stay bonded; hierarchy in body order.
+  // is rigid; pairs without a [[contact]] entry stay bonded; hierarchy in body order, each
+  // dilated continuum right after its parent (Paper III §C.3.2).
   const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
   if (!s.contacts.empty() || rigid) {
     st.contact.resize(static_cast<int>(s.bodies.size()));
@@ -56,6 +58,14 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
         };
     }
     for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
+    st.contact.order.clear();
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+      st.contact.parent[b] = s.bodies[b].dilated_from;
+      if (s.bodies[b].dilated_from >= 0) continue;
+      st.contact.order.push_back(static_cast<int>(b));
+      for (std::size_t d = 0; d < s.bodies.size(); ++d)
+        if (s.bodies[d].dilated_from == static_cast<int>(b)) st.contact.order.push_back(static_cast<int>(d));
+    }
   }
   st.velocity_transfer = s.velocity_transfer;
   st.hyperelastic = s.hyperelastic;
@@ -197,6 +207,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     series.flush();
   };
 
+  const DilationContinua dilation(s);  // Paper III §C.3.2 (empty without dilated continua)
   const double dt = solver.dt();
   // The instability detector (run/stability.hpp): a step above the stable limit stops the run
   // before it starts; afterwards every series row and every frame is checked.
@@ -273,6 +284,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
       if (!density.empty() && density.apply(particles, solver.time() - stage_start))
         solver.particles_changed();
+      if (!dilation.empty())  // Paper III §C.3.2: dilated points join the new continuum
+        if (const long moved = dilation.apply(particles, solver.threads()); moved > 0) {
+          tracker.dilated(moved, solver.time());
+          solver.particles_changed();
+        }
       if (!s.splitting.body_splits.empty() && split_points(particles, s.splitting) > 0)
         solver.particles_changed();  // Thesis §3.4
       const auto t0 = Clock::now();

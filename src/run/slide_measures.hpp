@@ -62,6 +62,9 @@ void archive_measures(A& a, StageMeasures& m) {
   a(m.plastic_volume);
   a(m.plastic_points);
   a(m.stop_time);
+  a(m.dilated_points);
+  a(m.dilated_first_time);
+  a(m.dilated_last_time);
 }
 
 // Follows one stage: record the start, observe the mean speed as the run goes, finish.
@@ -83,6 +86,13 @@ class StageTracker {
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
                        double gravity_work, double strain_energy, double plastic_dissipation,
                        const std::string& ended_by) const;
+  // Records `moved` points that joined a dilated continuum at `time` (Paper III §C.3.2).
+  void dilated(long moved, double time) {
+    if (moved <= 0) return;
+    m_.dilated_points += moved;
+    if (!m_.dilated_first_time) m_.dilated_first_time = time - m_.start_time;
+    m_.dilated_last_time = time - m_.start_time;
+  }
   // Current runout and deposit height, for the series rows.
   double runout(const Particles<D>& P) const;
   double kinetic_start() const { return kinetic_start_; }  // kinetic energy at the stage start

@@ -19,7 +19,7 @@ void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
     later = static_cast<std::size_t>(&body - s.bodies.data()) + 1;
   const auto claimed_later = [&](const Vec<D>& x) {
     for (std::size_t k = later; k < s.bodies.size(); ++k)
-      if (shape_contains(s.bodies[k].shape, x)) return true;
+      if (s.bodies[k].dilated_from < 0 && shape_contains(s.bodies[k].shape, x)) return true;
     return false;
   };
   const double h = s.cell_size;
@@ -80,8 +80,8 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
   std::vector<std::size_t> counts;
   std::size_t total = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    counts.push_back(count_points(s, s.bodies[i]));
-    if (counts.back() == 0)
+    counts.push_back(s.bodies[i].dilated_from >= 0 ? 0 : count_points(s, s.bodies[i]));
+    if (counts.back() == 0 && s.bodies[i].dilated_from < 0)
       throw ScenarioError(
           fmt::format("{}: key 'body[{}].shape': body '{}' contains no material point on this grid "
                       "(cell size {} m, {} points per cell); enlarge the shape or refine the grid",
@@ -92,6 +92,7 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
   p.reserve(total);
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
     const BodyOf<D>& b = s.bodies[i];
+    if (b.dilated_from >= 0) continue;  // a dilated continuum starts empty (Paper III §C.3.2)
     const Material& mat = s.materials.at(static_cast<std::size_t>(b.material));
     const double sub = s.cell_size / b.particles_per_cell;
     double volume = sub;

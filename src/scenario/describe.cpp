@@ -117,6 +117,11 @@ std::string describe(const ScenarioOf<D>& s) {
                      m.density, m.elastic.young, m.elastic.poisson, strength_summary(m)));
   line(fmt::format("bodies ({}):", s.bodies.size()));
   for (const auto& b : s.bodies) {
+    if (b.dilated_from >= 0) {  // Paper III §C.3.2
+      line(fmt::format("  {}: dilated continuum of {} (starts empty; its points reach max_void_ratio)",
+                       b.name, s.bodies[static_cast<std::size_t>(b.dilated_from)].name));
+      continue;
+    }
     const std::string mat = b.material >= 0 && static_cast<std::size_t>(b.material) < s.materials.size()
                                 ? s.materials[static_cast<std::size_t>(b.material)].name
                                 : "?";

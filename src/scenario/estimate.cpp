@@ -89,7 +89,8 @@ template <int D>
 ScenarioSize estimate_size(const ScenarioOf<D>& s) {
   ScenarioSize z;
   for (const BodyOf<D>& b : s.bodies)
-    z.points += measure(b.shape) * std::pow(b.particles_per_cell / s.cell_size, D);
+    if (b.dilated_from < 0)  // a dilated continuum's points are its parent's
+      z.points += measure(b.shape) * std::pow(b.particles_per_cell / s.cell_size, D);
   z.nodes = 1.0;
   for (int c : s.cells) z.nodes *= c + 1.0;
   z.steps = std::ceil(s.end_time / scenario_time_step(s));

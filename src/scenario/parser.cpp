@@ -468,6 +468,7 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
   scenario_detail::parse_gravity<D>(root, s);
   scenario_detail::parse_boundary<D>(root, s);
   scenario_detail::parse_contacts<D>(root, s);
+  scenario_detail::add_dilation_continua<D>(root, s);
   parse_initial_stress(root, s);
   parse_solver(root, s);
   const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });

@@ -69,6 +69,10 @@ void parse_boundary(const TableReader& root, ScenarioOf<D>& s);
 // The [[contact]] tables (parser_contact.cpp), after the bodies.
 template <int D>
 void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
+// The dilated continua (Paper III §C.3.2; parser_dilation.cpp), after the contacts and the
+// splitting: one more body per deformable body whose material has the dilation cut-off.
+template <int D>
+void add_dilation_continua(const TableReader& root, ScenarioOf<D>& s);
 
 // Layered ground (parser_ground.cpp): the [ground] surface, a "layer" body's profiles, and
 // the check that no two bodies claim the same points (unless the later one wins).

@@ -94,6 +94,10 @@ struct BodyOf {
   // A rigid body moves with the constant `velocity` (zero: fixed), has no stress update and
   // takes part in contact (Paper III §C.2.7) as a partner of infinite mass.
   bool rigid = false;
+  // A dilated continuum (Paper III §C.3.2): the id of the body whose points join this one
+  // once they reach the maximum void ratio; it has no points at the start. -1: a body of the
+  // file. These bodies follow the file's bodies (scenario/parser_dilation.cpp).
+  int dilated_from = -1;
 };
 using Body = BodyOf<2>;
 using Body3 = BodyOf<3>;
@@ -177,7 +181,9 @@ struct ScenarioCommon {
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
 
-  // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables.
+  // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables, each
+  // dilated continuum right after its parent (Paper III §C.3.2). Holds the pairs of the
+  // dilated continua too.
   std::vector<ContactPair> contacts;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
   bool hyperelastic = false;                                    // solver.elastic_update = "hyperelastic"

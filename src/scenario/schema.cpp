@@ -142,6 +142,14 @@ void add_model_sections(std::vector<Section>& s) {
             .type = Type::Boolean,
             .def = derived("false"),
             .doc = "true: the body's points split when they deform too much (Thesis §3.4; [splitting])"},
+           {.name = "dilation_continuum",
+            .type = Type::Boolean,
+            .def = derived("true in a run with [[contact]] for a deformable body whose material has the "
+                           "dilation cut-off (mohr-coulomb with max_void_ratio), else false"),
+            .doc = "Paper III §C.3.2: the body's points that reach max_void_ratio join a new body "
+                   "\"NAME_dilated\", which slides on this one with mu = tan(phi) of its material and has "
+                   "this body's contacts with the others (true turns contact on in a run without "
+                   "[[contact]]); false: the cut-off only sets psi = 0"},
            {.name = "shape",
             .type = Type::Choice,
             .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",

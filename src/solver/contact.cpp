@@ -49,6 +49,28 @@ Vec<D> mass_gradient(const GridGeometry<D>& g, const double* __restrict mass, st
   return grad;
 }
 
+// The largest nodal mass within two nodes of node i along every axis (nodes beyond the
+// grid's edge left out): a region of points fills some node near each of its nodes; a lone
+// point fills none.
+template <int D>
+double nearby_max_mass(const GridGeometry<D>& g, const double* __restrict mass, std::size_t i,
+                       const std::array<int, D>& ij) {
+  constexpr int R = 2, W = 2 * R + 1;
+  constexpr int count = D == 2 ? W * W : W * W * W;
+  double most = 0.0;
+  for (int o = 0; o < count; ++o) {
+    long j = static_cast<long>(i);
+    bool inside = true;
+    for (int d = 0, r = o; d < D; ++d, r /= W) {
+      const int node = ij[d] + r % W - R;
+      inside = inside && node >= 0 && node < g.nodes(d);
+      j += (r % W - R) * static_cast<long>(g.stride(d));
+    }
+    if (inside) most = std::max(most, mass[j]);
+  }
+  return most;
+}
+
 }  // namespace
 
 // v_i^k,b = p_i^b / m_i^b under the velocity boundary conditions (eq. 2.23) for each
@@ -220,10 +242,49 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     for (int k = 0; k < count; ++k)
       volume += bodies_[static_cast<std::size_t>(present[k])].mass[i] *
                 c.volume_per_mass[static_cast<std::size_t>(present[k])];
-    if (volume < kContactFill * support) return;
+    // A dilated continuum (Paper III §C.3.2) that fills less than kDilatedFill of the support
+    // of every node within two (nearby_max_mass) moves with its parent at this node: merged into it
+    // (mass, momentum and mass gradient added; the velocities joined as a bonded pair's), and given its
+    // velocity after the contact rule. `merged` maps the continua present (`ids`) to the entries resolved.
+    int ids[kMaxContactBodies], merged[kMaxContactBodies];
+    const int all = count;
     ContactLoss sum;
+    bool any_merged = false;
+    for (int k = 0; k < all; ++k) ids[k] = present[k], merged[k] = k;
+    for (int k = 0; k < all && !c.parent.empty(); ++k) {
+      const auto b = static_cast<std::size_t>(ids[k]);
+      if (c.parent[b] < 0 || nearby_max_mass<D>(g, bodies_[b].mass.data(), i, ij) * c.volume_per_mass[b] >=
+                                 kDilatedFill * support)
+        continue;
+      int j = 0;
+      while (j < all && ids[j] != c.parent[b]) ++j;
+      if (j == all) continue;  // the parent is not here
+      const double M = m[j] + m[k];
+      sum.normal += 0.5 * m[j] * m[k] / M * Vec<D>(v[k] - v[j]).dot(v0[k] - v0[j]);  // as a bonded pair
+      v[j] = (m[j] * v[j] + m[k] * v[k]) / M;
+      v0[j] = (m[j] * v0[j] + m[k] * v0[k]) / M;
+      grad[j] += grad[k];
+      m[j] = M;
+      merged[k] = j;
+      any_merged = true;
+    }
+    if (any_merged) {  // compact the entries left, in hierarchy order
+      int slot[kMaxContactBodies];
+      count = 0;
+      for (int k = 0; k < all; ++k)
+        if (merged[k] == k) slot[k] = count++;
+      for (int k = 0; k < all; ++k)
+        if (merged[k] == k) {
+          const int n = slot[k];  // <= k: in place
+          present[n] = ids[k], m[n] = m[k], v[n] = v[k], v0[n] = v0[k], grad[n] = grad[k],
+          outline[n] = outline[k];
+        }
+      for (int k = 0; k < all; ++k) merged[k] = slot[merged[k]];
+    }
+    if (!any_merged && volume < kContactFill * support) return;
+    const bool resolve = count >= 2 && volume >= kContactFill * support;
     Vec<D> upper = grad[0];  // gradient of the combined mass of the continua above k
-    for (int k = 1; k < count; ++k) {
+    for (int k = 1; resolve && k < count; ++k) {
       // A fixed rigid body's outline gives the exact normal: its own as continuum k, or the
       // master's (n = -n^1) for the second continuum at the node.
       const Vec<D> exact = outline[k].squaredNorm() > 0.0 ? outline[k]
@@ -240,9 +301,9 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       }
       upper += grad[k];
     }
-    for (int k = 0; k < count; ++k) {
-      const auto b = static_cast<std::size_t>(present[k]);
-      if (!c.rigid[b]) set(bodies_[b], i, v[k]);
+    for (int k = 0; k < all; ++k) {
+      const auto b = static_cast<std::size_t>(ids[k]);
+      if (!c.rigid[b]) set(bodies_[b], i, v[merged[k]]);
     }
     double* s = &contact_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())];
     s[0] += sum.normal;
@@ -290,16 +351,20 @@ void ExplicitSolver<D>::prepare_contact() {
   ContactSettings<D>& c = settings_.contact;
   std::vector<double> mass(static_cast<std::size_t>(c.bodies()), 0.0), volume(mass);
   const auto& P = particles_;
+  // A dilated continuum's points count with its parent's (Paper III §C.3.2).
+  const auto family = [&](std::size_t b) {
+    return b < c.parent.size() && c.parent[b] >= 0 ? static_cast<std::size_t>(c.parent[b]) : b;
+  };
   for (std::size_t p = 0; p < P.size(); ++p) {
     const auto b = static_cast<std::size_t>(P.body[p]);
     if (b >= mass.size()) continue;
-    mass[b] += P.mass[p];
-    volume[b] += P.volume0[p];
+    mass[family(b)] += P.mass[p];
+    volume[family(b)] += P.volume0[p];
   }
   for (BodyFields<D>& f : bodies_) f.velocity_shift.resize(grid().node_count());
   c.volume_per_mass.assign(mass.size(), 0.0);
   for (std::size_t b = 0; b < mass.size(); ++b)
-    c.volume_per_mass[b] = mass[b] > 0.0 ? volume[b] / mass[b] : 0.0;
+    c.volume_per_mass[b] = mass[family(b)] > 0.0 ? volume[family(b)] / mass[family(b)] : 0.0;
   // The outline normals of the fixed rigid bodies at every node, once (they do not move).
   outline_normals_.assign(mass.size(), {});
   for (std::size_t b = 0; b < mass.size() && b < c.outline_normal.size(); ++b) {

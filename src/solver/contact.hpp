@@ -21,6 +21,17 @@ inline constexpr int kMaxContactBodies = 32;
 // touch) or become unstable as they part without it.
 inline constexpr double kContactFill = 0.8;
 
+// A dilated continuum (Paper III §C.3.2) that fills less than this fraction of the support of
+// every node within two nodes of a node (per axis) moves with its parent at the node, as if
+// its points had not left it: it has contact of its own only as a region about two cells
+// across (which fills its inner nodes entirely). Alone, or as a string or band one cell
+// thick (at most 0.11 of a node for a lone point with 3 x 3 points per cell, 0.25 for a cell
+// full of them, 0.5 for a band a cell thick), a point in its own continuum has too few
+// neighbours to balance its stress, whose nodal forces the mass-gradient normals of the
+// sand around it turn into a net push: in Rubjerg Knude such points reached 50-150 m/s and
+// the run became unstable with 0.3 (and with no limit).
+inline constexpr double kDilatedFill = 0.6;
+
 // Friction coefficient that marks a bonded pair: the two bodies share one velocity at their
 // common nodes, as every body does without contact.
 inline constexpr double kBonded = -1.0;
@@ -42,6 +53,10 @@ struct ContactSettings {
   // Per body id: reference volume per unit mass (1 / mean density of its points), set by the
   // solver from the points; turns a nodal mass into the volume it fills.
   std::vector<double> volume_per_mass;
+  // Per body id (may be empty): the body a dilated continuum takes its points from (Paper III
+  // §C.3.2), else -1. The two share one volume_per_mass, from the points of both, which stays
+  // the same as points move from one to the other (and is there while the continuum is empty).
+  std::vector<int> parent;
 
   int bodies() const { return static_cast<int>(rigid.size()); }
   bool enabled() const { return !rigid.empty(); }
@@ -52,6 +67,7 @@ struct ContactSettings {
     rigid_velocity.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
     outline_normal.assign(static_cast<std::size_t>(n), {});
     friction.assign(static_cast<std::size_t>(n * n), kBonded);
+    parent.assign(static_cast<std::size_t>(n), -1);
     order.clear();
     for (int b = 0; b < n; ++b) order.push_back(b);
   }
