@@ -21,7 +21,7 @@ namespace skred {
 
 inline constexpr char kCheckpointMagic[8] = {'S', 'K', 'R', 'E', 'D', 'C', 'K', 'P'};
 inline constexpr std::uint32_t kCheckpointVersion =
-    5;  // 2: splitting, 3: contact, 4: friction and transfer work, 5: damping work
+    6;  // 2: splitting, 3: contact, 4: friction and transfer work, 5: damping work, 6: runout edges
 
 // A checkpoint that cannot be used: truncated, corrupt, foreign, of another format version,
 // dimension or scenario. The message names the file.
