@@ -42,8 +42,9 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
 // in columns: front - toe, where the front is the outermost edge x_p +- l_p of the points
 // that raise the tip column, and the toe the original material edge in the toe column if
 // nothing stood beyond it (a column's side), else the point where the original surface,
-// its column tops joined by straight lines between column centres, comes down to the level
-// at the tip (a slope's toe). Never negative.
+// its column tops joined by straight lines between column centres, comes down to the
+// original surface at the tip plus `threshold`, the level the front's points stand above (a
+// slope's toe). Never negative.
 struct Runout {
   double x_min = 0.0, x_max = 0.0;
 };
