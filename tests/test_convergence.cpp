@@ -2,9 +2,9 @@
 // docs/method.md "Runout under refinement"): the §5.1 soil column with APIC at h = 0.5 and
 // 0.25 m, as the script runs it (2 ms of time step per metre of cell). What the test sizes
 // can assert honestly: the column comes to rest at both sizes, its symmetric deposit gives
-// the same continuous runout both ways, and the runout grows under refinement as it does
-// through h/4 (3.27, 4.32, 4.86 m). The < 5 % criterion needs h/4 and finer and is not
-// asserted here: at these sizes the runout moves by 32 %.
+// the same continuous runout both ways, and the runout grows from h to h/2 (the study:
+// 3.27, 4.32, 4.86 m, then 4.55 m at h/8, so not a law beyond that). The < 5 % criteria
+// need h/4 and finer and are not asserted here: at these sizes the runout moves by 32 %.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -45,5 +45,5 @@ TEST(Convergence, SoilColumnRunoutAtHAndHalfH) {
     // in columns would differ by whole cells or not at all.
     EXPECT_NEAR(m->runout_x_min, m->runout_x_max, 1e-3);
   }
-  EXPECT_GT(b.runout, a.runout);  // coarse cells stop it short (study: 3.27, 4.32, 4.86 m)
+  EXPECT_GT(b.runout, a.runout);  // 3.27 and 4.32 m in the study
 }
