@@ -4,7 +4,7 @@
 # example's c dt / h = 0.45) and the slope of examples/slope_collapse.toml (phi = 18 deg,
 # c = 5 kPa; h = 1, 0.5, 0.25 m, its cfl), for each velocity transfer given, 3 x 3 points per
 # cell throughout. Prints one table row per run: problem, transfer, cell size, points, the
-# last stage's runout (summary.json: from the points and their half-sizes, along the
+# last stage's runout (summary.json: continuous, from the points and their half-sizes, along the
 # connected deposit), how the stage ended, simulated and wall seconds. Takes tens of minutes
 # (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic

@@ -25,23 +25,26 @@ TEST(SlideMeasures, ADetachedPointOrANeedleDoesNotMoveTheFront) {
   const double width = 0.1;
   const int bins = 100;  // columns over [0, 10]
   const Particles<2> start = block(2.0);
-  const auto before = surface_profile(start, 0.0, width, bins);
+  const SurfaceProfile before = surface_profile(start, 0.0, width, bins);
+  const auto runout = [&](const Particles<2>& P) { return runout_of(before, P, 0.0, width, 0.5 * width); };
   // The block spread to 3 m: the front advanced 1 m.
   Particles<2> spread = block(3.0);
-  auto after = surface_profile(spread, 0.0, width, bins);
-  EXPECT_NEAR(runout_of(before, after, width, 0.5 * width).x_max, 1.0, 1e-9);
+  EXPECT_NEAR(runout(spread).x_max, 1.0, 1e-9);
+  EXPECT_EQ(runout(spread).x_min, 0.0);
   // A point thrown 4 m beyond the deposit, across empty columns: no change.
   Particles<2> thrown = spread;
   thrown.add(Vec<2>(7.05, 0.05), Vec<2>::Zero(), 1.0, 0.01, Vec<2>::Constant(0.05), 0, 0);
-  after = surface_profile(thrown, 0.0, width, bins);
-  EXPECT_NEAR(runout_of(before, after, width, 0.5 * width).x_max, 1.0, 1e-9);
+  EXPECT_NEAR(runout(thrown).x_max, 1.0, 1e-9);
+  // Beyond a single empty column (3.1-3.2): still no change.
+  thrown = spread;
+  thrown.add(Vec<2>(3.25, 0.05), Vec<2>::Zero(), 1.0, 0.01, Vec<2>::Constant(0.04), 0, 0);
+  EXPECT_NEAR(runout(thrown).x_max, 1.0, 1e-9);
   // A voxel at the front sheared into a needle (F = [[1, 40], [0, 1]], det F = 1): its
   // corners reach 2 m further, the material it stands for does not.
   Particles<2> needle = spread;
   const std::size_t p = needle.size() - 1;  // the top right point
   needle.F[p] << 1.0, 40.0, 0.0, 1.0;
-  after = surface_profile(needle, 0.0, width, bins);
-  EXPECT_NEAR(runout_of(before, after, width, 0.5 * width).x_max, 1.0, 1e-9);
+  EXPECT_NEAR(runout(needle).x_max, 1.0, 1e-9);
   const MaterialExtent e = material_extent(needle);
   EXPECT_NEAR(e.x_max, 3.0, 1e-12);
   EXPECT_NEAR(e.y_max - e.y_min, 1.0, 1e-12);
@@ -50,4 +53,73 @@ TEST(SlideMeasures, ADetachedPointOrANeedleDoesNotMoveTheFront) {
   squeezed.add(Vec<2>(0.05, 0.05), Vec<2>::Zero(), 1.0, 0.01, Vec<2>::Constant(0.05), 0, 0);
   squeezed.F[0] = 0.5 * Mat<2>::Identity();
   EXPECT_NEAR(material_extent(squeezed).y_min, 0.05 - 0.025, 1e-12);
+}
+
+// A hand-made front: the block [0, 2] x [0, 1] and, after, two points beyond it covering
+// [2, 2.2] x [0, 0.2] and [2.2, 2.34] x [0, 0.14]: the front is their outer edge, 2.34 m, the
+// toe the block's side, 2 m, so the runout is 0.34 m (not a whole number of 0.1 m columns).
+TEST(SlideMeasures, RunoutIsTheFrontEdgeMinusTheToeEdge) {
+  const double width = 0.1;
+  const SurfaceProfile before = surface_profile(block(2.0), 0.0, width, 100);
+  Particles<2> after = block(2.0);
+  after.add(Vec<2>(2.1, 0.1), Vec<2>::Zero(), 1.0, 0.04, Vec<2>::Constant(0.1), 0, 0);
+  after.add(Vec<2>(2.27, 0.07), Vec<2>::Zero(), 1.0, 0.02, Vec<2>::Constant(0.07), 0, 0);
+  const Runout r = runout_of(before, after, 0.0, width, 0.5 * width);
+  EXPECT_NEAR(r.x_max, 0.34, 1e-12);
+  EXPECT_EQ(r.x_min, 0.0);  // nothing went towards -x
+  // A point compressed to det F = 1/4 stands for half its length: the front at 2.2 + 0.07.
+  after.F[after.size() - 1] = 0.5 * Mat<2>::Identity();
+  after.x[after.size() - 1][0] = 2.2 + 0.035;
+  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5 * width).x_max, 0.27, 1e-12);
+  // Mirrored towards -x: the block on [8, 10], the same points on its left.
+  Particles<2> left, left_after;
+  for (const bool moved : {false, true}) {
+    Particles<2>& Q = moved ? left_after : left;
+    const Particles<2> src = moved ? after : block(2.0);
+    for (std::size_t p = 0; p < src.size(); ++p)
+      Q.add(Vec<2>(10.0 - src.x[p][0], src.x[p][1]), Vec<2>::Zero(), 1.0, 0.01, src.half0[p], 0, 0);
+    if (moved) Q.F[Q.size() - 1] = src.F[src.size() - 1];
+  }
+  const Runout m = runout_of(surface_profile(left, 0.0, width, 100), left_after, 0.0, width, 0.5 * width);
+  EXPECT_NEAR(m.x_min, 0.27, 1e-12);
+  EXPECT_EQ(m.x_max, 0.0);
+}
+
+// A slope by hand (1 m columns, points 0.9 m wide so no point touches a neighbour): ground
+// 1 m deep everywhere, the surface 4, 3, 2 m high over the first three columns, then 1 m.
+// A deposit point [x - 0.25, x + 0.25] x [1, 1.8] stands 0.8 m above the ground (threshold
+// 0.5 m). The toe is where the original surface, joined between column centres (2.5, 2)
+// and (3.5, 1), comes down to 1 + 0.5 m: x = 3. The runout is x + 0.25 - 3, continuous as
+// the point moves by fractions of a column, across a column boundary.
+TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
+  const double width = 1.0;
+  Particles<2> slope;
+  const auto add = [](Particles<2>& P, double x, double y, double hx, double hy) {
+    P.add(Vec<2>(x, y), Vec<2>::Zero(), 1.0, 4 * hx * hy, Vec<2>(hx, hy), 0, 0);
+  };
+  for (int k = 0; k < 20; ++k) add(slope, k + 0.5, 0.5, 0.45, 0.5);
+  add(slope, 0.5, 2.5, 0.45, 1.5);
+  add(slope, 1.5, 2.0, 0.45, 1.0);
+  add(slope, 2.5, 1.5, 0.45, 0.5);
+  const SurfaceProfile before = surface_profile(slope, 0.0, width, 20);
+  ASSERT_EQ(before.top[2], 2.0);
+  ASSERT_EQ(before.top[3], 1.0);
+  EXPECT_EQ(runout_of(before, slope, 0.0, width, 0.5).x_max, 0.0);  // nothing moved
+  double previous = 0.0;
+  for (int k = 0; k <= 20; ++k) {
+    const double x = 5.35 + 0.05 * k;  // the front from 5.6 to 6.6 m
+    Particles<2> after = slope;
+    add(after, x, 1.4, 0.25, 0.4);
+    const double r = runout_of(before, after, 0.0, width, 0.5).x_max;
+    EXPECT_NEAR(r, x + 0.25 - 3.0, 1e-12) << "front point at " << x;
+    if (k > 0) {
+      EXPECT_NEAR(r - previous, 0.05, 1e-12);
+    }
+    previous = r;
+  }
+  // A point lying on the ground, 0.4 m thick (under the threshold), moves no front.
+  Particles<2> after = slope;
+  add(after, 5.35, 1.4, 0.25, 0.4);
+  add(after, 9.5, 1.2, 0.3, 0.2);
+  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 2.6, 1e-12);
 }

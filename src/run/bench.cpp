@@ -124,7 +124,7 @@ BenchResult run_column(const BenchOptions& opt) {
     SolverSettings<D> st = solver_settings(s);
     st.velocity_transfer = opt.velocity_transfer;
     ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
-    const std::vector<double> before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
+    const SurfaceProfile before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)
@@ -136,9 +136,7 @@ BenchResult run_column(const BenchOptions& opt) {
     res.particles = static_cast<long>(P.size());
     res.nodes = static_cast<long>(grid.node_count());
     res.updates_per_second.push_back(static_cast<double>(P.size()) * solver.steps() / sec);
-    res.runout =
-        runout_of(before, surface_profile(P, 0.0, s.cell_size, s.cells[0]), s.cell_size, 0.5 * s.cell_size)
-            .x_max;
+    res.runout = runout_of(before, P, 0.0, s.cell_size, 0.5 * s.cell_size).x_max;
     res.yielding = solver.totals().yielding;
     add_phases(res, before_phases, solver.phase_times());
   }

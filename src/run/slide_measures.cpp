@@ -79,32 +79,46 @@ bool StageTracker<D>::observe(double time, double mean_speed) {
 }
 
 template <int D>
-std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis) {
-  std::vector<double> top(static_cast<std::size_t>(bins), -INFINITY);
+SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis,
+                               const std::vector<double>& above) {
+  const auto n = static_cast<std::size_t>(bins);
+  SurfaceProfile s{std::vector<double>(n, -INFINITY), std::vector<double>(n, INFINITY),
+                   std::vector<double>(n, -INFINITY)};
   const int a = axis;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const Vec<D> r = half_size(P, p);
-    const int lo = std::max(0, static_cast<int>(std::floor((P.x[p][a] - r[a] - x0) / width)));
-    const int hi = std::min(bins - 1, static_cast<int>(std::floor((P.x[p][a] + r[a] - x0) / width)));
-    for (int b = lo; b <= hi; ++b)
-      top[static_cast<std::size_t>(b)] = std::max(top[static_cast<std::size_t>(b)], P.x[p][1] + r[1]);
+    const double top = P.x[p][1] + r[1], lo = P.x[p][a] - r[a], hi = P.x[p][a] + r[a];
+    const int first = std::max(0, static_cast<int>(std::floor((lo - x0) / width)));
+    const int last = std::min(bins - 1, static_cast<int>(std::floor((hi - x0) / width)));
+    for (int b = first; b <= last; ++b) {
+      const auto k = static_cast<std::size_t>(b);
+      s.top[k] = std::max(s.top[k], top);
+      if (!above.empty() && !(top > above[k])) continue;
+      s.lo[k] = std::min(s.lo[k], lo);
+      s.hi[k] = std::max(s.hi[k], hi);
+    }
   }
-  return top;
+  return s;
 }
 
-Runout runout_of(const std::vector<double>& before, const std::vector<double>& after, double width,
-                 double threshold) {
+template <int D>
+Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
+                 double threshold, int axis) {
+  const int n = static_cast<int>(before.top.size());
+  std::vector<double> level(before.top.size());
+  for (std::size_t b = 0; b < level.size(); ++b) level[b] = before.top[b] + threshold;
+  // after.lo/hi: the edges of the points that raise their column by more than `threshold`.
+  const SurfaceProfile after = surface_profile(P, x0, width, n, axis, level);
   Runout r;
-  const int n = static_cast<int>(before.size());
   // The connected deposit: the run of columns holding material around the highest one (the
   // main mass). A point that has left it, across an empty column, moves no front.
   int peak = 0;
   for (int b = 1; b < n; ++b)
-    if (after[b] > after[peak]) peak = b;
+    if (after.top[b] > after.top[peak]) peak = b;
   int first = peak, last = peak;
-  while (first > 0 && std::isfinite(after[first - 1])) --first;
-  while (last < n - 1 && std::isfinite(after[last + 1])) ++last;
-  const auto raised = [&](int b) { return b >= first && b <= last && after[b] > before[b] + threshold; };
+  while (first > 0 && std::isfinite(after.top[first - 1])) --first;
+  while (last < n - 1 && std::isfinite(after.top[last + 1])) ++last;
+  const auto raised = [&](int b) { return b >= first && b <= last && after.top[b] > level[b]; };
   for (int dir : {+1, -1}) {
     // Tip: the outermost column the deposit has raised; toe: the outermost column, inward of
     // the tip, whose original surface stood above the original surface at the tip.
@@ -119,19 +133,33 @@ Runout runout_of(const std::vector<double>& before, const std::vector<double>& a
     if (tip < 0) continue;
     int toe = tip;
     for (int b = tip; b >= 0 && b < n; b -= dir)
-      if (before[b] > before[tip] + threshold) {
+      if (before.top[b] > level[tip]) {
         toe = b;
         break;
       }
-    const double advance = std::abs(tip - toe) * width;
-    (dir > 0 ? r.x_max : r.x_min) = advance;
+    if (toe == tip) continue;
+    // Front: the outermost edge of the points raising the tip column (a point reaching it
+    // lies wholly in the connected deposit).
+    const double front = dir > 0 ? after.hi[tip] : after.lo[tip];
+    // Toe position: where nothing stood beyond the toe column, the original material edge
+    // there (a column's side); else where the original surface, its column tops joined by
+    // straight lines between the column centres, comes down to level[tip].
+    const int next = toe + dir;
+    double toe_x;
+    if (!std::isfinite(before.top[next])) {
+      toe_x = dir > 0 ? before.hi[toe] : before.lo[toe];
+    } else {
+      const double s = (before.top[toe] - level[tip]) / (before.top[toe] - before.top[next]);
+      toe_x = x0 + (toe + 0.5 + dir * s) * width;
+    }
+    (dir > 0 ? r.x_max : r.x_min) = std::max(0.0, dir * (front - toe_x));
   }
   return r;
 }
 
 template <int D>
 double StageTracker<D>::runout(const Particles<D>& P) const {
-  const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_);
   return std::max(r.x_min, r.x_max);
 }
 
@@ -144,12 +172,12 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
   m.end_time = time;
   m.steps = steps;
   m.ended_by = ended_by;
-  const Runout r = runout_of(profile_, surface_profile(P, x0_, width_, bins()), width_, threshold_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_);
   m.runout_x_min = r.x_min;
   m.runout_x_max = r.x_max;
   m.runout = std::max(r.x_min, r.x_max);
   if constexpr (D == 3) {
-    const Runout z = runout_of(profile_z_, surface_profile(P, z0_, width_, bins_z(), 2), width_, threshold_);
+    const Runout z = runout_of(profile_z_, P, z0_, width_, threshold_, 2);
     m.runout_z_min = z.x_min;
     m.runout_z_max = z.x_max;
   }
@@ -177,8 +205,12 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
 
 template MaterialExtent material_extent<2>(const Particles<2>&);
 template MaterialExtent material_extent<3>(const Particles<3>&);
-template std::vector<double> surface_profile<2>(const Particles<2>&, double, double, int, int);
-template std::vector<double> surface_profile<3>(const Particles<3>&, double, double, int, int);
+template SurfaceProfile surface_profile<2>(const Particles<2>&, double, double, int, int,
+                                           const std::vector<double>&);
+template SurfaceProfile surface_profile<3>(const Particles<3>&, double, double, int, int,
+                                           const std::vector<double>&);
+template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int);
+template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int);
 template class StageTracker<2>;
 template class StageTracker<3>;
 

@@ -20,23 +20,37 @@ struct MaterialExtent {
 template <int D>
 MaterialExtent material_extent(const Particles<D>& P);
 
-// Top of the material in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D): the
-// highest x_p[1] + l_p over the points whose domain x_p +- l_p reaches the column, l_p =
-// l0 det(F_p)^(1/d) (-inf where there is none). In 3D a column
-// is a slice across the whole domain (for axis 0, every z; for axis 2, every x).
+// Surface profile in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D), each point
+// counted as its domain x_p +- l_p, l_p = l0 det(F_p)^(1/d) (the GIMP domain): per column, `top`
+// is the highest x_p[1] + l_p over the points that reach it (-inf where there is none), and
+// `lo`, `hi` the outermost material edges along the axis, min (x_p - l_p) and max (x_p + l_p),
+// over those of them whose top stands higher than above[column] (all of them if `above` is
+// empty; +inf and -inf where there is none). In 3D a column is a slice across the whole
+// domain (for axis 0, every z; for axis 2, every x).
+struct SurfaceProfile {
+  std::vector<double> top, lo, hi;
+};
 template <int D>
-std::vector<double> surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis = 0);
+SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis = 0,
+                               const std::vector<double>& above = {});
 
-// Runout from the surface profiles before and after, towards +x and -x: the tip is the
-// outermost column of the connected deposit (the run of non-empty columns around the highest
-// one) that the deposit has raised by more than `threshold`; the toe is the outermost
-// column inward of the tip whose original surface stood higher than the original surface at
-// the tip (for a slope: the original toe; for a column: its edge). Runout = |tip - toe|.
+// Runout towards +x and -x (or z) from the profile `before`, at the stage start, and the points
+// now. The connected deposit is the run of non-empty columns around the highest one; its tip
+// the outermost of those columns that the deposit has raised by more than `threshold`; the toe
+// column the outermost column inward of the tip whose original surface stood higher than
+// the original surface at the tip plus `threshold`. The runout is continuous, not counted
+// in columns: front - toe, where the front is the outermost edge x_p +- l_p of the points
+// that raise the tip column, and the toe the original material edge in the toe column if
+// nothing stood beyond it (a column's side), else the point where the original surface,
+// its column tops joined by straight lines between column centres, comes down to the
+// original surface at the tip plus `threshold`, the level the front's points stand above (a
+// slope's toe). Never negative.
 struct Runout {
   double x_min = 0.0, x_max = 0.0;
 };
-Runout runout_of(const std::vector<double>& before, const std::vector<double>& after, double width,
-                 double threshold);
+template <int D>
+Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
+                 double threshold, int axis = 0);
 
 // Reads or writes a stage's measures through `a` (see StageTracker::archive).
 template <class A>
@@ -115,8 +129,11 @@ class StageTracker {
     a(length_);
     a(z0_);
     a(z_length_);
-    a(profile_z_);
-    a(profile_);
+    for (SurfaceProfile* s : {&profile_z_, &profile_}) {
+      a(s->top);
+      a(s->lo);
+      a(s->hi);
+    }
     a(quiet_since_);
     a(samples_);
   }
@@ -127,8 +144,8 @@ class StageTracker {
   double kinetic_start_ = 0.0;
   double rest_speed_ = 0.0, rest_time_ = 0.0, threshold_ = 0.0;
   double x0_ = 0.0, width_ = 1.0, length_ = 0.0, z0_ = 0.0, z_length_ = 0.0;
-  std::vector<double> profile_;    // surface profile along x at the stage start
-  std::vector<double> profile_z_;  // 3D: along z
+  SurfaceProfile profile_;    // surface profile along x at the stage start
+  SurfaceProfile profile_z_;  // 3D: along z
   int bins() const { return std::max(1, static_cast<int>(std::lround(length_ / width_))); }
   int bins_z() const { return std::max(1, static_cast<int>(std::lround(z_length_ / width_))); }
   std::optional<double> quiet_since_;               // time the mean speed last fell below rest_speed
