@@ -10,23 +10,6 @@
 
 namespace skred {
 
-// APIC (Jiang et al. 2015, eq. 9 with C_p = B_p D_p^-1): p_i += N_ip m_p (v_p + C_p (x_i - x_p)).
-// The node positions x_i are the grid's degrees of freedom (Greville abscissae for the
-// B-spline). With `energy`, it gains 1/2 m_p sum_i N_ip |C_p (x_i - x_p)|^2: the kinetic energy the
-// affine velocity adds to the point's (affine_energy).
-template <int D, class Shape>
-SKRED_INLINE void scatter_affine(const Shape& sh, const GridGeometry<D>& g, const NodeStrides<D>& strides,
-                                 const Vec<D>& x, double m, const Vec<D>& v, const Mat<D>& C,
-                                 Vec<D>* __restrict mom, double* energy = nullptr) {
-  const Vec<D> mv = m * v;
-  const Mat<D> mC = m * C;
-  for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
-    const Vec<D> r = g.node_position(i) - x;
-    mom[i] += w * (mv + mC * r);
-    if (energy) *energy += 0.5 * m * w * (C * r).squaredNorm();
-  });
-}
-
 // The kinetic energy of an APIC point is that of its affine velocity field sampled at its
 // nodes, 1/2 m_p sum_i N_ip |v_p + C_p (x_i - x_p)|^2 = 1/2 m_p (|v_p|^2 + sum_i N_ip |C_p (x_i -
 // x_p)|^2) (the cross term vanishes: sum_i N_ip (x_i - x_p) = 0 for every kernel here). This
@@ -55,6 +38,96 @@ SKRED_INLINE double affine_trial_energy(const Shape& sh, const GridGeometry<D>& 
     e += w * (Cr.squaredNorm() + 2.0 * dt * Cr.dot(acc[i]));
   });
   return 0.5 * m * e;
+}
+
+// The offsets r_d[a] = X_d(a) - x_d of a separable block's nodes from x along each axis.
+template <int D, int S>
+SKRED_INLINE void block_offsets(const Separable<D, S>& sh, const GridGeometry<D>& g, const Vec<D>& x,
+                                double (&r)[D][S]) {
+  const auto ij = g.unflatten(sh.base);
+  for (int d = 0; d < D; ++d)
+    for (int a = 0; a < S; ++a) r[d][a] = g.origin[d] + g.node_coordinate(d, ij[d] + a) - x[d];
+}
+
+// sum_d (sum_a w_d[a] r_d[a]^2) |C e_d|^2 from a separable block's offsets (affine_energy).
+template <int D, int S>
+SKRED_INLINE double affine_moment(const Separable<D, S>& sh, const double (&r)[D][S], const Mat<D>& C) {
+  double e = 0.0;
+  for (int d = 0; d < D; ++d) {
+    double m2 = 0.0;
+    for (int a = 0; a < S; ++a) m2 += sh.w[d][a] * r[d][a] * r[d][a];
+    e += m2 * C.col(d).squaredNorm();
+  }
+  return e;
+}
+
+// On a separable block sum_i N_ip r r^T is diagonal (each axis' 1D functions reproduce linear
+// fields: sum_a w_d[a] r_d[a] = 0), so sum_i N_ip |C r|^2 = sum_d (sum_a w_d[a] r_d[a]^2) |C e_d|^2.
+template <int D, int S>
+SKRED_INLINE double affine_energy(const Separable<D, S>& sh, const GridGeometry<D>& g, const NodeStrides<D>&,
+                                  const Vec<D>& x, const Mat<D>& C) {
+  double r[D][S];
+  block_offsets(sh, g, x, r);
+  return affine_moment(sh, r, C);
+}
+
+// ... and sum_i N_ip a_i (x) r_i is gather_gradient with the 1D derivatives replaced by w_d r_d.
+template <int D, int S>
+SKRED_INLINE double affine_trial_energy(const Separable<D, S>& sh, const GridGeometry<D>& g,
+                                        const NodeStrides<D>& strides, const Vec<D>& x, const Mat<D>& C,
+                                        const Vec<D>* __restrict acc, double dt, double m) {
+  double r[D][S];
+  block_offsets(sh, g, x, r);
+  Separable<D, S> moment = sh;
+  for (int d = 0; d < D; ++d)
+    for (int a = 0; a < S; ++a) moment.g[d][a] = sh.w[d][a] * r[d][a];
+  const double e = affine_moment(sh, r, C);
+  const Mat<D> B = gather_gradient(moment, strides, acc);  // sum_i N_ip a_i (x) r_i
+  return 0.5 * m * (e + 2.0 * dt * C.cwiseProduct(B).sum());
+}
+
+// APIC (Jiang et al. 2015, eq. 9 with C_p = B_p D_p^-1): p_i += N_ip m_p (v_p + C_p (x_i - x_p)).
+// The node positions x_i are the grid's degrees of freedom (Greville abscissae for the
+// B-spline). With `energy`, it gains 1/2 m_p sum_i N_ip |C_p (x_i - x_p)|^2: the kinetic energy the
+// affine velocity adds to the point's (affine_energy).
+template <int D, class Shape>
+SKRED_INLINE void scatter_affine(const Shape& sh, const GridGeometry<D>& g, const NodeStrides<D>& strides,
+                                 const Vec<D>& x, double m, const Vec<D>& v, const Mat<D>& C,
+                                 Vec<D>* __restrict mom, double* energy = nullptr) {
+  const Vec<D> mv = m * v;
+  const Mat<D> mC = m * C;
+  for_each_node(sh, strides, [&](std::size_t i, double w, const Vec<D>&) {
+    mom[i] += w * (mv + mC * (g.node_position(i) - x));
+  });
+  if (energy) *energy += 0.5 * m * affine_energy(sh, g, strides, x, C);
+}
+
+// The same on a separable block, with the node offsets formed once per axis (block_offsets)
+// instead of a node position per node.
+template <int D, int S>
+SKRED_INLINE void scatter_affine(const Separable<D, S>& sh, const GridGeometry<D>& g,
+                                 const NodeStrides<D>& strides, const Vec<D>& x, double m, const Vec<D>& v,
+                                 const Mat<D>& C, Vec<D>* __restrict mom, double* energy = nullptr) {
+  double r[D][S];
+  block_offsets(sh, g, x, r);
+  const Vec<D> mv = m * v;
+  const Mat<D> mC = m * C;
+  if constexpr (D == 2) {
+    for (int b = 0; b < S; ++b) {
+      Vec<2>* row = mom + sh.base + b * strides.s[1];
+      const Vec<2> cy = mv + mC.col(1) * r[1][b];
+      for (int a = 0; a < S; ++a) row[a] += (sh.w[0][a] * sh.w[1][b]) * (cy + mC.col(0) * r[0][a]);
+    }
+  } else {
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        Vec<3>* row = mom + sh.base + b * strides.s[1] + c * strides.s[2];
+        const double wyz = sh.w[1][b] * sh.w[2][c];
+        const Vec<3> cyz = mv + mC.col(1) * r[1][b] + mC.col(2) * r[2][c];
+        for (int a = 0; a < S; ++a) row[a] += (sh.w[0][a] * wyz) * (cyz + mC.col(0) * r[0][a]);
+      }
+  }
+  if (energy) *energy += 0.5 * m * affine_moment(sh, r, C);
 }
 
 // XPIC(m) (Hammerquist & Nairn 2017): the nodal velocity whose interpolation to the points is
