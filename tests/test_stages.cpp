@@ -359,9 +359,17 @@ TEST(Stages, LocalDampingBringsAnEquilibriumStageToRestInFewerSteps) {
   const double balance = row1.at("kinetic_energy") + row1.at("strain_energy") + row1.at("damping_work");
   EXPECT_NEAR(balance, row1.at("gravity_work"), 0.01 * row1.at("gravity_work"));
   EXPECT_NEAR(row1.at("total_energy"), 0.0, 0.01 * row1.at("gravity_work"));
-  // Not with contact (the damping acts on the centre-of-mass grid update only): the error
-  // names the key.
-  const std::string with_contact = column_text(fmt_stage(0.5) + R"(
+}
+
+// The same with contact (Paper III §C.2.7): the column and a lid on it as two bodies in
+// frictional contact, each damped on its own nodes (not at the interface, where the contact
+// phase changes the velocities afterwards). Damped, the stage ends at rest in fewer steps and
+// the damping does positive work. The energy balance is printed, not asserted: with the lid
+// ringing on the column the contact's bookkeeping misses (undamped +24 % of the gravity work
+// after 1 s, damped -4.0 %; docs/method.md, "Contact"), an open defect of the contact work.
+TEST(Stages, LocalDampingWithContactBringsTheStageToRestSooner) {
+  const auto run = [](double alpha, const std::string& name) {
+    const std::string text = column_text(fmt_stage(alpha) + R"(
 [[body]]
 name = "lid"
 material = "soil"
@@ -372,12 +380,30 @@ max = [0.02, 0.11]
 bodies = ["column", "lid"]
 friction = 0.3
 )");
-  try {
-    parse_scenario(with_contact, "contact.toml");
-    ADD_FAILURE() << "local damping accepted with contact";
-  } catch (const ScenarioError& e) {
-    EXPECT_NE(std::string(e.what()).find("local_damping"), std::string::npos) << e.what();
-  }
+    const Scenario s = parse_scenario(text, name + ".toml");
+    const fs::path out = temp_dir(name);
+    RunOptions opt;
+    opt.progress = false;
+    opt.threads = 1;
+    const RunResult r = run_simulation(s, out, opt);
+    EXPECT_TRUE(r.completed) << r.message;
+    auto row = last_series_row(out / "series.csv");
+    fs::remove_all(out);
+    return std::make_pair(r.stages.at(0), row);
+  };
+  const auto [undamped, row0] = run(0.0, "contact_undamped");
+  const auto [damped, row1] = run(0.7, "contact_damped");
+  std::printf(
+      "column + lid in contact, to rest: %ld steps undamped (%s, %.3g s), %ld with local damping 0.7 (%s, "
+      "%.3g s); undamped: W_g %.6g, total %.3g; damped: W_g %.6g, U %.6g, damping work %.6g, contact work "
+      "%.3g, "
+      "total %.3g\n",
+      undamped.steps, undamped.ended_by.c_str(), undamped.end_time, damped.steps, damped.ended_by.c_str(),
+      damped.end_time, row0.at("gravity_work"), row0.at("total_energy"), row1.at("gravity_work"),
+      row1.at("strain_energy"), row1.at("damping_work"), row1.at("contact_work"), row1.at("total_energy"));
+  EXPECT_EQ(damped.ended_by, "rest");
+  EXPECT_LT(damped.steps, undamped.steps);
+  EXPECT_GT(row1.at("damping_work"), 0.0);
 }
 
 TEST(Sweep, OneRowPerValueAndBadKeysNamed) {

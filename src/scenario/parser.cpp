@@ -471,13 +471,7 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
   scenario_detail::add_dilation_continua<D>(root, s);
   parse_initial_stress(root, s);
   parse_solver(root, s);
-  const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
   parse_stages(root, s);
-  if (!s.contacts.empty() || rigid)  // the damping acts on the centre-of-mass grid update only
-    for (std::size_t i = 0; i < s.stages.size(); ++i)
-      if (s.stages[i].local_damping > 0.0)
-        root.array_of_tables("stage")[i].fail_at(
-            "local_damping", "local damping does not work with [[contact]] or rigid bodies yet");
   parse_output(root, s);
   check_time_step(root, s);
   return s;

@@ -176,7 +176,8 @@ void add_run_sections(std::vector<Section>& s) {
             .range = Range::closed(0.0, 0.99),
             .doc = "0: off; Cundall-type local damping alpha for an equilibrium stage: each node feels "
                    "-alpha |f| sign(v) per component (f its unbalanced force); its work is the "
-                   "series.csv column `damping_work`; not with contact"},
+                   "series.csv column `damping_work`; with contact, on each body's nodes except the "
+                   "interface's"},
        }});
   s.push_back({"stage.material",
                "stage-material",

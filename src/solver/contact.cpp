@@ -130,12 +130,15 @@ void ExplicitSolver<D>::body_grid_update() {
       });
       continue;
     }
-    transfer_.for_box([&](std::size_t i) {
-      const double m = f.mass[i];
-      const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
-      f.acceleration[i] = a;
-      f.velocity_move[i] = f.velocity[i] + half_dt * a;
-    });
+    if (local_damping_ > 0.0)  // an equilibrium stage's damping, on the body's own nodes only
+      damped_accelerations(f);
+    else
+      transfer_.for_box([&](std::size_t i) {
+        const double m = f.mass[i];
+        const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
+        f.acceleration[i] = a;
+        f.velocity_move[i] = f.velocity[i] + half_dt * a;
+      });
     const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
     assert(walls.work >= 0.0);  // friction never creates energy
     energy_.friction_work += walls.work;

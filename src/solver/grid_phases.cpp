@@ -67,7 +67,7 @@ void ExplicitSolver<D>::grid_update() {
     const Vec<D> g = gravity_now_;
     const double dt = settings_.dt, half_dt = 0.5 * dt;
     if (local_damping_ > 0.0)
-      damped_accelerations();
+      damped_accelerations(fields_);
     else
       transfer_.for_box([&](std::size_t i) {
         const double m = fields_.mass[i];
@@ -97,17 +97,17 @@ void ExplicitSolver<D>::grid_update() {
 // v^{k+1}) / 2, is booked in damping_work (at a frictional wall node the friction then
 // changes that velocity: there the work is counted over the velocity before the wall).
 template <int D>
-void ExplicitSolver<D>::damped_accelerations() {
+void ExplicitSolver<D>::damped_accelerations(GridFields<D>& f) {
   constexpr std::size_t kPad = 8;  // one cache line per thread's sum
   damping_sums_.assign(kPad * static_cast<std::size_t>(threads()), 0.0);
   const Vec<D> g = gravity_now_;
   const double alpha = local_damping_, half_dt = 0.5 * settings_.dt;
   transfer_.for_box([&](std::size_t i) {
-    const double m = fields_.mass[i];
-    const Vec<D>& v = fields_.velocity[i];
+    const double m = f.mass[i];
+    const Vec<D>& v = f.velocity[i];
     Vec<D> a = Vec<D>::Zero();
-    if (m > 0.0) {
-      a = fields_.internal_force[i] / m + g;
+    if (m > 0.0) a = f.internal_force[i] / m + g;
+    if (m > 0.0 && !shared_node(i)) {
       Vec<D> damp;
       for (int d = 0; d < D; ++d)
         damp[d] = v[d] > 0.0 ? -alpha * std::abs(a[d]) : v[d] < 0.0 ? alpha * std::abs(a[d]) : 0.0;
@@ -115,18 +115,29 @@ void ExplicitSolver<D>::damped_accelerations() {
       damping_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())] -=
           2.0 * half_dt * m * damp.dot(v + half_dt * a);
     }
-    fields_.acceleration[i] = a;
-    fields_.velocity_move[i] = v + half_dt * a;
+    f.acceleration[i] = a;
+    f.velocity_move[i] = v + half_dt * a;
   });
   for (std::size_t t = 0; t < damping_sums_.size(); t += kPad) energy_.damping_work += damping_sums_[t];
 }
 
-#define SKRED_GRID_PHASES(D)                              \
-  template void ExplicitSolver<D>::nodal_velocity();      \
-  template void ExplicitSolver<D>::remap_velocity();      \
-  template void ExplicitSolver<D>::clear_mass_momentum(); \
-  template void ExplicitSolver<D>::grid_update();         \
-  template void ExplicitSolver<D>::damped_accelerations();
+// With contact: whether more than one continuum has mass at node i (an interface node, where
+// the contact phase changes the velocities after the grid update).
+template <int D>
+bool ExplicitSolver<D>::shared_node(std::size_t i) const {
+  if (!contact_on()) return false;
+  int present = 0;
+  for (const BodyFields<D>& b : bodies_) present += b.mass[i] > 0.0;
+  return present > 1;
+}
+
+#define SKRED_GRID_PHASES(D)                                             \
+  template void ExplicitSolver<D>::nodal_velocity();                     \
+  template void ExplicitSolver<D>::remap_velocity();                     \
+  template void ExplicitSolver<D>::clear_mass_momentum();                \
+  template void ExplicitSolver<D>::grid_update();                        \
+  template void ExplicitSolver<D>::damped_accelerations(GridFields<D>&); \
+  template bool ExplicitSolver<D>::shared_node(std::size_t) const;
 SKRED_GRID_PHASES(2)
 SKRED_GRID_PHASES(3)
 #undef SKRED_GRID_PHASES
