@@ -316,6 +316,22 @@ std::map<std::string, double> last_series_row(const fs::path& file) {
   return row;
 }
 
+// Runs the scenario `text` on one thread into a scratch folder: the first stage's measures
+// and the last series.csv row.
+std::pair<StageMeasures, std::map<std::string, double>> run_stage(const std::string& text,
+                                                                  const std::string& name) {
+  const Scenario s = parse_scenario(text, name + ".toml");
+  const fs::path out = temp_dir(name);
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  const RunResult r = run_simulation(s, out, opt);
+  EXPECT_TRUE(r.completed) << r.message;
+  auto row = last_series_row(out / "series.csv");
+  fs::remove_all(out);
+  return {r.stages.at(0), row};
+}
+
 }  // namespace
 
 TEST(Stages, LocalDampingBringsAnEquilibriumStageToRestInFewerSteps) {
@@ -326,16 +342,7 @@ TEST(Stages, LocalDampingBringsAnEquilibriumStageToRestInFewerSteps) {
   // stored energy U = w rho^2 g^2 H^3 / (6E), nu = 0), with the work of gravity accounted for:
   // W_g = KE + U + damping_work (series.csv) within 1 %.
   const auto run = [](double alpha, const std::string& name) {
-    const Scenario s = parse_scenario(column_text(fmt_stage(alpha)), name + ".toml");
-    const fs::path out = temp_dir(name);
-    RunOptions opt;
-    opt.progress = false;
-    opt.threads = 1;
-    const RunResult r = run_simulation(s, out, opt);
-    EXPECT_TRUE(r.completed) << r.message;
-    auto row = last_series_row(out / "series.csv");
-    fs::remove_all(out);
-    return std::make_pair(r.stages.at(0), row);
+    return run_stage(column_text(fmt_stage(alpha)), name);
   };
   const auto [undamped, row0] = run(0.0, "undamped");
   const auto [damped, row1] = run(0.7, "damped");
@@ -369,7 +376,7 @@ TEST(Stages, LocalDampingBringsAnEquilibriumStageToRestInFewerSteps) {
 // after 1 s, damped -4.0 %; docs/method.md, "Contact"), an open defect of the contact work.
 TEST(Stages, LocalDampingWithContactBringsTheStageToRestSooner) {
   const auto run = [](double alpha, const std::string& name) {
-    const std::string text = column_text(fmt_stage(alpha) + R"(
+    return run_stage(column_text(fmt_stage(alpha) + R"(
 [[body]]
 name = "lid"
 material = "soil"
@@ -379,17 +386,8 @@ max = [0.02, 0.11]
 [[contact]]
 bodies = ["column", "lid"]
 friction = 0.3
-)");
-    const Scenario s = parse_scenario(text, name + ".toml");
-    const fs::path out = temp_dir(name);
-    RunOptions opt;
-    opt.progress = false;
-    opt.threads = 1;
-    const RunResult r = run_simulation(s, out, opt);
-    EXPECT_TRUE(r.completed) << r.message;
-    auto row = last_series_row(out / "series.csv");
-    fs::remove_all(out);
-    return std::make_pair(r.stages.at(0), row);
+)"),
+                     name);
   };
   const auto [undamped, row0] = run(0.0, "contact_undamped");
   const auto [damped, row1] = run(0.7, "contact_damped");

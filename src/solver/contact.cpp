@@ -4,7 +4,6 @@
 #include <omp.h>
 
 #include <algorithm>
-#include <cassert>
 #include <cmath>
 
 #include "solver/contact.hpp"
@@ -117,8 +116,6 @@ void ExplicitSolver<D>::couple_start(Field&& field, bool shift) {
 template <int D>
 void ExplicitSolver<D>::body_grid_update() {
   const ContactSettings<D>& c = settings_.contact;
-  const Vec<D> g = gravity_now_;
-  const double dt = settings_.dt, half_dt = 0.5 * dt;
   const bool pic = forms_velocity_next();
   for (int b = 0; b < c.bodies(); ++b) {
     BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
@@ -130,23 +127,7 @@ void ExplicitSolver<D>::body_grid_update() {
       });
       continue;
     }
-    if (local_damping_ > 0.0)  // an equilibrium stage's damping, on the body's own nodes only
-      damped_accelerations(f);
-    else
-      transfer_.for_box([&](std::size_t i) {
-        const double m = f.mass[i];
-        const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
-        f.acceleration[i] = a;
-        f.velocity_move[i] = f.velocity[i] + half_dt * a;
-      });
-    const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
-    assert(walls.work >= 0.0);  // friction never creates energy
-    energy_.friction_work += walls.work;
-    if (pic)
-      transfer_.for_box([&](std::size_t i) {
-        const double m = f.mass[i];
-        f.velocity_next[i] = m > 0.0 ? Vec<D>(f.momentum[i] / m + dt * f.acceleration[i]) : Vec<D>::Zero();
-      });
+    continuum_grid_update(f);  // damped (equilibrium stage) on its own nodes only
   }
 }
 

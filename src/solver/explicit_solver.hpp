@@ -201,11 +201,12 @@ class ExplicitSolver {
   template <class K>
   bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K>
-  void internal_force(const K& kernel);         // eq. 2.51
-  void grid_update();                           // eq. 2.49, 5.8-5.11
-  void damped_accelerations(GridFields<D>& f);  // grid_update's first loop with local damping
-  bool shared_node(std::size_t i) const;        // with contact: more than one continuum at node i
-  void contact();                               // Paper III §C.2.7, C.36
+  void internal_force(const K& kernel);          // eq. 2.51
+  void grid_update();                            // eq. 2.49, 5.8-5.11
+  void continuum_grid_update(GridFields<D>& f);  // grid_update of one continuum's fields
+  void damped_accelerations(GridFields<D>& f);   // grid_update's first loop with local damping
+  bool shared_node(std::size_t i) const;         // with contact: more than one continuum at node i
+  void contact();                                // Paper III §C.2.7, C.36
   template <class K>
   void velocity_and_remap(const K& kernel);  // eq. 2.56, §4.4 step 6
   void remap_velocity();                     // v~_i = p~_i / m_i

@@ -64,29 +64,34 @@ template <int D>
 void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
-    const Vec<D> g = gravity_now_;
-    const double dt = settings_.dt, half_dt = 0.5 * dt;
-    if (local_damping_ > 0.0)
-      damped_accelerations(fields_);
-    else
-      transfer_.for_box([&](std::size_t i) {
-        const double m = fields_.mass[i];
-        const Vec<D> a = m > 0.0 ? Vec<D>(fields_.internal_force[i] / m + g) : Vec<D>::Zero();
-        fields_.acceleration[i] = a;
-        fields_.velocity_move[i] = fields_.velocity[i] + half_dt * a;
-      });
-    const WallEnergy walls = boundaries_.constrain_end_of_step(fields_, dt);
-    assert(walls.work >= 0.0);  // friction never creates energy
-    energy_.friction_work += walls.work;
-    if (forms_velocity_next()) {
-      // v_i^{k+1} for the PIC share of the particle update, or APIC's
-      transfer_.for_box([&](std::size_t i) {
-        const double m = fields_.mass[i];
-        fields_.velocity_next[i] =
-            m > 0.0 ? Vec<D>(fields_.momentum[i] / m + dt * fields_.acceleration[i]) : Vec<D>::Zero();
-      });
-    }
+    continuum_grid_update(fields_);
   });
+}
+
+// The grid update of one continuum's fields f (the centre-of-mass fields, or one deformable
+// body's with contact): a_i, v_move, the walls and their friction work, and v_i^{k+1} where
+// the velocity transfer takes it.
+template <int D>
+void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
+  const Vec<D> g = gravity_now_;
+  const double dt = settings_.dt, half_dt = 0.5 * dt;
+  if (local_damping_ > 0.0)
+    damped_accelerations(f);
+  else
+    transfer_.for_box([&](std::size_t i) {
+      const double m = f.mass[i];
+      const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
+      f.acceleration[i] = a;
+      f.velocity_move[i] = f.velocity[i] + half_dt * a;
+    });
+  const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
+  assert(walls.work >= 0.0);  // friction never creates energy
+  energy_.friction_work += walls.work;
+  if (forms_velocity_next())  // v_i^{k+1} for the PIC share of the particle update, or APIC's
+    transfer_.for_box([&](std::size_t i) {
+      const double m = f.mass[i];
+      f.velocity_next[i] = m > 0.0 ? Vec<D>(f.momentum[i] / m + dt * f.acceleration[i]) : Vec<D>::Zero();
+    });
 }
 
 // The first loop of grid_update with the local (non-viscous) damping of an equilibrium stage
