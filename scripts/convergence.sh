@@ -7,8 +7,12 @@
 # last stage's runout (summary.json: continuous, from the points and their half-sizes, along the
 # connected deposit), how the stage ended, simulated and wall seconds. Takes tens of minutes
 # (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
+# Then, per problem, scripts/deposit_front.py: the front at thicknesses fixed in metres
+# (2, 4, 10 and 20 % of the initial height), the gravity work and the transfer's share of it.
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
 #   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
+#   PROBLEMS=column SIZES="0.125 0.0625" scripts/convergence.sh build/skred apic   (other sizes)
+#   VOLUMETRIC=cell-average scripts/convergence.sh build/skred apic   (solver.volumetric_strain)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -16,6 +20,7 @@ transfers=${*:-flip}
 problems=${PROBLEMS:-column slope}
 threads=${THREADS:-1}
 out=${OUT:-out/convergence}
+volumetric=${VOLUMETRIC:-point}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -24,24 +29,29 @@ mkdir -p "$out"
 scenario() {
   sed -e "s/^cell_size = .*/cell_size = $2/" \
     -e '/^pic_fraction/d' -e '/^velocity_transfer/d' \
-    -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"/" \
+    -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"/" \
     ${3:+-e "s/^time_step = .*/time_step = $3/"} "$1"
 }
 
+fronts=
+echo "solver.volumetric_strain = \"$volumetric\""
 printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
 for tr in $transfers; do
   for problem in $problems; do
     case $problem in
-      column) file=$here/examples/soil_column.toml; sizes="0.5 0.25 0.125" ;;
-      slope) file=$here/examples/slope_collapse.toml; sizes="1.0 0.5 0.25" ;;
+      column) file=$here/examples/soil_column.toml; sizes="0.5 0.25 0.125"; height=5 ;;
+      slope) file=$here/examples/slope_collapse.toml; sizes="1.0 0.5 0.25"; height=10 ;;
       *) echo "unknown problem $problem" >&2; exit 4 ;;
     esac
+    sizes=${SIZES:-$sizes}
+    dirs=
     for h in $sizes; do
       dt=
       [ "$problem" = column ] && dt=$(awk -v h="$h" 'BEGIN { printf "%g", 0.002 * h }')
-      dir=$out/${problem}_${tr}_$h
-      scenario "$file" "$h" "$dt" "$tr" > "$out/${problem}_${tr}_$h.toml"
-      "$skred" run "$out/${problem}_${tr}_$h.toml" -o "$dir" --overwrite --threads "$threads" \
+      dir=$out/${problem}_${tr}_${volumetric}_$h
+      dirs="$dirs $dir"
+      scenario "$file" "$h" "$dt" "$tr" > "$dir.toml"
+      "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
         > "$dir.log" 2>&1 || true
       /usr/bin/python3 - "$dir/summary.json" "$problem" "$tr" "$h" << 'EOF'
 import json, sys
@@ -51,5 +61,8 @@ print("%-7s %-6s %6s %8d %9.3f %-9s %7.2f %7.0f" % (sys.argv[2], sys.argv[3], sy
       st["runout"], st.get("ended_by", s["status"]), st["end_time"] - st["start_time"], s.get("wall_seconds", 0)))
 EOF
     done
+    fronts="$fronts
+$(/usr/bin/python3 "$here/scripts/deposit_front.py" "$height" $dirs)"
   done
 done
+echo "$fronts"

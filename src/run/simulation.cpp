@@ -70,6 +70,7 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   st.velocity_transfer = s.velocity_transfer;
   st.hyperelastic = s.hyperelastic;
   st.xpic_order = s.xpic_order;
+  st.volumetric_averaging = s.volumetric_averaging;
   return st;
 }
 

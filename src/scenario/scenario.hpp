@@ -188,6 +188,7 @@ struct ScenarioCommon {
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
   bool hyperelastic = false;                                    // solver.elastic_update = "hyperelastic"
   int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
+  bool volumetric_averaging = false;                            // solver.volumetric_strain = "cell-average"
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

@@ -125,6 +125,15 @@ void add_run_sections(std::vector<Section>& s) {
             .range = Range::closed(1, 20),
             .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
                    "over the points"},
+           {.name = "volumetric_strain",
+            .type = Type::Choice,
+            .def = derived("\"point\""),
+            .choices = "point|cell-average",
+            .doc = "\"point\": each point's own strain increment (Thesis eq. 2.20); \"cell-average\": the "
+                   "volume-weighted mean volumetric strain of the points in its cell with its own "
+                   "deviatoric strain, and the cell's mean pressure in the internal force (B-bar "
+                   "against volumetric locking in isochoric plastic flow; docs/method.md); scheme = "
+                   "\"usf\" only"},
            {.name = "pic_fraction",
             .unit = "-",
             .def = value(0),

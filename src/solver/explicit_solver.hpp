@@ -21,6 +21,7 @@
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
 #include "solver/velocity_transfer.hpp"
+#include "solver/volumetric_averaging.hpp"
 #include "transfer/transfer.hpp"
 
 namespace skred {
@@ -42,6 +43,8 @@ struct SolverSettings {
   // The particle velocity update (velocity_transfer.hpp); pic_fraction applies to flip only.
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
   int xpic_order = 2;  // m of XPIC(m), >= 1
+  // Cell-averaged volumetric strain against volumetric locking (volumetric_averaging.hpp).
+  bool volumetric_averaging = false;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
   // Multi-continuum contact (Paper III §C.2.7; contact.hpp): empty, every body shares the
@@ -201,6 +204,8 @@ class ExplicitSolver {
   template <class K>
   bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K>
+  bool stress_update_cell_volumetric(const K& kernel, double dt_stress);  // volumetric_averaging.hpp
+  template <class K>
   void internal_force(const K& kernel);          // eq. 2.51
   void grid_update();                            // eq. 2.49, 5.8-5.11
   void continuum_grid_update(GridFields<D>& f);  // grid_update of one continuum's fields
@@ -276,7 +281,8 @@ class ExplicitSolver {
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;
   double local_damping_ = 0.0;
-  std::vector<double> damping_sums_;  // per-thread work sums of the damping (padded)
+  std::vector<double> damping_sums_;   // per-thread work sums of the damping (padded)
+  VolumetricAveraging<D> volumetric_;  // cell sums of the volumetric averaging
   StepStatus status_;
 };
 

@@ -1,0 +1,60 @@
+// Cell-averaged volumetric strain, the MPM form of the B-bar method against volumetric locking
+// (Hughes 1980; for MPM e.g. Mast et al. 2012, Coombs et al. 2018): a point's strain increment
+// keeps its own deviatoric part and takes the volume-weighted mean volumetric part of the points
+// in its cell, d_eps_p + (div_c - div_p)/d I, and the internal force pairs with it by taking the
+// cell's volume-weighted mean pressure m_c in place of the point's own, sigma_p + (m_c - m_p) I,
+// so that the stress power of the points equals the work of the nodal forces (per cell,
+// sum V_p m_p (div_c - div_p) = sum V_p (m_c - m_p) div_p). m = tr(sigma)/d over the d in-plane
+// axes: in plane strain the in-plane trace is the volumetric strain.
+#pragma once
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "core/types.hpp"
+
+namespace skred {
+
+template <int D>
+struct VolumetricAveraging {
+  // Per cell, indexed by the flat index of its low node: sums of V div, V, V m, V.
+  std::vector<double> div_sum, volume_sum, mean_sum, mean_volume_sum;
+  // Per point: its cell, its own divergence tr grad v, mean in-plane stress m_p and the
+  // volume its sums weigh it by.
+  std::vector<std::uint32_t> cell;
+  std::vector<double> div, mean, volume;
+
+  // Sized for the grid and the points (allocates only when either grew).
+  void resize(const GridGeometry<D>& g, std::size_t points) {
+    const std::size_t nodes = g.node_count();
+    for (auto* a : {&div_sum, &volume_sum, &mean_sum, &mean_volume_sum})
+      if (a->size() != nodes) a->assign(nodes, 0.0);
+    if (cell.size() != points)
+      cell.resize(points), div.resize(points), mean.resize(points), volume.resize(points);
+  }
+
+  // The cell holding x (points on the grid's walls belong to the cell inside).
+  static std::uint32_t cell_of(const GridGeometry<D>& g, const Vec<D>& x) {
+    std::size_t c = 0;
+    for (int d = 0; d < D; ++d) {
+      int i = static_cast<int>(std::floor((x[d] - g.origin[d]) / g.h));
+      i = i < 0 ? 0 : (i >= g.cells[d] ? g.cells[d] - 1 : i);
+      c += static_cast<std::size_t>(i + GridGeometry<D>::pad) * g.stride(d);
+    }
+    return static_cast<std::uint32_t>(c);
+  }
+
+  // The correction to point p's grad v: (div_c - div_p)/d on the diagonal.
+  double correction(std::size_t p) const {
+    const std::uint32_t c = cell[p];
+    return (div_sum[c] / volume_sum[c] - div[p]) / D;
+  }
+  // The correction to point p's stress in the force: m_c - m_p on the diagonal.
+  double pressure_correction(std::size_t p) const {
+    const std::uint32_t c = cell[p];
+    return mean_sum[c] / mean_volume_sum[c] - mean[p];
+  }
+};
+
+}  // namespace skred
