@@ -81,8 +81,8 @@ double vibrating_block_balance(VelocityTransfer t, double pic_fraction, StressSc
 TEST(VelocityTransfer, VibratingBlockBalanceWithThePicShareAndXpicLossBooked) {
   // The loss of the PIC share and of XPIC is what they take from the scheme's energy
   // (particle_velocity). Booked as the kinetic energy difference 1/2 m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2)
-  // it missed this balance by -4.5 / -5.4 % (USF), -3.1 / -2.0 % (USL), -8.1 / -8.4 % (averaged);
-  // now 0.19 % at most (docs/method.md, "The PIC share's and XPIC's booked loss").
+  // it missed this balance (PIC share 1 / XPIC) by -5.4 / -4.5 % (USF), -2.0 / -3.1 % (USL) and
+  // -8.4 / -8.1 % (averaged); now 0.19 % at most (docs/method.md, "The PIC share's and XPIC's booked loss").
   for (StressScheme s : {StressScheme::USF, StressScheme::USL, StressScheme::Averaged}) {
     const double pic = vibrating_block_balance(VelocityTransfer::Flip, 1.0, s);
     const double xpic = vibrating_block_balance(VelocityTransfer::Xpic, 0.0, s);
@@ -157,8 +157,9 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
         t, m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout, 100 * balance);
     if (std::string(t) == "apic") {
       EXPECT_EQ(m.ended_by, "rest");
-      // issue 12: closes within 1 % with the transfer's loss (measured +0.66 %). XPIC's booked
-      // loss overstates what it takes here (+5.7 %; docs/method.md, "Velocity transfers").
+      // issue 12: closes within 1 % with the transfer's loss (measured +0.66 %). XPIC's balance
+      // misses by +3.7 % here (+5.7 % before its loss was booked from the scheme's energy): the
+      // walls' share (docs/method.md, "The PIC share's and XPIC's booked loss").
       EXPECT_LT(std::abs(balance), 0.01);
     }
   }
