@@ -78,13 +78,18 @@ struct StressArrays {
 // v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal
 // velocity in vnext; APIC also takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient
 // form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains what the
-// transfer took from the FLIP update: (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2), and under APIC the affine
-// velocity's share of the FLIP-updated kinetic energy (affine_trial_energy; the new C_p's share is
-// taken off where the point is next mapped, at its new position).
+// transfer took from the FLIP update. Under the PIC share and XPIC, whose change dv = v_p - v_p^FLIP
+// removes grid-scale motion that the time step's own energy error feeds, the energy it takes from the
+// scheme: (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2) + w dt m_p dv . acc_p, with w = 1/2 for USF and USL (the
+// work of the change over the step's mean velocity, (1/2) m_p (v_p^FLIP - v_p) . (v_p^k + v_p)) and
+// w = 1 for the averaged scheme (docs/method.md, "The PIC share's and XPIC's booked loss"). Under APIC
+// (w = 0): (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2) and the affine velocity's share of the FLIP-updated
+// kinetic energy (affine_trial_energy; the new C_p's share is taken off where the point is next
+// mapped, at its new position).
 template <class Shape, int D>
 SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides, const Vec<D>& v,
                                       double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
-                                      double alpha, Mat<D>* affine, double m, double& lost) {
+                                      double alpha, Mat<D>* affine, double m, double w, double& lost) {
   const Vec<D> flip = v + dt * acc_p;
   if (alpha <= 0.0) return flip;
   Vec<D> vp;
@@ -94,7 +99,10 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& str
   } else {
     vp = (1.0 - alpha) * flip + alpha * gather(sh, strides, vnext);
   }
-  lost += 0.5 * m * (flip.squaredNorm() - vp.squaredNorm());
+  if (affine)
+    lost += 0.5 * m * (flip.squaredNorm() - vp.squaredNorm());
+  else
+    lost += 0.5 * m * (flip - vp).dot(vp + (2.0 * w) * v + (1.0 - 2.0 * w) * flip);  // dt acc_p = flip - v
   return vp;
 }
 
@@ -323,6 +331,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
     const double alpha = pic_share();
+    const double w = settings_.scheme == StressScheme::Averaged ? 1.0 : 0.5;  // particle_velocity
     ScatterBuffers<D>& buffers = transfer_.scatter();
     double lost = 0.0;  // to the transfer
     for_each_continuum([&](GridFields<D>& f, auto sel) {
@@ -351,7 +360,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
             if constexpr (apic)
               lost += affine_trial_energy(sh, g, strides, P.x[p], affine[p], acc, dt, pmass[p]);
             const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, gather(sh, strides, acc), vnext, alpha,
-                                                apic ? affine + p : nullptr, pmass[p], lost);
+                                                apic ? affine + p : nullptr, pmass[p], w, lost);
             v[p] = vp;
             if constexpr (apic)  // APIC: the remap carries the affine velocity too
               scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
@@ -505,7 +514,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           gather_pair(sh, strides, acc, vel, acc_p, vmove);
           if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
           const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc_p, vnext, alpha,
-                                              affine ? affine + p : nullptr, pmass[p], lost);
+                                              affine ? affine + p : nullptr, pmass[p], 0.5, lost);
           v[p] = vp;
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
