@@ -28,7 +28,7 @@ mkdir -p "$out"
 # empty to keep the example's cfl), with the velocity transfer and no PIC share.
 scenario() {
   sed -e "s/^cell_size = .*/cell_size = $2/" \
-    -e '/^pic_fraction/d' -e '/^velocity_transfer/d' \
+    -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^volumetric_strain/d' \
     -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"/" \
     ${3:+-e "s/^time_step = .*/time_step = $3/"} "$1"
 }
