@@ -158,3 +158,87 @@ TEST(VolumetricAveraging, ScenarioKey) {
     }
   }
 }
+
+// Two Mohr-Coulomb columns of different soils in frictional contact (mu = 0.3; Paper III
+// §C.2.7), each continuum averaged over its own points in each cell: they collapse against each
+// other and the energy balance, contact work included, closes within the issue's 1 % (measured
+// +0.45 %, against +1.04 % with each point's own volumetric strain).
+TEST(VolumetricAveraging, TwoBodiesInContact) {
+  const std::string text = R"(
+[grid]
+size = [0.6, 0.2]
+cell_size = 0.01
+[[material]]
+name = "sand"
+model = "mohr-coulomb"
+density = 1800.0
+young = 1e6
+poisson = 0.3
+friction = 25.0
+cohesion = 5.0
+[[material]]
+name = "clay"
+model = "mohr-coulomb"
+density = 1600.0
+young = 2e6
+poisson = 0.25
+friction = 15.0
+cohesion = 20.0
+[[body]]
+name = "left"
+material = "sand"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [0.1, 0.12]
+[[body]]
+name = "right"
+material = "clay"
+shape = "rectangle"
+min = [0.1, 0.0]
+max = [0.2, 0.1]
+[[contact]]
+bodies = ["left", "right"]
+friction = 0.3
+[gravity]
+acceleration = [0.0, -9.81]
+[boundary]
+x_min = "roller"
+y_min = { type = "friction", friction = 0.5 }
+[solver]
+cfl = 0.3
+scheme = "usf"
+velocity_transfer = "apic"
+volumetric_strain = "cell-average"
+[[stage]]
+name = "collapse"
+duration = 0.6
+[output]
+interval = 0.1
+)";
+  const fs::path out = fs::temp_directory_path() / "skred_volumetric_contact";
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  const RunResult r = run_simulation(parse_scenario(text, "two_bodies.toml"), out, opt);
+  std::ifstream series(out / "series.csv");
+  std::string header, line, last;
+  std::getline(series, header);
+  while (std::getline(series, line)) last = line;
+  fs::remove_all(out);
+  ASSERT_TRUE(r.completed) << r.message;
+  const auto value = [&](const std::string& key) {
+    std::stringstream hs(header), vs(last);
+    std::string name, v;
+    while (std::getline(hs, name, ',') && std::getline(vs, v, ','))
+      if (name == key) return std::stod(v);
+    ADD_FAILURE() << key << " not in series.csv";
+    return 0.0;
+  };
+  const double work = value("gravity_work"), balance = value("total_energy") / work;
+  std::printf(
+      "two columns in contact, cell-average: runout %.3f m, gravity work %.3f J/m, contact work %.4f J/m, "
+      "balance %+.3f %%\n",
+      r.stages.back().runout, work, value("contact_work"), 100 * balance);
+  EXPECT_GT(r.stages.back().runout, 0.05);  // they collapse (measured 0.18 m)
+  EXPECT_LT(std::abs(balance), 0.01);
+}
