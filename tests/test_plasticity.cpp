@@ -962,6 +962,11 @@ TEST(MohrCoulomb, EigenvalueFreeScreenIsSufficientAndTight) {
     for (int i = 0; i < 6; ++i) s[i] = 60 * kPa * u(rng) - (i < 3 ? 40 * kPa : 0.0);
     const Vec3 v = principal_decomposition(s).values;
     // The second screen, on bounds of sigma_1 and sigma_3: also never accepts a state outside.
+    // The update stops the bounds' Newton steps at the first iterate that proves the state
+    // admissible: it accepts exactly the states that the converged bounds accept.
+    const auto admissible = [&k](const PrincipalBounds& b) { return detail::elastic_by_bounds(k, b); };
+    ASSERT_EQ(admissible(principal_bounds(s, admissible)), admissible(principal_bounds(s)))
+        << "trial " << trial;
     if (detail::elastic_by_bounds(k, principal_bounds(s))) {
       ++by_bounds;
       ASSERT_LT(mohr_coulomb_yield(p, v), 0.0) << "trial " << trial;

@@ -139,11 +139,14 @@ SKRED_INLINE Vec3 principal_values(const Sym3& s) {
 // because the cubic is convex beyond its largest root and concave below its smallest, so every
 // iterate is a bound. It stops when both steps are below 1e-8 (quadratic convergence: the
 // bounds are then within ~1e-15 r) or after eight steps, which leave a near-double root up to
-// a few tenths of a per cent of r outside (the caller then takes the accurate path).
+// a few tenths of a per cent of r outside (the caller then takes the accurate path). Since
+// every iterate is a bound, `enough(bounds)` may stop the iteration early (the elastic screen
+// stops as soon as the bounds prove the stress admissible).
 struct PrincipalBounds {
   double lo, hi;
 };
-SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s) {
+template <class Enough>
+SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s, Enough&& enough) {
   const double p = (s[0] + s[1] + s[2]) / 3.0;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
@@ -158,9 +161,13 @@ SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s) {
     const double dw = (w * (4.0 * w * w - 3.0) - c3) / (12.0 * w * w - 3.0);
     u -= du;
     w -= dw;
+    if (enough(PrincipalBounds{p + r * w, p + r * u})) break;
     if (du < 1e-8 && dw > -1e-8) break;  // both converged: the next error is ~ the step squared
   }
   return {p + r * w, p + r * u};
+}
+SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s) {
+  return principal_bounds(s, [](const PrincipalBounds&) { return false; });
 }
 
 // Principal values (ascending) and orthonormal directions.

@@ -31,6 +31,10 @@ Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
 template <int D>
 Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides) {
   const double tol = 1e-9 * g.h;
+  for (int d = 0; d < D; ++d) {
+    walls_[2 * d] = {d, -1.0, sides[2 * d]};
+    walls_[2 * d + 1] = {d, +1.0, sides[2 * d + 1]};
+  }
   for (std::size_t i = 0; i < g.node_count(); ++i) {
     const auto ij = g.unflatten(i);
     BoundaryNode b;
@@ -39,8 +43,9 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
       const double r = g.node_coordinate(d, ij[d]);
       const BoundarySide& lo = sides[2 * d];
       const BoundarySide& hi = sides[2 * d + 1];
-      if (lo.kind != BoundaryKind::Free && r <= tol) b.walls[b.count++] = {d, -1.0, lo};
-      if (hi.kind != BoundaryKind::Free && r >= g.h * g.cells[d] - tol) b.walls[b.count++] = {d, +1.0, hi};
+      if (lo.kind != BoundaryKind::Free && r <= tol) b.walls[b.count++] = static_cast<std::uint8_t>(2 * d);
+      if (hi.kind != BoundaryKind::Free && r >= g.h * g.cells[d] - tol)
+        b.walls[b.count++] = static_cast<std::uint8_t>(2 * d + 1);
     }
     if (b.count > 0) nodes_.push_back(b);
   }
@@ -51,7 +56,7 @@ void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
   for (const BoundaryNode& b : nodes_) {
     Vec<D>& v = velocity[b.node];
     for (int w = 0; w < b.count; ++w) {
-      const Wall& wall = b.walls[w];
+      const Wall& wall = walls_[b.walls[w]];
       switch (wall.side.kind) {
         case BoundaryKind::Fixed: v.setZero(); break;
         case BoundaryKind::Roller: v[wall.axis] = 0.0; break;
@@ -79,7 +84,7 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
     // the impulse that stops the points' motion into the wall.
     const Vec<D> trial = v_free + dt * a;
     Vec<D> vnew = trial;
-    for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(b.walls[w], vnew);
+    for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(walls_[b.walls[w]], vnew);
     // Each wall rule only stops motion (coulomb_friction.hpp).
     assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
     // Energy the walls took: the node's kinetic energy change less the work of the forces

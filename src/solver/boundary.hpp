@@ -3,6 +3,7 @@
 #pragma once
 #include <array>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -18,11 +19,12 @@ struct Wall {
   BoundarySide side;
 };
 
-// A node on (or beyond) one or more walls (corner nodes touch several).
+// A node on (or beyond) one or more walls (corner nodes touch several), by side index
+// (2 axis + 0 low / 1 high): 16 bytes, so the walks over the boundary nodes stay in cache.
 struct BoundaryNode {
   std::size_t node = 0;
-  std::array<Wall, 3> walls{};
-  int count = 0;
+  std::array<std::uint8_t, 3> walls{};
+  std::uint8_t count = 0;
 };
 
 // What the walls did to the grid's energy in one step.
@@ -52,9 +54,11 @@ class Boundaries {
   WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }
+  const Wall& wall(std::uint8_t side) const { return walls_[side]; }
 
  private:
   std::vector<BoundaryNode> nodes_;
+  std::array<Wall, 2 * D> walls_{};  // per side
 };
 
 }  // namespace skred

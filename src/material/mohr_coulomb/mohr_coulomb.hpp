@@ -192,7 +192,11 @@ SKRED_INLINE Sym3 mohr_coulomb_update(const ElasticConstants& e, const MohrCoulo
   const Sym3 trial = stress + elastic_increment(e, deps);
   // Screening: exact principal values in plane strain (tolerance kYieldRelTol); in 3D two
   // sufficient checks, from p and J2 alone and from bounds on sigma_1 and sigma_3; near or beyond
-  // the surface the plastic path decides with the accurate decomposition.
+  // the surface the plastic path decides with the accurate decomposition. The bounds stop at the
+  // first Newton iterate that proves the trial admissible (each is a bound); they are skipped
+  // for a point whose last update was plastic: it most likely yields again, where they cost as
+  // much as the decomposition (a near-double root slows their Newton steps), and the plastic path
+  // finds the same answer for one that turns out elastic.
   if (is_plane(trial)) {
     const PlanePrincipal pp = plane_principal(trial);
     if (detail::mohr_coulomb_admissible(k, Vec3(pp.v[0], pp.v[1], pp.v[2]), kYieldRelTol)) {
@@ -203,7 +207,9 @@ SKRED_INLINE Sym3 mohr_coulomb_update(const ElasticConstants& e, const MohrCoulo
     }
     return detail::mohr_coulomb_plastic_plane(e, k, stress, trial, pp, state, region);
   }
-  if (detail::clearly_elastic(k, trial) || detail::elastic_by_bounds(k, principal_bounds(trial))) {
+  const auto admissible = [&k](const PrincipalBounds& b) { return detail::elastic_by_bounds(k, b); };
+  if (detail::clearly_elastic(k, trial) ||
+      (!state.yielding && admissible(principal_bounds(trial, admissible)))) {
     stress = trial;
     state.yielding = 0;
     if (region) *region = MohrCoulombRegion::Elastic;
