@@ -2,7 +2,12 @@
 // around them, and small measurements on time series.
 #pragma once
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <functional>
+#include <map>
+#include <sstream>
+#include <string>
 #include <vector>
 
 #include "solver/explicit_solver.hpp"
@@ -37,6 +42,21 @@ inline GridGeometry<2> grid2(double h, int nx, int ny) {
 }
 
 inline BoundarySide side(BoundaryKind k, double mu = 0.0) { return BoundarySide{k, mu}; }
+
+// The last row of a run's series.csv as column name -> value (.at() on a missing name throws,
+// which fails the test).
+inline std::map<std::string, double> last_series_row(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string header, line, last;
+  std::getline(in, header);
+  while (std::getline(in, line))
+    if (!line.empty()) last = line;
+  std::map<std::string, double> row;
+  std::istringstream h(header), v(last);
+  std::string name, value;
+  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
+  return row;
+}
 
 // Times of the downward zero crossings of a sampled signal (linear interpolation).
 inline std::vector<double> zero_crossings(const std::vector<double>& t, const std::vector<double>& y) {

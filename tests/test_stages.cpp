@@ -16,10 +16,12 @@
 #include "run/sweep.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
+#include "support.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
+using skred::test::last_series_row;
 
 namespace {
 
@@ -301,20 +303,6 @@ density_ramp_time = 0.2
 }
 
 namespace {
-
-// The last row of a series.csv as column name -> value.
-std::map<std::string, double> last_series_row(const fs::path& file) {
-  std::istringstream in(read(file));
-  std::string header, line, last;
-  std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::map<std::string, double> row;
-  std::istringstream h(header), v(last);
-  std::string name, value;
-  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
-  return row;
-}
 
 // Runs the scenario `text` on one thread into a scratch folder: the first stage's measures
 // and the last series.csv row.

@@ -135,21 +135,10 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
     const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
     // The energy balance of the last series row: total_energy (kinetic + strain + every
     // dissipation - gravity work) against the gravity work.
-    std::ifstream series(out / "series.csv");
-    std::string header, line, last;
-    std::getline(series, header);
-    while (std::getline(series, line)) last = line;
+    const auto row = last_series_row(out / "series.csv");
     fs::remove_all(out);
     ASSERT_TRUE(r.completed) << r.message;
-    const auto column = [](const std::string& row, const std::string& hdr, const std::string& key) {
-      std::stringstream h(hdr), v(row);
-      std::string name, value;
-      while (std::getline(h, name, ',') && std::getline(v, value, ','))
-        if (name == key) return std::stod(value);
-      ADD_FAILURE() << key << " not in series.csv";
-      return 0.0;
-    };
-    const double balance = column(last, header, "total_energy") / column(last, header, "gravity_work");
+    const double balance = row.at("total_energy") / row.at("gravity_work");
     const StageMeasures& m = r.stages[0];
     std::printf(
         "soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m, energy "

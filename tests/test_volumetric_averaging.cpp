@@ -5,9 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
 #include <random>
-#include <sstream>
 
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
@@ -88,24 +86,13 @@ ColumnRun column(double h, const std::string& volumetric, double seconds, int th
   opt.progress = false;
   opt.threads = threads;  // one: two threads crawl on a loaded machine (libgomp's spin)
   const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
-  std::ifstream series(out / "series.csv");
-  std::string header, line, last;
-  std::getline(series, header);
-  while (std::getline(series, line)) last = line;
+  const auto row = last_series_row(out / "series.csv");
   fs::remove_all(out);
   EXPECT_TRUE(r.completed) << r.message;
-  const auto value = [&](const std::string& key) {
-    std::stringstream hs(header), vs(last);
-    std::string name, v;
-    while (std::getline(hs, name, ',') && std::getline(vs, v, ','))
-      if (name == key) return std::stod(v);
-    ADD_FAILURE() << key << " not in series.csv";
-    return 0.0;
-  };
   ColumnRun c;
   if (!r.stages.empty()) c.stage = r.stages.back();
-  c.gravity_work = value("gravity_work");
-  c.balance = value("total_energy") / c.gravity_work;
+  c.gravity_work = row.at("gravity_work");
+  c.balance = row.at("total_energy") / c.gravity_work;
   return c;
 }
 
@@ -220,25 +207,14 @@ interval = 0.1
   opt.progress = false;
   opt.threads = 1;
   const RunResult r = run_simulation(parse_scenario(text, "two_bodies.toml"), out, opt);
-  std::ifstream series(out / "series.csv");
-  std::string header, line, last;
-  std::getline(series, header);
-  while (std::getline(series, line)) last = line;
+  const auto row = last_series_row(out / "series.csv");
   fs::remove_all(out);
   ASSERT_TRUE(r.completed) << r.message;
-  const auto value = [&](const std::string& key) {
-    std::stringstream hs(header), vs(last);
-    std::string name, v;
-    while (std::getline(hs, name, ',') && std::getline(vs, v, ','))
-      if (name == key) return std::stod(v);
-    ADD_FAILURE() << key << " not in series.csv";
-    return 0.0;
-  };
-  const double work = value("gravity_work"), balance = value("total_energy") / work;
+  const double work = row.at("gravity_work"), balance = row.at("total_energy") / work;
   std::printf(
       "two columns in contact, cell-average: runout %.3f m, gravity work %.3f J/m, contact work %.4f J/m, "
       "balance %+.3f %%\n",
-      r.stages.back().runout, work, value("contact_work"), 100 * balance);
+      r.stages.back().runout, work, row.at("contact_work"), 100 * balance);
   EXPECT_GT(r.stages.back().runout, 0.05);  // they collapse (measured 0.18 m)
   EXPECT_LT(std::abs(balance), 0.01);
 }

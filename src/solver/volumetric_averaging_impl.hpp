@@ -17,7 +17,6 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
     const NodeStrides<D> strides = transfer_.strides();
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
-    ScatterBuffers<D>& buffers = transfer_.scatter();
     VolumetricAveraging<D>& A = volumetric_;
     A.resize(g, P.size());
     long first_bad = LONG_MAX;
@@ -68,25 +67,8 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       }
       Vec<D>* const forces = f.internal_force.data();
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-#pragma omp parallel num_threads(threads())
-      {
-        const int t = omp_get_thread_num();
-        Vec<D>* __restrict force = buffers.vec_target(t, forces);
-        BaseSpan span;
-#pragma omp for schedule(static) nowait
-        for (long p = 0; p < n; ++p) {
-          if (!sel(p)) continue;
-          typename K::Shape sh;
-          kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-          Mat<D> sigma = sym_block<D>(S.stress[p]);
-          sigma.diagonal().array() += A.pressure_correction(static_cast<std::size_t>(p));
-          const Mat<D> sv = -P.volume(static_cast<std::size_t>(p)) * sigma;
-          scatter_gradient(sh, strides, sv, force);
-          span.add(sh.base);
-        }
-        buffers.touched(t, span);
-      }
-      transfer_.reduce(nullptr, forces);
+      p2g_internal_force(transfer_, kernel, P, forces, sel,
+                         [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); });
       energy_.strain_energy += work;
       energy_.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);

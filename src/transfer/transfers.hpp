@@ -5,6 +5,8 @@
 #pragma once
 #include <omp.h>
 
+#include <type_traits>
+
 #include <climits>
 #include <cstdint>
 
@@ -108,10 +110,15 @@ void p2g_body_mass_momentum(Transfer<D>& T, const K& kernel, const Particles<D>&
   T.reduce(m, p);
 }
 
+// No shift of the stresses' diagonal in p2g_internal_force.
+struct NoPressureShift {};
+
 // f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses (of
-// the points `sel` selects), into a zeroed array f.
-template <int D, class K, class Sel = AllPoints>
-void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f, Sel sel = {}) {
+// the points `sel` selects), into a zeroed array f; with `shift`, sigma_p + shift(q) I (the cell
+// pressure of solver/volumetric_averaging.hpp).
+template <int D, class K, class Sel = AllPoints, class Shift = NoPressureShift>
+void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f, Sel sel = {},
+                        Shift shift = {}) {
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
@@ -125,7 +132,9 @@ void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, 
       if (!sel(q)) continue;
       typename K::Shape sh;
       kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
-      const Mat<D> sv = -P.volume(static_cast<std::size_t>(q)) * sym_block<D>(P.stress[q]);
+      Mat<D> sigma = sym_block<D>(P.stress[q]);
+      if constexpr (!std::is_same_v<Shift, NoPressureShift>) sigma.diagonal().array() += shift(q);
+      const Mat<D> sv = -P.volume(static_cast<std::size_t>(q)) * sigma;
       scatter_gradient(sh, T.strides(), sv, force);
       span.add(sh.base);
     }
