@@ -29,10 +29,16 @@ struct BoundaryNode {
 
 // What the walls did to the grid's energy in one step.
 struct WallEnergy {
-  // Energy the walls took, >= 0 at every node: the node's kinetic energy change less the
+  // Energy the walls took, >= 0 in every step: the nodes' kinetic energy change less the
   // forces' work over the points' mean velocity (v^k + v^{k+1}) / 2. Coulomb friction (eq.
   // 5.8-5.11), the no-slip of fixed walls and the stopped normal motion.
   double work = 0.0;
+  // The nodes' halves of the walls' share of the lumped mass's loss in the particle update,
+  // over the boundary nodes, with s_i = GridFields::stopped_acceleration: (1/2) dt^2 sum_i m_i
+  // s_i . a_i (the form paired with FLIP and APIC) and (1/2) dt sum_i m_i s_i . v_i^{k+1} (with the
+  // PIC share and XPIC). The points' halves: wall_update_loss (explicit_solver_impl.hpp).
+  double update_loss_change = 0.0;
+  double update_loss_end = 0.0;
 };
 
 template <int D>
@@ -50,7 +56,8 @@ class Boundaries {
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
   // v^{k+1} from the trial v^k + dt accel (friction: coulomb_friction.hpp), then
   // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
-  // velocity_move = (v^k + v^{k+1}) / 2. Returns the energy the walls took (WallEnergy).
+  // velocity_move = (v^k + v^{k+1}) / 2 and stopped_acceleration = the change of accel. Returns
+  // the energy the walls took (WallEnergy).
   WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }

@@ -231,6 +231,13 @@ class ExplicitSolver {
   bool forms_velocity_next() const {
     return settings_.pic_fraction > 0.0 || settings_.velocity_transfer == VelocityTransfer::Apic;
   }
+  // Whether the transfer's booked loss is taken from the FLIP update (FLIP without a PIC share, and
+  // APIC), or from the new velocity (the PIC share, XPIC): which form of the walls' share of the
+  // lumped mass's loss pairs with it (wall_update_loss in explicit_solver_impl.hpp).
+  bool update_from_flip() const {
+    return settings_.velocity_transfer == VelocityTransfer::Apic ||
+           (settings_.velocity_transfer == VelocityTransfer::Flip && settings_.pic_fraction <= 0.0);
+  }
   void clear_mass_momentum();
   // The grid phases per body in a run with contact (contact.cpp).
   void body_nodal_velocity();

@@ -20,6 +20,10 @@ struct GridFields {
   // handed to the particles (eq. 2.56), so that they obey the walls too.
   GridArray<Vec<D>> acceleration;
   GridArray<Vec<D>> velocity_move;  // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
+  // s_i, the part of a_i with which the walls stop a node: at the boundary nodes every component
+  // at a fixed wall and the normal one at a roller or frictional wall, zero elsewhere; for the
+  // walls' share of the lumped mass's loss (WallEnergy).
+  GridArray<Vec<D>> stopped_acceleration;
   // v_i^{k+1} = p_i / m_i + dt a_i, for the PIC share of the particle velocity update and
   // APIC; for XPIC(m), v_i^{k+1} - p_i / m_i + v*_i (allocated only when the transfer uses it).
   GridArray<Vec<D>> velocity_next;
@@ -33,7 +37,9 @@ struct GridFields {
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
   void resize(std::size_t n, bool pic, bool remap, bool xpic = false) {
-    for (auto* f : {&momentum, &velocity, &internal_force, &acceleration, &velocity_move}) f->resize(n);
+    for (auto* f :
+         {&momentum, &velocity, &internal_force, &acceleration, &velocity_move, &stopped_acceleration})
+      f->resize(n);
     mass.resize(n);
     if (pic || xpic) velocity_next.resize(n);
     if (xpic) xpic_work.resize(n);

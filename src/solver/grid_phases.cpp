@@ -87,6 +87,9 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
   const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
   assert(walls.work >= 0.0);  // friction never creates energy
   energy_.friction_work += walls.work;
+  // USF: the walls' share of the lumped mass's loss, its nodal half (the points': wall_update_loss)
+  if (settings_.scheme == StressScheme::USF)
+    energy_.transfer_dissipation += update_from_flip() ? walls.update_loss_change : walls.update_loss_end;
   if (forms_velocity_next())  // v_i^{k+1} for the PIC share of the particle update, or APIC's
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
