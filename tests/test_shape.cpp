@@ -3,9 +3,11 @@
 // (Thesis fig. 3.9-3.10) and the clamped B-spline's behaviour at the walls.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <vector>
 
 #include "shape/bspline.hpp"
 #include "shape/gimp.hpp"
@@ -247,4 +249,44 @@ TEST(Shape, GimpCubeRootMatchesTheLibrary) {
   EXPECT_EQ(gimp_cube_root(-8.0), -2.0);
   EXPECT_TRUE(std::isnan(gimp_cube_root(std::nan(""))));
   EXPECT_EQ(gimp_cube_root(1.0), 1.0);
+}
+
+// gather_layers (the walls' share of the lumped mass's loss reads s_i, zero off the walls, on the
+// wall layers of a block only) equals the full gather of the field zeroed off those layers, for
+// every combination of layers, in 2D and 3D.
+template <int D>
+void check_gather_layers() {
+  const GridGeometry<D> g = make_grid<D>(false);
+  const NodeStrides<D> strides(g);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  std::vector<Vec<D>> f(g.node_count());
+  for (Vec<D>& v : f)
+    for (int d = 0; d < D; ++d) v[d] = u(rng) - 0.5;
+  const GimpKernel<D> kernel;
+  for (int trial = 0; trial < 200; ++trial) {
+    Vec<D> x;
+    for (int d = 0; d < D; ++d) x[d] = g.origin[d] + 0.1 + u(rng) * (g.h * g.cells[d] - 0.2);
+    typename GimpKernel<D>::Shape sh;
+    ASSERT_TRUE(kernel.shape(g, x, Vec<D>::Constant(g.h / 4), Mat<D>::Identity(), sh));
+    std::array<unsigned, D> layers{};
+    for (int d = 0; d < D; ++d) layers[d] = static_cast<unsigned>(rng() % 8u);  // any of 3 layers
+    std::vector<Vec<D>> zeroed(f.size(), Vec<D>::Zero());
+    for (std::size_t i = 0; i < f.size(); ++i) {
+      const auto ij = g.unflatten(i), b = g.unflatten(sh.base);
+      bool on = false;
+      for (int d = 0; d < D; ++d) {
+        const int k = ij[d] - b[d];
+        on = on || (k >= 0 && k < 3 && ((layers[d] >> k) & 1u));
+      }
+      if (on) zeroed[i] = f[i];
+    }
+    EXPECT_LT((gather_layers(sh, strides, f.data(), layers) - gather(sh, strides, zeroed.data())).norm(),
+              1e-14);
+  }
+}
+
+TEST(Shape, GatherOnWallLayersIsTheGatherOfTheFieldOnThem) {
+  check_gather_layers<2>();
+  check_gather_layers<3>();
 }

@@ -3,6 +3,7 @@
 // them in packed form through the phases of the step, and expands the tensor product on the
 // fly while it scatters to or gathers from the S^D block of nodes.
 #pragma once
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <type_traits>
@@ -166,6 +167,42 @@ SKRED_INLINE T gather(const Separable<D, S>& sh, const NodeStrides<D>& st, const
       }
       out += sh.w[2][c] * plane;
     }
+  }
+  return out;
+}
+
+// sum_i N_ip f_i over the nodes of the block on the given layers only: node (a, b[, c]) counts
+// when bit a of layers[0], bit b of layers[1] or bit c of layers[2] is set (the nodes on a wall,
+// where a field that is zero elsewhere lives: a third of the block or less next to one wall).
+template <int D, int S>
+SKRED_INLINE Vec<D> gather_layers(const Separable<D, S>& sh, const NodeStrides<D>& st,
+                                  const Vec<D>* __restrict f,
+                                  const std::type_identity_t<std::array<unsigned, D>>& layers) {
+  Vec<D> out = Vec<D>::Zero();
+  if constexpr (D == 2) {
+    for (int b = 0; b < S; ++b) {
+      const Vec<D>* r = f + sh.base + b * st.s[1];
+      const bool row = (layers[1] >> b) & 1u;
+      for (int a = 0; a < S; ++a)
+        if (row || ((layers[0] >> a) & 1u)) out += (sh.w[0][a] * sh.w[1][b]) * r[a];
+    }
+  } else {
+    // whole rows (along x) on a y or z wall layer in lanes, as gather does; single nodes on an x one
+    const double* fd = reinterpret_cast<const double*>(f);
+    auto acc = lanes3::Row<S>::zero();
+    for (int c = 0; c < S; ++c)
+      for (int b = 0; b < S; ++b) {
+        const double k = sh.w[1][b] * sh.w[2][c];
+        if (((layers[1] >> b) & 1u) || ((layers[2] >> c) & 1u)) {
+          acc.add(k, lanes3::Row<S>::load(lanes3::row(fd, sh, st, b, c)));
+        } else if (layers[0] != 0u) {
+          const Vec<D>* r = f + sh.base + b * st.s[1] + c * st.s[2];
+          for (int a = 0; a < S; ++a)
+            if ((layers[0] >> a) & 1u) out += (sh.w[0][a] * k) * r[a];
+        }
+      }
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) out[i] += sh.w[0][a] * acc[3 * a + i];
   }
   return out;
 }
@@ -335,6 +372,12 @@ SKRED_INLINE void scatter_gradient(const Stencil<D, S>& sh, const NodeStrides<D>
   for_each_node(sh, st, [&](std::size_t i, double, const Vec<D>& g) { f[i].noalias() += A * g; });
 }
 
+template <int D, int S>
+SKRED_INLINE Vec<D> gather_layers(const Stencil<D, S>& sh, const NodeStrides<D>& st,
+                                  const Vec<D>* __restrict f,
+                                  const std::type_identity_t<std::array<unsigned, D>>&) {
+  return gather(sh, st, f);  // (a general stencil: every node)
+}
 template <int D, int S>
 SKRED_INLINE void gather_pair(const Stencil<D, S>& sh, const NodeStrides<D>& st, const Vec<D>* __restrict f,
                               const Vec<D>* __restrict g, Vec<D>& out_f, Vec<D>& out_g) {

@@ -35,6 +35,20 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
     walls_[2 * d] = {d, -1.0, sides[2 * d]};
     walls_[2 * d + 1] = {d, +1.0, sides[2 * d + 1]};
   }
+  for (int d = 0; d < D; ++d) {
+    const int n = g.nodes(d);
+    nodes_per_axis_[d] = static_cast<std::size_t>(n);
+    inv_nodes_[d] = 1.0 / n;
+    low_layers_[d].assign(static_cast<std::size_t>(n), 0);
+    high_layers_[d].assign(static_cast<std::size_t>(n), 0);
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < kLayers && j + k < n; ++k) {
+        const double r = g.node_coordinate(d, j + k);
+        if (r <= tol) low_layers_[d][static_cast<std::size_t>(j)] |= static_cast<std::uint8_t>(1u << k);
+        if (r >= g.h * g.cells[d] - tol)
+          high_layers_[d][static_cast<std::size_t>(j)] |= static_cast<std::uint8_t>(1u << k);
+      }
+  }
   for (std::size_t i = 0; i < g.node_count(); ++i) {
     const auto ij = g.unflatten(i);
     BoundaryNode b;
@@ -72,6 +86,7 @@ void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
 template <int D>
 WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
   WallEnergy e;
+  std::array<double, 2 * D> stopped_energy{}, energy{};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
   for (const BoundaryNode& b : nodes_) {
     const std::size_t i = b.node;
     const double m = grid.mass[i];
@@ -113,11 +128,18 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
       if (wall.side.kind == BoundaryKind::Fixed) break;
     }
     grid.stopped_acceleration[i] = stopped;
+    for (int w = 0; w < b.count; ++w) {
+      stopped_energy[b.walls[w]] += m * dt * dt * stopped.squaredNorm();
+      energy[b.walls[w]] += m * v_free.squaredNorm();
+    }
     e.update_loss_end += 0.5 * dt * m * stopped.dot(vnew);
     e.update_loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
     grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }
   e.work = std::max(e.work, 0.0);
+  // A side stops something when the energy of its stopped motion is not nil against its nodes'
+  // kinetic energy (a plane-strain slab's rollers stop a motion of round-off and near-symmetry).
+  for (int side = 0; side < 2 * D; ++side) e.stopping[side] = stopped_energy[side] > 1e-6 * energy[side];
   return e;
 }
 

@@ -39,6 +39,10 @@ struct WallEnergy {
   // PIC share and XPIC). The points' halves: wall_update_loss (explicit_solver_impl.hpp).
   double update_loss_change = 0.0;
   double update_loss_end = 0.0;
+  // Per side (2 axis + 0 low / 1 high): whether its nodes' stopped motion had an energy, sum m_i
+  // |dt s_i|^2, over 1e-6 of their kinetic energy this step; the points need not read s_i next to
+  // a wall that stopped nothing more (a plane-strain slab's rollers).
+  std::array<bool, 6> stopping{};
 };
 
 template <int D>
@@ -60,12 +64,44 @@ class Boundaries {
   // the energy the walls took (WallEnergy).
   WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
+  // Which layers of a point's block of S nodes per axis from flat node `base` lie on (or beyond)
+  // a side flagged in `stopping` (WallEnergy::stopping): per axis a bitmask of its S layers;
+  // false when none does. Table lookups and a division by multiplication: it runs per point.
+  template <int S>
+  bool block_layers(std::size_t base, const std::array<bool, 2 * D>& stopping,
+                    std::array<unsigned, D>& layers) const {
+    static_assert(S <= kLayers);
+    std::size_t rest = base;
+    unsigned any = 0;
+    for (int d = 0; d < D; ++d) {
+      std::size_t j = rest;
+      if (d < D - 1) {
+        std::size_t q = static_cast<std::size_t>(static_cast<double>(rest) * inv_nodes_[d]);
+        while (q * nodes_per_axis_[d] > rest) --q;  // (the product is exact to within one)
+        while ((q + 1) * nodes_per_axis_[d] <= rest) ++q;
+        j = rest - q * nodes_per_axis_[d];
+        rest = q;
+      }
+      const unsigned m =
+          (stopping[2 * d] ? low_layers_[d][j] : 0u) | (stopping[2 * d + 1] ? high_layers_[d][j] : 0u);
+      layers[d] = m & ((1u << S) - 1u);
+      any |= layers[d];
+    }
+    return any != 0;
+  }
+
   const std::vector<BoundaryNode>& nodes() const { return nodes_; }
   const Wall& wall(std::uint8_t side) const { return walls_[side]; }
 
  private:
   std::vector<BoundaryNode> nodes_;
   std::array<Wall, 2 * D> walls_{};  // per side
+  // block_layers' tables: per axis and node index j, the bits k < kLayers for which node j + k
+  // lies on or beyond the low (high) wall
+  static constexpr int kLayers = 4;
+  std::array<std::vector<std::uint8_t>, D> low_layers_, high_layers_;
+  std::array<std::size_t, D> nodes_per_axis_{};
+  std::array<double, D> inv_nodes_{};
 };
 
 }  // namespace skred

@@ -267,6 +267,7 @@ class ExplicitSolver {
   SolverSettings<D> settings_;
   Boundaries<D> boundaries_;
   WallBox<D> walls_;
+  std::array<bool, 2 * D> stopping_walls_{};  // the sides that stopped a node this step (WallEnergy)
   GridFields<D> fields_;
   std::vector<BodyFields<D>> bodies_;
   NodeBox<D> body_box_;               // where the body fields were last written

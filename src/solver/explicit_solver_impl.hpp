@@ -12,8 +12,10 @@
 #include <omp.h>
 
 #include <algorithm>
+#include <array>
 #include <climits>
 #include <cmath>
+#include <type_traits>
 
 #include "core/inline.hpp"
 #include "solver/gravity.hpp"
@@ -121,22 +123,26 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& str
 // and XPIC the difference is (1/2) dt (sum_i m_i a_i . v_i^{k+1} - sum_p m_p acc_p . v_p^{k+1}) and
 // its walls' part (1/2) dt (sum_i m_i s_i . v_i^{k+1} - sum_p m_p s_p . v_p^{k+1}). The nodes'
 // halves are WallEnergy's update_loss_change and update_loss_end; this is a point's, nonzero only
-// where its nodes reach a wall (`near_wall`).
+// where its nodes reach a wall (`Boundaries::block_layers`).
 template <class Shape, int D>
 SKRED_INLINE double wall_update_loss(const Shape& sh, const NodeStrides<D>& strides,
-                                     const Vec<D>* __restrict stopped, double dt, double m, bool from_flip,
-                                     const Vec<D>& acc_p, const Vec<D>& v_new) {
-  const Vec<D> s = gather(sh, strides, stopped);
+                                     const Vec<D>* __restrict stopped,
+                                     const std::type_identity_t<std::array<unsigned, D>>& layers, double dt,
+                                     double m, bool from_flip, const Vec<D>& acc_p, const Vec<D>& v_new) {
+  const Vec<D> s = gather_layers(sh, strides, stopped, layers);  // s_i is zero off the walls
   return -0.5 * dt * m * s.dot(from_flip ? Vec<D>(dt * (2.0 * acc_p - s)) : v_new);
 }
 
-// Whether a point at x can have nodes on a wall of the box (a superset: a kernel of S nodes per
-// axis has its nodes within reach = S h of the point).
-template <int D>
-SKRED_INLINE bool near_wall(const WallBox<D>& walls, const Vec<D>& x, double reach) {
+// Whether a point at x is within S h of a wall flagged in `stopping` (WallEnergy::stopping), so
+// that its block of S nodes per axis may hold a node on it (Boundaries::block_layers tells).
+template <int S, int D>
+SKRED_INLINE bool near_stopping_wall(double h, const WallBox<D>& walls,
+                                     const std::array<bool, 2 * D>& stopping, const Vec<D>& x) {
+  bool near = false;
   for (int d = 0; d < D; ++d)
-    if (x[d] - walls.lo[d] < reach || walls.hi[d] - x[d] < reach) return true;
-  return false;
+    near |= (stopping[2 * d] && x[d] - walls.lo[d] < S * h) ||
+            (stopping[2 * d + 1] && walls.hi[d] - x[d] < S * h);
+  return near;
 }
 
 }  // namespace
@@ -526,8 +532,8 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
       const Vec<D>* __restrict stopped = f.stopped_acceleration.data();
-      const double reach = K::S * g.h;  // near_wall
       const bool from_flip = update_from_flip();
+      const std::array<bool, 2 * D> stopping = stopping_walls_;
       Mat<D>* const affine =
           settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
@@ -551,8 +557,10 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
           const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc_p, vnext, alpha,
                                               affine ? affine + p : nullptr, pmass[p], 0.5, lost);
-          if (near_wall(walls_, x[p], reach))
-            lost += wall_update_loss(sh, strides, stopped, dt, pmass[p], from_flip, acc_p, vp);
+          if (std::array<unsigned, D> layers;
+              near_stopping_wall<K::S>(g.h, walls_, stopping, x[p]) &&
+              boundaries_.template block_layers<K::S>(sh.base, stopping, layers))
+            lost += wall_update_loss(sh, strides, stopped, layers, dt, pmass[p], from_flip, acc_p, vp);
           v[p] = vp;
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||

@@ -63,6 +63,7 @@ void ExplicitSolver<D>::clear_mass_momentum() {
 template <int D>
 void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
+    stopping_walls_ = {};                         // gathered over the continua (continuum_grid_update)
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
     continuum_grid_update(fields_);
   });
@@ -90,6 +91,8 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
   // USF: the walls' share of the lumped mass's loss, its nodal half (the points': wall_update_loss)
   if (settings_.scheme == StressScheme::USF)
     energy_.transfer_dissipation += update_from_flip() ? walls.update_loss_change : walls.update_loss_end;
+  for (int side = 0; side < 2 * D; ++side)
+    stopping_walls_[side] = stopping_walls_[side] || walls.stopping[side];
   if (forms_velocity_next())  // v_i^{k+1} for the PIC share of the particle update, or APIC's
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
