@@ -132,12 +132,13 @@ fs::path fresh_dir(const std::string& name) { return skred::test::fresh_temp_dir
 }  // namespace
 
 TEST(Checkpoint, RestartReproducesTheUninterruptedRunBitForBit) {
-  // (the last: USF with the cell-averaged volumetric strain, whose cell sums are not state)
+  // (the last two: with the cell-averaged volumetric strain, whose cell sums are not state)
   const std::pair<const char*, const char*> runs[] = {
       {"usf", "usf"},
       {"usl", "usl"},
       {"averaged", "averaged"},
-      {"usf-cell-average", "usf\"\nvolumetric_strain = \"cell-average"}};
+      {"usf-cell-average", "usf\"\nvolumetric_strain = \"cell-average"},
+      {"averaged-cell-average", "averaged\"\nvolumetric_strain = \"cell-average"}};
   for (const auto& [name, scheme] : runs) {
     SCOPED_TRACE(name);
     const fs::path dir = fresh_dir(name);

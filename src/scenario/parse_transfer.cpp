@@ -23,14 +23,9 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
   s.xpic_order = static_cast<int>(t.integer("xpic_order"));
   if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)
     t.fail_at("xpic_order", "applies to velocity_transfer = \"xpic\" only");
-  // Cell-averaged volumetric strain (solver/volumetric_averaging.hpp): the stress update and
-  // force phase of USF and the averaged scheme's first half; USL's force comes from another phase.
+  // Cell-averaged volumetric strain (solver/volumetric_averaging.hpp), with every scheme.
   s.volumetric_averaging =
       t.choice<bool>("volumetric_strain", {{"point", false}, {"cell-average", true}}, false);
-  if (s.volumetric_averaging && s.scheme != StressScheme::USF)
-    t.fail_at(
-        "volumetric_strain",
-        fmt::format("\"cell-average\" works with scheme = \"usf\" only (here \"{}\")", to_string(s.scheme)));
   s.hyperelastic = t.choice<bool>("elastic_update", {{"incremental", false}, {"hyperelastic", true}}, false);
   if (t.has("pic_fraction") && s.velocity_transfer != VelocityTransfer::Flip)
     t.fail_at("pic_fraction", "applies to velocity_transfer = \"flip\" only");

@@ -132,8 +132,7 @@ void add_run_sections(std::vector<Section>& s) {
             .doc = "\"point\": each point's own strain increment (Thesis eq. 2.20); \"cell-average\": the "
                    "volume-weighted mean volumetric strain of the points in its cell with its own "
                    "deviatoric strain, and the cell's mean pressure in the internal force (B-bar "
-                   "against volumetric locking in isochoric plastic flow; docs/method.md); scheme = "
-                   "\"usf\" only"},
+                   "against volumetric locking in isochoric plastic flow; docs/method.md); every scheme"},
            {.name = "pic_fraction",
             .unit = "-",
             .def = value(0),

@@ -205,6 +205,10 @@ class ExplicitSolver {
   bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K>
   bool stress_update_cell_volumetric(const K& kernel, double dt_stress);  // volumetric_averaging.hpp
+  template <class K, class Sel>
+  void cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel);  // volumetric_averaging_impl.hpp
+  template <class Sel>
+  void cell_pressure(Sel sel);  // volumetric_averaging_impl.hpp
   template <class K>
   void internal_force(const K& kernel);          // eq. 2.51
   void grid_update();                            // eq. 2.49, 5.8-5.11

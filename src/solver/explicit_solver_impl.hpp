@@ -350,7 +350,12 @@ void ExplicitSolver<D>::internal_force(const K& kernel) {
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       Vec<D>* const forces = f.internal_force.data();
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-      p2g_internal_force(transfer_, kernel, particles_, forces, sel);
+      if (!settings_.volumetric_averaging)
+        return p2g_internal_force(transfer_, kernel, particles_, forces, sel);
+      cell_pressure(sel);  // the cell's mean pressure in place of the point's (volumetric_averaging.hpp)
+      p2g_internal_force(transfer_, kernel, particles_, forces, sel, [&](long q) {
+        return volumetric_.pressure_correction(static_cast<std::size_t>(q));
+      });
     });
   });
 }
@@ -449,6 +454,9 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
       const Mat<D>* const affine =
           settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      const bool averaging = settings_.volumetric_averaging;  // cell-averaged volumetric strain
+      if (averaging) cell_divergence(kernel, vnew, sel);
+      const VolumetricAveraging<D>& A = volumetric_;
       double work = 0.0, dissipation = 0.0, affine_ke = 0.0;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
@@ -465,7 +473,8 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           if (!sel(p)) continue;
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
-          const Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+          Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+          if (averaging) grad_v.diagonal().array() += A.correction(static_cast<std::size_t>(p));
           const Vec<D> vmove = gather(sh, strides, vel);
           const auto r = S.update(p, grad_v, dt_stress);
           work += r.strain_energy;

@@ -1,9 +1,63 @@
 // The stress update and internal force with cell-averaged volumetric strain (USF and the
-// averaged scheme's first half; volumetric_averaging.hpp). Included by explicit_solver_impl.hpp.
+// averaged scheme's first half; volumetric_averaging.hpp), and the cell sums the other phases
+// take it from (the second stress update of USL and the averaged scheme, USL's force).
+// Included by explicit_solver_impl.hpp.
 #pragma once
 #include "solver/volumetric_averaging.hpp"
 
 namespace skred {
+
+// Each selected point's cell, its own div_p = tr grad v (eq. 2.20) from the nodal velocities
+// vel, its volume, and the cells' sums of V div and V (in point order, on one thread: the same
+// sums for any thread count).
+template <int D>
+template <class K, class Sel>
+void ExplicitSolver<D>::cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel) {
+  const GridGeometry<D>& g = grid();
+  const NodeStrides<D> strides = transfer_.strides();
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  VolumetricAveraging<D>& A = volumetric_;
+  A.resize(g, P.size());
+  const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+  transfer_.for_box([&](std::size_t i) { A.div_sum[i] = A.volume_sum[i] = 0.0; });
+#pragma omp parallel for num_threads(threads()) schedule(static)
+  for (long p = 0; p < n; ++p) {
+    if (!sel(p)) continue;
+    typename K::Shape sh;
+    kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+    A.cell[p] = VolumetricAveraging<D>::cell_of(g, P.x[p]);
+    A.div[p] = gather_gradient(sh, strides, vel).trace();
+    A.volume[p] = P.volume(static_cast<std::size_t>(p));
+  }
+  for (long p = 0; p < n; ++p) {
+    if (!sel(p)) continue;
+    A.div_sum[A.cell[p]] += A.volume[p] * A.div[p];
+    A.volume_sum[A.cell[p]] += A.volume[p];
+  }
+}
+
+// Each selected point's cell and mean in-plane stress m_p as the stresses stand, and the cells'
+// sums of V m and V: the pressure the internal force pairs with (USL's force, from sigma^k).
+template <int D>
+template <class Sel>
+void ExplicitSolver<D>::cell_pressure(Sel sel) {
+  const GridGeometry<D>& g = grid();
+  auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  VolumetricAveraging<D>& A = volumetric_;
+  A.resize(g, P.size());
+  transfer_.for_box([&](std::size_t i) { A.mean_sum[i] = A.mean_volume_sum[i] = 0.0; });
+  for (long p = 0; p < n; ++p) {
+    if (!sel(p)) continue;
+    const std::uint32_t c = VolumetricAveraging<D>::cell_of(g, P.x[p]);
+    const double V = P.volume(static_cast<std::size_t>(p));
+    A.cell[p] = c;
+    A.mean[p] = sym_block<D>(P.stress[p]).trace() / D;
+    A.mean_sum[c] += V * A.mean[p];
+    A.mean_volume_sum[c] += V;
+  }
+}
 
 // Three loops over the points of each continuum in place of stress_update_and_internal_force's
 // one: (1) each point's div_p = tr grad v (eq. 2.20) and its cell's sums of V div and V;
@@ -18,33 +72,18 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     VolumetricAveraging<D>& A = volumetric_;
-    A.resize(g, P.size());
     long first_bad = LONG_MAX;
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity.data();
-      transfer_.for_box([&](std::size_t i) {
-        A.div_sum[i] = A.volume_sum[i] = A.mean_sum[i] = A.mean_volume_sum[i] = 0.0;
-      });
+      cell_divergence(kernel, vel, sel);
+      transfer_.for_box([&](std::size_t i) { A.mean_sum[i] = A.mean_volume_sum[i] = 0.0; });
       auto grad_v = [&](long p) {
         typename K::Shape sh;
         kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
         return gather_gradient(sh, strides, vel);
       };
-#pragma omp parallel for num_threads(threads()) schedule(static)
-      for (long p = 0; p < n; ++p) {
-        if (!sel(p)) continue;
-        A.cell[p] = VolumetricAveraging<D>::cell_of(g, P.x[p]);
-        A.div[p] = grad_v(p).trace();
-        A.volume[p] = P.volume(static_cast<std::size_t>(p));
-      }
-      // (the cell sums in point order, on one thread: the same sums for any thread count)
-      for (long p = 0; p < n; ++p) {
-        if (!sel(p)) continue;
-        A.div_sum[A.cell[p]] += A.volume[p] * A.div[p];
-        A.volume_sum[A.cell[p]] += A.volume[p];
-      }
       double work = 0.0, dissipation = 0.0;
       long bad = LONG_MAX;
 #pragma omp parallel for num_threads(threads()) schedule(static) reduction(+ : work, dissipation) \
