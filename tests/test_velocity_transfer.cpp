@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <sstream>
 
 #include <filesystem>
@@ -119,27 +120,43 @@ TEST(VelocityTransfer, DiscEnergyWithTheTransferDissipationBooked) {
   }
 }
 
+namespace {
+
+// examples/soil_column.toml (Thesis §5.1) for 3 s with the velocity transfer t and, if given,
+// the base `wall` in place of its frictional one, on two threads: the run and the last
+// series.csv row (total_energy, gravity_work, ...).
+struct ColumnRun {
+  RunResult result;
+  std::map<std::string, double> row;
+  // The energy balance: total_energy (kinetic + strain + every dissipation - gravity work)
+  // against the gravity work.
+  double balance() const { return row.at("total_energy") / row.at("gravity_work"); }
+};
+ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
+  std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  text.replace(text.find("duration = 6.0"), 14, "duration = 3.0");
+  text.replace(text.find("velocity_transfer = \"apic\""), 26, "velocity_transfer = \"" + t + "\"");
+  const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
+  if (!wall.empty()) text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
+  const fs::path out = fs::temp_directory_path() / "skred_transfer_column";
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 2;
+  ColumnRun c{run_simulation(parse_scenario(text, "column.toml"), out, opt), {}};
+  c.row = last_series_row(out / "series.csv");
+  fs::remove_all(out);
+  return c;
+}
+
+}  // namespace
+
 TEST(VelocityTransfer, SoilColumnComesToRest) {
-  // examples/soil_column.toml (Thesis §5.1) with xpic and its own apic, 3 s: the mean speed of
-  // eq. 5.12 against the example's rest speed, 0.005 m/s.
-  std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
-  base.replace(base.find("duration = 6.0"), 14, "duration = 3.0");
+  // the mean speed of eq. 5.12 against the example's rest speed, 0.005 m/s
   for (const char* t : {"xpic", "apic"}) {  // flip: SoilColumnCollapsesSymmetricallyAndComesToRest
-    std::string text = base;
-    text.replace(text.find("velocity_transfer = \"apic\""), 26,
-                 std::string("velocity_transfer = \"") + t + "\"");
-    const fs::path out = fs::temp_directory_path() / "skred_transfer_column";
-    RunOptions opt;
-    opt.progress = false;
-    opt.threads = 2;
-    const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
-    // The energy balance of the last series row: total_energy (kinetic + strain + every
-    // dissipation - gravity work) against the gravity work.
-    const auto row = last_series_row(out / "series.csv");
-    fs::remove_all(out);
-    ASSERT_TRUE(r.completed) << r.message;
-    const double balance = row.at("total_energy") / row.at("gravity_work");
-    const StageMeasures& m = r.stages[0];
+    const ColumnRun c = soil_column(t);
+    ASSERT_TRUE(c.result.completed) << c.result.message;
+    const double balance = c.balance();
+    const StageMeasures& m = c.result.stages[0];
     std::printf(
         "soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m, energy "
         "balance %+.2f %% of the gravity work\n",
@@ -154,32 +171,19 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
   }
 }
 
-// The walls' share of the lumped mass's loss (docs/method.md): the soil column of
-// examples/soil_column.toml on a fixed base (each transfer) and on a roller base (XPIC), 3 s,
-// USF. Without it the balance missed -3.1 % (FLIP), -0.8 % (APIC) and -3.0 % (XPIC, roller): the
-// points lost to the walls more kinetic energy than the nodes' booked work says.
+// The walls' share of the lumped mass's loss (docs/method.md): the soil column on a fixed base
+// (each transfer) and on a roller base (XPIC), USF. Without it the balance missed -3.1 % (FLIP),
+// -0.8 % (APIC) and -3.0 % (XPIC, roller): the points lost to the walls more kinetic energy than
+// the nodes' booked work says.
 TEST(VelocityTransfer, ColumnOnFixedAndRollerBasesBooksTheWallsShare) {
-  std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
-  base.replace(base.find("duration = 6.0"), 14, "duration = 3.0");
-  const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
   for (const auto& [wall, t] : std::vector<std::pair<std::string, std::string>>{
            {"fixed", "flip"}, {"fixed", "xpic"}, {"fixed", "apic"}, {"roller", "xpic"}}) {
-    std::string text = base;
-    text.replace(text.find("velocity_transfer = \"apic\""), 26, "velocity_transfer = \"" + t + "\"");
-    text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
-    const fs::path out = fs::temp_directory_path() / "skred_transfer_column_walls";
-    RunOptions opt;
-    opt.progress = false;
-    opt.threads = 2;
-    const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
-    const auto row = last_series_row(out / "series.csv");
-    fs::remove_all(out);
-    ASSERT_TRUE(r.completed) << r.message;
-    const double balance = row.at("total_energy") / row.at("gravity_work");
+    const ColumnRun c = soil_column(t, wall);
+    ASSERT_TRUE(c.result.completed) << c.result.message;
     std::printf("soil column, %s base, %s: energy balance %+.3f %% of the gravity work (transfer %.3f %%)\n",
-                wall.c_str(), t.c_str(), 100 * balance,
-                100 * row.at("transfer_dissipation") / row.at("gravity_work"));
-    EXPECT_LT(std::abs(balance), 0.005);  // measured +0.14, -0.01, +0.36, -0.16 %
+                wall.c_str(), t.c_str(), 100 * c.balance(),
+                100 * c.row.at("transfer_dissipation") / c.row.at("gravity_work"));
+    EXPECT_LT(std::abs(c.balance()), 0.005);  // measured +0.14, -0.01, +0.36, -0.16 %
   }
 }
 
