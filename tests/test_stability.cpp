@@ -166,3 +166,45 @@ TEST(Stability, NonFiniteEnergiesStopTheRunAtOnce) {
     EXPECT_NE(summary.str().find("\"status\": \"unstable\""), std::string::npos);
   }
 }
+
+// The soil column with associated flow (psi = phi = 42 deg, examples/soil_column.toml): its
+// points dilate without bound, and a point's elastic wave speed grows as sqrt(det F) (its
+// stiffness acts on V = det F V0, its mass is fixed). Past det F = (h / (c dt))^2 = 4.9 at the
+// example's c dt / h = 0.45 the run rings and blows up (at 5.5 s; measured: at dt / 2, where
+// the limit is 20, it comes to rest with det F up to 8.5). The unstable run's message names
+// the dilation as the cause and the cure; with the dilation cut-off of Paper III §C.3.2
+// (psi = 0 past e_max) det F stays below 1.8 and the run completes. A CFL blow-up of material
+// that has not dilated (the bar at c dt / h = 2.2) gets no such note.
+TEST(Stability, DilatedMaterialIsNamedAsTheCauseOfAnInstability) {
+  test::TempDir d;
+  std::ifstream in(fs::path(SKRED_SOURCE_DIR) / "examples" / "soil_column.toml");
+  std::ostringstream t;
+  t << in.rdbuf();
+  const std::string column = t.str();
+  const auto with = [&](const std::string& dilation) {
+    std::string text = column;
+    const auto at = text.find("dilation = 0.0");
+    EXPECT_NE(at, std::string::npos);
+    text.replace(at, 14, dilation);
+    const fs::path file = d / ("column" + std::to_string(dilation.size()) + ".toml");
+    std::ofstream(file) << text;
+    RunOptions opt;
+    opt.progress = false;
+    return run_simulation(load_scenario(file.string()), d / ("out" + std::to_string(dilation.size())), opt);
+  };
+  const RunResult unbounded = with("dilation = 42.0");
+  EXPECT_FALSE(unbounded.completed);
+  EXPECT_NE(unbounded.message.find("unstable at step"), std::string::npos) << unbounded.message;
+  EXPECT_NE(unbounded.message.find("points had dilated to det F = "), std::string::npos) << unbounded.message;
+  EXPECT_NE(unbounded.message.find("max_void_ratio"), std::string::npos) << unbounded.message;
+
+  const RunResult cut_off = with("dilation = 42.0\ninitial_void_ratio = 0.6\nmax_void_ratio = 0.9");
+  EXPECT_TRUE(cut_off.completed) << cut_off.message;
+
+  const Scenario bar_fast = bar(d, 0.22);
+  RunOptions opt;
+  opt.progress = false;
+  const RunResult blown = run_simulation(bar_fast, d / "bar", opt);
+  EXPECT_FALSE(blown.completed);
+  EXPECT_EQ(blown.message.find("dilated"), std::string::npos) << blown.message;
+}

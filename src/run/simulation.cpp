@@ -266,6 +266,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                             tracker.runout(particles)));
       if (std::string why = watch.check(t, solver.energy()); !why.empty())
         stop_unstable(std::move(why), offending_point(particles));
+      else if (watch.observe_dilation(particles))  // once, when the limit is first passed
+        fmt::print(stderr, "{}warning at t = {:.4g} s: {}\n", tty ? "\n" : "", solver.time(),
+                   watch.dilation_note());
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
                            solver.time() - stage_start < density.ramp_end();
       return tracker.observe(solver.time(), t.mean_speed) && !ramping;
@@ -372,8 +375,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                   "stopped at step {} (t = {:.6g} s){} left the grid (its state is "
                                   "sound: enlarge the grid or close its sides)",
                                   unstable_step, solver.time(), where)
-                            : fmt::format("unstable at step {} (t = {:.6g} s){}: {}", unstable_step,
-                                          solver.time(), where, status.reason);
+                            : fmt::format("unstable at step {} (t = {:.6g} s){}: {}{}", unstable_step,
+                                          solver.time(), where, status.reason,
+                                          watch.dilation_note().empty() ? "" : "; " + watch.dilation_note());
     write_frame();  // the last state, for diagnosis
   } else if (stopped) {
     res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",

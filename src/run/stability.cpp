@@ -24,6 +24,40 @@ StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double tota
   const double height = s.cells[1] * s.cell_size;
   speed_bound_ = c_ + v0_ + std::sqrt(2.0 * s.gravity.norm() * height);
   floor_ = 1e-9 * total_mass * c_ * c_;
+  // (only where the undilated material is within its limit: else the step is the cause)
+  if (c_ > 0.0 && dt_ > 0.0) dilation_limit_ = std::pow(kStableCourant * h_ / (c_ * dt_), 2);
+  if (!(dilation_limit_ >= 1.0)) dilation_limit_ = INFINITY;
+}
+
+template <int D>
+bool StabilityWatch<D>::observe_dilation(const Particles<D>& P) {
+  const long n = static_cast<long>(P.size());
+  double det_max = 1.0;
+#pragma omp parallel for reduction(max : det_max)
+  for (long p = 0; p < n; ++p) {
+    const double J = P.F[p].determinant();
+    if (std::isfinite(J)) det_max = std::max(det_max, J);
+  }
+  long at = -1;
+  if (det_max > dilation_limit_)
+    for (long p = 0; p < n && at < 0; ++p)
+      if (P.F[p].determinant() == det_max) at = p;
+  det_max_ = det_max;
+  det_point_ = at;
+  if (dilation_warned_ || !(det_max > dilation_limit_)) return false;
+  dilation_warned_ = true;
+  return true;
+}
+
+template <int D>
+std::string StabilityWatch<D>::dilation_note() const {
+  const double J = det_max_;
+  if (!(J > dilation_limit_)) return {};
+  return fmt::format(
+      "points had dilated to det F = {:.3g} (point {}): the elastic wave speed of dilated material is c "
+      "sqrt(det F), so c sqrt(det F) dt / h = {:.3f} > {:g} there (above det F = {:.3g}); bound the dilation "
+      "(the material's max_void_ratio, Paper III C.3.2) or take a smaller time step",
+      J, det_point_, c_ * std::sqrt(J) * dt_ / h_, kStableCourant, dilation_limit_);
 }
 
 template <int D>

@@ -41,10 +41,27 @@ class StabilityWatch {
   // c_max + v0 + sqrt(2 |g| H): wave speed, initial speed and free fall over the grid height.
   double speed_bound() const { return speed_bound_; }
 
+  // Dilated material. A point's stiffness acts on its volume V = det(F) V0 while its mass is
+  // fixed, so its elastic wave speed is c sqrt(det F), and the step's limit there is
+  // c sqrt(det F) dt / h <= 1, i.e. det F <= dilation_limit() = (h / (c dt))^2. Past it a
+  // point that unloads (a dilated point at the apex of its yield surface that is compressed
+  // again) rings and blows up. observe_dilation records the largest det F at a series row and
+  // returns true the first time it passes the limit; dilation_note() is then the explanation
+  // (for the warning, and for an instability's message: the value of the last sound row, since
+  // a row that fails the check is not observed, so the dilation of a blow-up itself is not
+  // taken for its cause).
+  bool observe_dilation(const Particles<D>& P);
+  std::string dilation_note() const;
+  double dilation_limit() const { return dilation_limit_; }
+
  private:
   double c_ = 0.0, v0_ = 0.0, dt_ = 0.0, h_ = 0.0, floor_ = 0.0, speed_bound_ = 0.0;
   std::string fastest_material_;
   double k0_ = 0.0, max_gravity_work_ = 0.0, max_released_ = 0.0;
+  double dilation_limit_ = INFINITY;
+  double det_max_ = 1.0;  // the largest det F at the last series row observed, and where
+  long det_point_ = -1;
+  bool dilation_warned_ = false;
 };
 
 // The first point with a non-finite position, velocity, F or stress, or -1 (a frame of it
