@@ -1,13 +1,16 @@
 // Material-point splitting (Thesis §3.4.1-3.4.2): every mode of eq. 3.25 / fig. 3.11 and the
 // reference split of fig. 3.13 conserve mass, momentum, volume and the first moment of mass
-// exactly; the children of the six modes tile the parent's deformed voxel; and a collapsing
-// column runs to its end while its points multiply, up to the cap.
+// exactly; the children of the six modes tile the parent's deformed voxel; at the size floor
+// or the cap a point is reshaped into a square instead; and a collapsing column runs to its
+// end while its points multiply, with voxels far from the needles it has without splitting.
 #include <gtest/gtest.h>
 
 #include <array>
 #include <cmath>
 #include <filesystem>
 #include <string>
+
+#include <Eigen/SVD>
 
 #include "run/simulation.hpp"
 #include "scenario/scenario.hpp"
@@ -134,6 +137,37 @@ TEST(Splitting, ReferenceSplitAfterFourSplitsGivesSquaresOfHalfTheVolume) {
   }
 }
 
+// At the size floor (min_volume) a point that meets a criterion is not split: it keeps its
+// place, mass, velocity, stress and current volume and becomes a square with F = F_split = I
+// (the reference treatment with n = 1); above the floor the same point splits in two.
+TEST(Splitting, AtTheSizeFloorAPointIsReshapedNotSplit) {
+  Mat<2> F;
+  F << 1.0, 1.5, 0.0, 1.1;  // sheared past gamma
+  Particles<2> P = one_point(F);
+  const Totals before = totals(P);
+  const double volume = F.determinant() * P.volume0[0];  // 0.275
+  SplitSettings floor = all_split();
+  floor.min_volume = 0.5 * volume * (1 + 1e-9);  // the children would be just below it
+  ASSERT_EQ(split_points(P, floor), 1);
+  ASSERT_EQ(P.size(), 1u);
+  const Totals after = totals(P);
+  EXPECT_EQ(after.mass, before.mass);
+  EXPECT_EQ(after.momentum, before.momentum);
+  EXPECT_EQ(after.moment, before.moment);
+  EXPECT_NEAR(after.volume, before.volume, 1e-15 * before.volume);
+  EXPECT_EQ(P.F[0], Mat<2>::Identity());
+  EXPECT_EQ(P.split_gauge[0], Mat<2>::Identity());
+  EXPECT_EQ(P.half0[0][0], P.half0[0][1]);
+  EXPECT_NEAR(4 * P.half0[0].prod(), volume, 1e-15);
+  EXPECT_EQ(P.stress[0][0], -1234.0);
+  EXPECT_EQ(split_points(P, floor), 0) << "a square meets no criterion";
+
+  Particles<2> Q = one_point(F);
+  floor.min_volume = 0.5 * volume * (1 - 1e-9);
+  ASSERT_EQ(split_points(Q, floor), 1);
+  EXPECT_EQ(Q.size(), 2u);
+}
+
 TEST(Splitting, NothingSplitsBelowTheCriteriaOrPastTheCap) {
   Mat<2> F;
   F << 1.9, 0.9, -0.9, 0.55;
@@ -144,10 +178,17 @@ TEST(Splitting, NothingSplitsBelowTheCriteriaOrPastTheCap) {
   F << 3.0, 0.0, 0.0, 1.0;
   P.F[0] = F;
   EXPECT_EQ(split_points(P, off), 0);
-  SplitSettings capped = all_split();
-  capped.max_points = 1;
-  EXPECT_EQ(split_points(P, capped), 0);
   EXPECT_EQ(split_points(P, all_split()), 1);
+  EXPECT_EQ(P.size(), 2u);
+  // At the cap a point that meets a criterion is reshaped (a square, F = I), not split.
+  P.F[0] = F;
+  P.split_gauge[0] = Mat<2>::Identity();  // F_split = F
+  SplitSettings capped = all_split();
+  capped.max_points = 2;
+  EXPECT_EQ(split_points(P, capped), 1);
+  EXPECT_EQ(P.size(), 2u);
+  EXPECT_EQ(P.F[0], Mat<2>::Identity());
+  EXPECT_EQ(split_points(P, capped), 0);
 }
 
 TEST(Splitting, ACollapsingColumnSplitsUpToTheCap) {
@@ -181,15 +222,41 @@ end_time = 1.0
 interval = 0.5
 )";
   const Scenario s = parse_scenario(text, "split.toml");
-  EXPECT_EQ(s.splitting.max_points, 10 * 512);  // 8 x 16 cells, 2 x 2 points each
-  const auto out = skred::test::fresh_temp_dir();
-  RunOptions opt;
-  opt.progress = false;
-  opt.threads = 1;
-  const RunResult r = run_simulation(s, out, opt);
+  EXPECT_EQ(s.splitting.max_points, 10 * 512);                             // 8 x 16 cells, 2 x 2 points each
+  EXPECT_NEAR(s.splitting.min_volume, std::pow(0.125 * 0.125, 2), 1e-18);  // min_size 1/8
+  // The largest aspect ratio of the drawn voxels (singular values of the edge matrix
+  // [F e_0 l0_0, F e_1 l0_1]) before the last step.
+  const auto run = [](const Scenario& sc, double& aspect) {
+    const auto out = skred::test::fresh_temp_dir();
+    RunOptions opt;
+    opt.progress = false;
+    opt.threads = 1;
+    opt.edit_points = [&aspect](Particles<2>& P, const ExplicitSolver<2>&) {
+      aspect = 1.0;
+      for (std::size_t p = 0; p < P.size(); ++p) {
+        Mat<2> edges;
+        edges << P.F[p].col(0) * P.half0[p][0], P.F[p].col(1) * P.half0[p][1];
+        const Vec<2> sv = Eigen::JacobiSVD<Mat<2>>(edges).singularValues();
+        aspect = std::max(aspect, sv[0] / sv[1]);
+      }
+      return false;
+    };
+    const RunResult r = run_simulation(sc, out, opt);
+    std::filesystem::remove_all(out);
+    return r;
+  };
+  double aspect = 0.0, aspect_unsplit = 0.0;
+  const RunResult r = run(s, aspect);
   ASSERT_TRUE(r.completed) << r.message;
-  std::printf("column with splitting: %ld points from 512\n", r.particles);
+  Scenario unsplit = s;
+  unsplit.bodies[0].split = false;
+  unsplit.splitting = SplitSettings{};
+  ASSERT_TRUE(run(unsplit, aspect_unsplit).completed);
+  std::printf("column with splitting: %ld points from 512, largest voxel aspect ratio %.2f (without: %.2f)\n",
+              r.particles, aspect, aspect_unsplit);
   EXPECT_GT(r.particles, 512);
   EXPECT_LE(r.particles, 5120);
-  std::filesystem::remove_all(out);
+  // Splitting keeps the voxels from becoming needles (measured: 13.8 against 50.0; with no size
+  // floor, min_size = 0, the points reach the cap of 5,120 and the largest is 29.1).
+  EXPECT_LT(aspect, aspect_unsplit / 3);
 }

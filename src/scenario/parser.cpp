@@ -409,6 +409,7 @@ void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
   sp.beta = r.number("beta");
   sp.gamma = r.number("gamma");
   sp.reference_after = static_cast<int>(r.integer("reference_after"));
+  sp.min_volume = std::pow(r.number("min_size") * s.cell_size, D);
   double points = 0;
   for (const auto& b : s.bodies) points += static_cast<double>(count_points(s, b));
   sp.max_points =

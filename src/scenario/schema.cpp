@@ -305,6 +305,12 @@ void add_model_sections(std::vector<Section>& s) {
                     .def = value(4),
                     .range = Range::closed(1, 20),
                     .doc = "a point split this many times gets the reference split of Thesis §3.4.2"},
+                   {.name = "min_size",
+                    .unit = "-",
+                    .def = value(0.125),
+                    .range = Range::closed(0.0, 1.0),
+                    .doc = "no point is split into children smaller than a square (cube) of this "
+                           "fraction of the cell size (0: no floor, the thesis as printed)"},
                    {.name = "max_points",
                     .type = Type::Integer,
                     .def = derived("10 x the initial points"),
