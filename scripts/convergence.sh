@@ -13,6 +13,8 @@
 #   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
 #   PROBLEMS=column SIZES="0.125 0.0625" scripts/convergence.sh build/skred apic   (other sizes)
 #   VOLUMETRIC=cell-average scripts/convergence.sh build/skred apic   (solver.volumetric_strain)
+#   SPLIT=1 VOLUMETRIC=cell-average scripts/convergence.sh build/skred apic   (split = true on the
+#                                                  body: material-point splitting, Thesis §3.4)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -21,6 +23,13 @@ problems=${PROBLEMS:-column slope}
 threads=${THREADS:-1}
 out=${OUT:-out/convergence}
 volumetric=${VOLUMETRIC:-point}
+split=${SPLIT:-0}
+tag=$volumetric
+splitexpr='s/^$//'  # (nothing)
+if [ "$split" = 1 ]; then
+  tag=${volumetric}_split
+  splitexpr='s/^shape = /split = true\nshape = /'
+fi
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -30,11 +39,12 @@ scenario() {
   sed -e "s/^cell_size = .*/cell_size = $2/" \
     -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^volumetric_strain/d' \
     -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"/" \
-    ${3:+-e "s/^time_step = .*/time_step = $3/"} "$1"
+    ${3:+-e "s/^time_step = .*/time_step = $3/"} \
+    -e "$splitexpr" "$1"
 }
 
 fronts=
-echo "solver.volumetric_strain = \"$volumetric\""
+echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')"
 printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
 for tr in $transfers; do
   for problem in $problems; do
@@ -48,7 +58,7 @@ for tr in $transfers; do
     for h in $sizes; do
       dt=
       [ "$problem" = column ] && dt=$(awk -v h="$h" 'BEGIN { printf "%g", 0.002 * h }')
-      dir=$out/${problem}_${tr}_${volumetric}_$h
+      dir=$out/${problem}_${tr}_${tag}_$h
       dirs="$dirs $dir"
       scenario "$file" "$h" "$dt" "$tr" > "$dir.toml"
       "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
