@@ -366,18 +366,19 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   res.left_grid = left_grid;
   if (!status.ok) {
     const long p = status.particle;
+    const std::string note = watch.dilation_note();  // when dilated material is the likely cause
     const std::string where =
         p < 0 ? std::string()
               : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
                             s.bodies[particles.body[p]].name, particles.x[p][0], particles.x[p][1],
                             D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "");
-    res.message = left_grid ? fmt::format(
-                                  "stopped at step {} (t = {:.6g} s){} left the grid (its state is "
-                                  "sound: enlarge the grid or close its sides)",
-                                  unstable_step, solver.time(), where)
-                            : fmt::format("unstable at step {} (t = {:.6g} s){}: {}{}", unstable_step,
-                                          solver.time(), where, status.reason,
-                                          watch.dilation_note().empty() ? "" : "; " + watch.dilation_note());
+    res.message = left_grid
+                      ? fmt::format(
+                            "stopped at step {} (t = {:.6g} s){} left the grid (its state is "
+                            "sound: enlarge the grid or close its sides)",
+                            unstable_step, solver.time(), where)
+                      : fmt::format("unstable at step {} (t = {:.6g} s){}: {}{}", unstable_step,
+                                    solver.time(), where, status.reason, note.empty() ? "" : "; " + note);
     write_frame();  // the last state, for diagnosis
   } else if (stopped) {
     res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",

@@ -43,7 +43,7 @@ class StabilityWatch {
 
   // Dilated material. A point's stiffness acts on its volume V = det(F) V0 while its mass is
   // fixed, so its elastic wave speed is c sqrt(det F), and the step's limit there is
-  // c sqrt(det F) dt / h <= 1, i.e. det F <= dilation_limit() = (h / (c dt))^2. Past it a
+  // c sqrt(det F) dt / h <= 1, i.e. det F <= (h / (c dt))^2. Past it a
   // point that unloads (a dilated point at the apex of its yield surface that is compressed
   // again) rings and blows up. observe_dilation records the largest det F at a series row and
   // returns true the first time it passes the limit; dilation_note() is then the explanation
@@ -52,7 +52,6 @@ class StabilityWatch {
   // taken for its cause).
   bool observe_dilation(const Particles<D>& P);
   std::string dilation_note() const;
-  double dilation_limit() const { return dilation_limit_; }
 
  private:
   double c_ = 0.0, v0_ = 0.0, dt_ = 0.0, h_ = 0.0, floor_ = 0.0, speed_bound_ = 0.0;

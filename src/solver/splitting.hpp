@@ -9,8 +9,8 @@
 // smaller than min_volume (scenario key min_size, a fraction of the cell: not in the thesis;
 // below it the grid sees no more detail, and without it the points at a slide's front were
 // split to hundreds per cell and blew up, docs/method.md "Material-point splitting"). A point
-// at that floor, or met once the run holds max_points, that meets a criterion gets the
-// reference treatment with n = 1 instead (eq. 3.24): it stays one point, its voxel becomes the
+// that meets a criterion at that floor, or once the run holds max_points, gets the reference
+// treatment with n = 1 instead (eq. 3.24): it stays one point, its voxel becomes the
 // square of its current volume and F = F_split = I, stress carried, so its voxel cannot grow
 // into a needle either.
 //
@@ -95,7 +95,7 @@ void reference_split(Particles<D>& P, std::size_t p, int parts, const Vec<D>& sh
 
 // Splits every point of a splitting body that meets a criterion (once per call; the children
 // are looked at from the next call on). Returns the number of points changed (split, or at
-// the size floor reset to a square).
+// the size floor or the cap reshaped into a square).
 template <int D>
 long split_points(Particles<D>& P, const SplitSettings& s) {
   P.enable_splitting();
