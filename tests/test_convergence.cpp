@@ -12,6 +12,7 @@
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
 #include "support.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -23,7 +24,7 @@ StageMeasures column(double h) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   text.replace(text.find("cell_size = 0.5"), 15, "cell_size = " + std::to_string(h));
   text.replace(text.find("time_step = 0.001"), 17, "time_step = " + std::to_string(0.002 * h));
-  const fs::path out = fs::temp_directory_path() / "skred_convergence_column";
+  const fs::path out = fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   opt.threads = 1;  // 6 s of work in all; two threads on a loaded machine take far longer

@@ -191,7 +191,7 @@ TEST(Shape, GimpThreeNodeFormMatchesEquation314) {
     if (trial % 7 == 0) e = (trial % 14 == 0) ? lam : -lam;  // on a region boundary
     if (trial % 11 == 0) e = (trial % 22 == 0) ? 0.5 - 1e-15 : -0.5;
     double w[3], g[3];
-    gimp_3nodes(e, lam, w, g);
+    gimp_3nodes(e, lam, 1.0 / lam, w, g);
     for (int a = 0; a < 3; ++a) {
       double wr, gr;
       gimp_1d((e - (a - 1)) * L, L, lam * L, wr, gr);  // node n - 1 + a at distance x_p - x_i

@@ -13,6 +13,7 @@
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
 #include "support.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -138,7 +139,7 @@ ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
   text.replace(text.find("velocity_transfer = \"apic\""), 26, "velocity_transfer = \"" + t + "\"");
   const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
   if (!wall.empty()) text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
-  const fs::path out = fs::temp_directory_path() / "skred_transfer_column";
+  const fs::path out = fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   opt.threads = 2;

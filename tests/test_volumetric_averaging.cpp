@@ -11,6 +11,7 @@
 #include "scenario/build.hpp"
 #include "solver/volumetric_averaging.hpp"
 #include "support.hpp"
+#include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -82,7 +83,7 @@ ColumnRun column(double h, const std::string& volumetric, double seconds, int th
   text.replace(text.find("duration = 6.0"), 14, "duration = " + std::to_string(seconds));
   text.replace(text.find("scheme = \"usf\""), 14,
                "scheme = \"" + scheme + "\"\nvolumetric_strain = \"" + volumetric + "\"");
-  const fs::path out = fs::temp_directory_path() / "skred_volumetric_column";
+  const fs::path out = fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   opt.threads = threads;  // one: two threads crawl on a loaded machine (libgomp's spin)
@@ -220,7 +221,7 @@ duration = 0.6
 [output]
 interval = 0.1
 )";
-  const fs::path out = fs::temp_directory_path() / "skred_volumetric_contact";
+  const fs::path out = fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
   opt.threads = 1;

@@ -39,10 +39,10 @@ SKRED_INLINE void gimp_1d(double r, double L, double l, double& w, double& g) {
 }
 
 // Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
-// is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length. Nodes n - 1,
-// n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d, without branches.
-SKRED_INLINE void gimp_3nodes(double e, double lam, double* w, double* g) {
-  const double inv = 1.0 / lam;
+// is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length and inv = 1/lam.
+// Nodes n - 1, n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d,
+// without branches.
+SKRED_INLINE void gimp_3nodes(double e, double lam, double inv, double* w, double* g) {
   const double sl = std::max(lam - e, 0.0), sr = std::max(lam + e, 0.0);  // overlaps of the tails
   const bool left = e <= -lam, right = e >= lam;  // the point's domain lies within one cell
   w[0] = left ? -e : 0.25 * sl * sl * inv;
@@ -76,22 +76,39 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   using typename SeparableKernel<GimpKernel<D>, D, 3, 1>::Shape;
   static constexpr const char* name = "gimp";
 
-  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
-                          Shape& sh) const {
+  // The point's half-lengths in cell units, l_p / L = l_p^0 det(F)^(1/ndim) / L (eq. 3.23), kept
+  // within (0, 1/2] so the support spans three nodes, and their inverses. They depend on F
+  // only: a loop that moves points forms the next point's while it moves this one
+  // (transfer/size_ahead.hpp; their root and divisions are the longest chain of the weights).
+  struct Size {
+    double lam[D], inv[D];
+  };
+  SKRED_INLINE Size size(const GridGeometry<D>& g, const Vec<D>& half0, const Mat<D>& F) const {
     const double J = F.determinant();
     const double scale = (D == 2) ? std::sqrt(std::max(J, 0.0)) : gimp_cube_root(J);
     const double inv_h = 1.0 / g.h;
+    Size s;
+    for (int d = 0; d < D; ++d) {
+      s.lam[d] = std::clamp(half0[d] * scale * inv_h, 1e-12, 0.5);
+      s.inv[d] = 1.0 / s.lam[d];
+    }
+    return s;
+  }
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Size& size, Shape& sh) const {
+    const double inv_h = 1.0 / g.h;
     std::array<int, D> start{};
     for (int d = 0; d < D; ++d) {
-      // The half-length is kept within (0, L/2] so the support spans three nodes.
-      const double lam = std::clamp(half0[d] * scale * inv_h, 1e-12, 0.5);
       const double xi = (x[d] - g.origin[d]) * inv_h;
       const double n = std::floor(xi + 0.5);  // nearest node
       start[d] = static_cast<int>(n) - 1 + GridGeometry<D>::pad;
-      gimp_3nodes(xi - n, lam, sh.w[d], sh.g[d]);
+      gimp_3nodes(xi - n, size.lam[d], size.inv[d], sh.w[d], sh.g[d]);
       for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
     }
     return block_base<D, S>(g, start, sh.base);
+  }
+  SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F,
+                          Shape& sh) const {
+    return shape(g, x, size(g, half0, F), sh);
   }
 };
 

@@ -21,6 +21,7 @@
 #include "solver/gravity.hpp"
 #include "solver/stress_update.hpp"
 #include "solver/wall_share.hpp"
+#include "transfer/size_ahead.hpp"
 #include "transfer/transfers.hpp"
 
 namespace skred {
@@ -520,9 +521,11 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
         double* __restrict mass = buffers.mass_target(t, f.mass.data());
         Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
         BaseSpan span;
+        SizeAhead<D, K> ahead;  // F is not changed here: the next point's size is formed ahead
 #pragma omp for schedule(static) nowait
         for (long p = 0; p < n; ++p) {
           if (!sel(p)) continue;
+          const auto size = ahead.take(kernel, g, half0, F, p, n);
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
           Vec<D> acc_p, vmove;
@@ -537,7 +540,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           v[p] = vp;
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||
-              !map_point(kernel, g, strides, x[p], half0[p], F[p], pmass[p], vp, shape[p], mass, mom, span,
+              !map_point(kernel, g, strides, x[p], size, F[p], pmass[p], vp, shape[p], mass, mom, span,
                          affine ? affine + p : nullptr, affine ? &affine_ke : nullptr))
             bad = std::min(bad, p);
           extent.add(x[p]);

@@ -22,13 +22,19 @@ namespace skred {
 // rest of the step, and its mass and momentum mapped to the nodes (with an affine velocity C,
 // if given: APIC; then `affine_energy`, if given, gains 1/2 m sum_i N_ip |C (x_i - x_p)|^2). False if
 // the point's stencil does not fit in the grid.
-template <int D, class K>
+// `size` is the point's (x-independent) part of the weights, if the kernel has one
+// (SizedKernel: GIMP's half-lengths, eq. 3.23), else its initial half-lengths half0.
+template <int D, class K, class Size>
 SKRED_INLINE bool map_point(const K& kernel, const GridGeometry<D>& grid, const NodeStrides<D>& strides,
-                            const Vec<D>& x, const Vec<D>& half0, const Mat<D>& F, double m, const Vec<D>& v,
+                            const Vec<D>& x, const Size& size, const Mat<D>& F, double m, const Vec<D>& v,
                             typename K::Packed& store, double* __restrict mass, Vec<D>* __restrict mom,
                             BaseSpan& span, const Mat<D>* C = nullptr, double* affine_energy = nullptr) {
   typename K::Shape sh;
-  if (!kernel.shape(grid, x, half0, F, sh)) return false;
+  if constexpr (std::is_same_v<Size, Vec<D>>) {
+    if (!kernel.shape(grid, x, size, F, sh)) return false;
+  } else {
+    if (!kernel.shape(grid, x, size, sh)) return false;
+  }
   kernel.store(store, sh, F);
   span.add(sh.base);
   scatter(sh, strides, m, mass);

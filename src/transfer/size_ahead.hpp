@@ -1,0 +1,56 @@
+// Look-ahead of the part of a point's weighting functions that does not depend on its
+// position: GIMP's half-lengths l_p = l_p^0 det(F)^(1/ndim) (Thesis eq. 3.23), a root and
+// divisions that are the longest chain of a point's weights. A loop that moves points and
+// maps them at their new positions, without changing F, forms point p + 1's while it moves
+// point p, so they are ready (computed out of order beside p's transfers) when p + 1 comes.
+// In 2D (a square root) it does not pay: there, and for kernels without such a part, the
+// point's initial half-lengths are passed on and shape() forms the rest as before.
+#pragma once
+#include <type_traits>
+
+#include "core/grid.hpp"
+#include "core/inline.hpp"
+#include "core/types.hpp"
+
+namespace skred {
+
+template <class K>
+concept SizedKernel = requires {
+  typename K::Size;
+};
+
+template <int D, class K>
+constexpr bool kSizeAhead = D == 3 && SizedKernel<K>;
+
+template <class K, bool>
+struct SizeOf {
+  struct type {};
+};
+template <class K>
+struct SizeOf<K, true> {
+  using type = typename K::Size;
+};
+
+template <int D, class K>
+struct SizeAhead {
+  // What map_point takes as the point's size: K::Size, or half0 itself.
+  SKRED_INLINE auto take(const K& kernel, const GridGeometry<D>& g, const Vec<D>* __restrict half0,
+                         const Mat<D>* __restrict F, long p, long n) {
+    if constexpr (kSizeAhead<D, K>) {
+      const typename K::Size s = at_ == p ? next_ : kernel.size(g, half0[p], F[p]);
+      if (p + 1 < n) {
+        next_ = kernel.size(g, half0[p + 1], F[p + 1]);
+        at_ = p + 1;
+      }
+      return s;
+    } else {
+      return half0[p];
+    }
+  }
+
+ private:
+  typename SizeOf<K, kSizeAhead<D, K>>::type next_{};
+  long at_ = -1;
+};
+
+}  // namespace skred
