@@ -29,7 +29,8 @@ Vec<D> wall_velocity(const Wall& wall, Vec<D> vnew) {
 }  // namespace
 
 template <int D>
-Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides) {
+Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides, int threads)
+    : threads_(threads) {
   const double tol = 1e-9 * g.h;
   for (int d = 0; d < D; ++d) {
     walls_[2 * d] = {d, -1.0, sides[2 * d]};
@@ -67,7 +68,10 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
 
 template <int D>
 void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
-  for (const BoundaryNode& b : nodes_) {
+  const long count = static_cast<long>(nodes_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static) if (parallel())
+  for (long k = 0; k < count; ++k) {
+    const BoundaryNode& b = nodes_[static_cast<std::size_t>(k)];
     Vec<D>& v = velocity[b.node];
     for (int w = 0; w < b.count; ++w) {
       const Wall& wall = walls_[b.walls[w]];
@@ -85,9 +89,13 @@ void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
 
 template <int D>
 WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
-  WallEnergy e;
-  std::array<double, 2 * D> stopped_energy{}, energy{};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
-  for (const BoundaryNode& b : nodes_) {
+  double work = 0.0, loss_end = 0.0, loss_change = 0.0;
+  double stopped_energy[2 * D] = {}, energy[2 * D] = {};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
+  const long count = static_cast<long>(nodes_.size());
+#pragma omp parallel for num_threads(threads_) schedule(static) if (parallel()) \
+    reduction(+ : work, loss_end, loss_change, stopped_energy[:2 * D], energy[:2 * D])
+  for (long k = 0; k < count; ++k) {
+    const BoundaryNode& b = nodes_[static_cast<std::size_t>(k)];
     const std::size_t i = b.node;
     const double m = grid.mass[i];
     if (m <= 0.0) {
@@ -115,7 +123,7 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
     // (clipping each node's instead booked 0.9 % of the soil column's gravity work too much).
     const double taken =
         0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) + 0.5 * dt * m * a.dot(v_k + vnew);
-    e.work += taken;
+    work += taken;
     grid.acceleration[i] = (vnew - v_free) / dt;
     // s_i, the stopped motion's acceleration (GridFields::stopped_acceleration)
     Vec<D> stopped = Vec<D>::Zero();
@@ -132,11 +140,14 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) 
       stopped_energy[b.walls[w]] += m * dt * dt * stopped.squaredNorm();
       energy[b.walls[w]] += m * v_free.squaredNorm();
     }
-    e.update_loss_end += 0.5 * dt * m * stopped.dot(vnew);
-    e.update_loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
+    loss_end += 0.5 * dt * m * stopped.dot(vnew);
+    loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
     grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }
-  e.work = std::max(e.work, 0.0);
+  WallEnergy e;
+  e.work = std::max(work, 0.0);
+  e.update_loss_end = loss_end;
+  e.update_loss_change = loss_change;
   // A side stops something when the energy of its stopped motion is not nil against its nodes'
   // kinetic energy (a plane-strain slab's rollers stop a motion of round-off and near-symmetry).
   for (int side = 0; side < 2 * D; ++side) e.stopping[side] = stopped_energy[side] > 1e-6 * energy[side];

@@ -49,8 +49,9 @@ template <int D>
 class Boundaries {
  public:
   Boundaries() = default;
-  // Sides in the order x_min, x_max, y_min, y_max[, z_min, z_max].
-  Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides);
+  // Sides in the order x_min, x_max, y_min, y_max[, z_min, z_max]. The walks over the
+  // boundary nodes run on `threads` OpenMP threads once there are enough of them.
+  Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides, int threads = 1);
 
   // Velocity conditions: fixed -> v = 0, roller -> v_n = 0, friction -> no motion into
   // the wall (separation allowed).
@@ -96,6 +97,11 @@ class Boundaries {
  private:
   std::vector<BoundaryNode> nodes_;
   std::array<Wall, 2 * D> walls_{};  // per side
+  int threads_ = 1;
+  // Below this many boundary nodes a walk stays on one thread (a 2D grid's few thousand: the
+  // fork would cost more than the walk).
+  static constexpr std::size_t kParallelNodes = 8192;
+  bool parallel() const { return threads_ > 1 && nodes_.size() >= kParallelNodes; }
   // block_layers' tables: per axis and node index j, the bits k < kLayers for which node j + k
   // lies on or beyond the low (high) wall
   static constexpr int kLayers = 4;

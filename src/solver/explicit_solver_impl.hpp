@@ -124,7 +124,7 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     m.prepare();
   }
   const GridGeometry<D>& g = transfer_.grid();
-  boundaries_ = Boundaries<D>(g, settings_.boundaries);
+  boundaries_ = Boundaries<D>(g, settings_.boundaries, transfer_.threads());
   for (int d = 0; d < D; ++d) {
     const double lo = g.origin[d], hi = g.origin[d] + g.h * g.cells[d];
     const bool closed_lo = settings_.boundaries[2 * d].kind != BoundaryKind::Free;
