@@ -365,6 +365,53 @@ TEST(Principal, RebuildAndPlaneStrainFastPathMatchGeneral) {
   EXPECT_LT(worst_fast, 1e-14);
 }
 
+// The isolated root of the deviator's cubic: the polynomial start and its Halley step against
+// the trigonometric solution cos(acos(c)/3), to round-off over the whole range.
+TEST(Principal, LargestCubicRootToRoundOff) {
+  double worst = 0;
+  for (int i = 0; i <= 100000; ++i) {
+    const double c = i / 100000.0;
+    worst = std::max(worst, std::abs(detail::largest_cubic_root(c) - std::cos(std::acos(c) / 3.0)));
+  }
+  EXPECT_LT(worst, 1e-15);
+}
+
+// The closed form of the general 3D case on the states where closed forms break: exact double
+// and triple roots in rotated frames (cos 3 theta = +-1, where acos loses half the digits), a
+// deviator 1e-9 of the mean stress, and off-diagonals at 1e-30 of the diagonal. Each direction
+// must satisfy A v = lambda v to round-off of |A|, the frame must stay orthonormal, and a
+// well separated value must come with the frame's own direction.
+TEST(Principal, ClosedForm3DOnDegenerateStates) {
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> ang(-3.2, 3.2);
+  const std::vector<Eigen::Vector3d> spectra = {
+      {1, 1, 4}, {-4, 1, 1}, {2, 2, 2}, {-3e5, -3e5, 1e5}, {1e9, 1e9 + 1, 1e9 + 3}, {-7, 0, 7}, {0, 0, 1e-3}};
+  double worst_res = 0, worst_orth = 0, worst_dir = 0;
+  for (const Eigen::Vector3d& v : spectra)
+    for (int n = 0; n < 200; ++n) {
+      const Mat3 R = rotation(ang(rng), ang(rng), ang(rng));
+      Sym3 s = from_frame(v, R);
+      if (n == 0) s << v[0], v[1], v[2], 1e-30 * v.norm(), 0.0, 1e-30 * v.norm();  // nearly diagonal
+      const Principal p = principal_decomposition(s);
+      const Mat3 A = to_matrix(s);
+      for (int i = 0; i < 3; ++i)
+        worst_res =
+            std::max(worst_res, (A * p.vectors.col(i) - p.values[i] * p.vectors.col(i)).norm() / A.norm());
+      worst_orth = std::max(worst_orth, (p.vectors.transpose() * p.vectors - Mat3::Identity()).norm());
+      EXPECT_LE(p.values[0], p.values[1]);
+      EXPECT_LE(p.values[1], p.values[2]);
+      if (n > 0 && v[2] - v[1] > 0.1 * (v[2] - v[0]) && v[1] - v[0] > 0.1 * (v[2] - v[0]))
+        for (int i = 0; i < 3; ++i)  // distinct values: each direction is the frame's
+          worst_dir = std::max(worst_dir, 1.0 - std::abs(p.vectors.col(i).dot(R.col(i))));
+    }
+  std::printf("[principal 3D] degenerate states: residual %.2e |A|, orthonormality %.2e, directions %.2e\n",
+              worst_res, worst_orth, worst_dir);
+  EXPECT_LT(worst_res, 1e-14);
+  EXPECT_LT(worst_orth, 1e-14);
+  EXPECT_LT(worst_dir,
+            1e-12);  // 1 - cos of the angle (2e-13: the 1e9-mean state, built to 2e-7 of its unit gaps)
+}
+
 // =============================================================================================
 // Mohr-Coulomb
 

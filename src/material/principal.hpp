@@ -4,10 +4,11 @@
 // the principal directions of the trial stress.
 //
 // Plane strain (s[4] == s[5] == 0, the hot case) uses a closed-form 2 x 2 in-plane solution plus
-// the out-of-plane value s[2] with direction e_z; the general 3D case uses Eigen's tridiagonal
-// QR solver, accurate to round-off also for near-equal eigenvalues (Eigen's closed-form
-// computeDirect is ~5x faster but loses accuracy there: rebuild error up to 4e-8 |s|). The 3D
-// elastic screen needs only bounds on the extreme values (principal_bounds).
+// the out-of-plane value s[2] with direction e_z; the general 3D case a closed form on the
+// deviator's cubic (principal_decomposition_3d), accurate to round-off also for near-equal
+// eigenvalues, where Eigen's closed-form computeDirect loses accuracy (rebuild error up to
+// 4e-8 |s|), and several times faster than Eigen's tridiagonal QR. The 3D elastic screen needs
+// only bounds on the extreme values (principal_bounds).
 // Fixed-size Eigen types only: no heap allocation, no exceptions.
 #pragma once
 #include <Eigen/Eigenvalues>
@@ -118,6 +119,10 @@ SKRED_INLINE PlanePrincipal plane_principal(const V& s) {
   return p;
 }
 
+namespace detail {
+inline Principal principal_decomposition_3d(const Sym3& s);
+}
+
 // Principal values only, ascending (the cheap check on the elastic path).
 SKRED_INLINE Vec3 principal_values(const Sym3& s) {
   if (is_plane(s)) {
@@ -128,8 +133,7 @@ SKRED_INLINE Vec3 principal_values(const Sym3& s) {
     detail::sort3(v, k);
     return Vec3(v[0], v[1], v[2]);
   }
-  Eigen::SelfAdjointEigenSolver<Mat3> es(to_matrix(s), Eigen::EigenvaluesOnly);
-  return es.eigenvalues();  // Eigen returns them sorted ascending
+  return detail::principal_decomposition_3d(s).values;
 }
 
 // Bounds lo <= sigma_1 and hi >= sigma_3 on the extreme principal values, without
@@ -170,6 +174,91 @@ SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s) {
   return principal_bounds(s, [](const PrincipalBounds&) { return false; });
 }
 
+namespace detail {
+
+// The largest root u of 4u^3 - 3u = c for c in [0, 1] (u = cos(acos(c)/3) in [cos 30 deg, 1]).
+// The root is simple (the cubic's slope there is at least 6) and analytic in c, so a degree-5
+// polynomial (a least-squares Chebyshev fit, within 1.3e-6 of the root) and one Halley step,
+// which cubes the error, give it to round-off (3e-16 against cos(acos(c)/3) on 2e5 samples):
+// one division instead of Newton's four or acos and cos.
+SKRED_INLINE double largest_cubic_root(double c) {
+  double u = 0.0019631785446316274;
+  u = u * c - 0.008972271811933727;
+  u = u * c + 0.021865698860087997;
+  u = u * c - 0.0474918764903172;
+  u = u * c + 0.1666095405450996;
+  u = u * c + 0.8660266884397412;
+  const double f = u * (4.0 * u * u - 3.0) - c, f1 = 12.0 * u * u - 3.0, f2 = 24.0 * u;
+  return u - f * f1 / (f1 * f1 - 0.5 * f * f2);
+}
+
+// A unit vector in the null space of the rank-2 matrix [[a0, a3, a5], [a3, a1, a4], [a5, a4, a2]]:
+// the longest of the three cross products of its rows.
+SKRED_INLINE Vec3 null_vector(double a0, double a1, double a2, double a3, double a4, double a5) {
+  const Vec3 r0(a0, a3, a5), r1(a3, a1, a4), r2(a5, a4, a2);
+  const Vec3 c01 = r0.cross(r1), c02 = r0.cross(r2), c12 = r1.cross(r2);
+  const double n01 = c01.squaredNorm(), n02 = c02.squaredNorm(), n12 = c12.squaredNorm();
+  const Vec3& c = n01 >= n02 ? (n01 >= n12 ? c01 : c12) : (n02 >= n12 ? c02 : c12);
+  return c / std::sqrt(std::max({n01, n02, n12}));
+}
+
+// The general 3D decomposition in closed form, without iteration over the matrix: on the
+// deviator d = s - p I (p = tr s / 3) with r = 2 sqrt(J2/3), the principal values are p + r u,
+// u the roots of 4u^3 - 3u = cos(3 theta) = 4 J3 / r^3 (the screen's cubic above). The root
+// farthest from the other two (the largest for J3 >= 0, else the smallest) is simple, at
+// least 0.87 r from them, so Newton finds it and its direction (a null vector of d - r u I) to
+// round-off. The other two come from the 2 x 2 block of d in the plane normal to it (eig2),
+// which is accurate also when they are equal or nearly so, where the trigonometric formula of
+// Eigen's computeDirect loses half the digits.
+inline Principal principal_decomposition_3d(const Sym3& s) {
+  Principal out;
+  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p, d3 = s[3], d4 = s[4], d5 = s[5];
+  const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + d3 * d3 + d4 * d4 + d5 * d5;
+  if (!(j2 > 0.0)) {  // hydrostatic: every direction is principal
+    out.values = Vec3::Constant(p);
+    out.vectors = Mat3::Identity();
+    return out;
+  }
+  const double j3 = d0 * (d1 * d2 - d4 * d4) - d3 * (d3 * d2 - d4 * d5) + d5 * (d3 * d4 - d1 * d5);
+  const double r = 2.0 * std::sqrt(j2 / 3.0);
+  const double c3 = std::clamp(4.0 * j3 / (r * r * r), -1.0, 1.0);
+  const double ui = c3 >= 0.0 ? largest_cubic_root(c3) : -largest_cubic_root(-c3);
+  const double li = r * ui;  // the isolated value of the deviator
+  const Vec3 v = null_vector(d0 - li, d1 - li, d2 - li, d3, d4, d5);
+  // An orthonormal basis (e1, e2) of the plane normal to v, e1 built from v's two larger
+  // components.
+  Vec3 e1 = std::abs(v[0]) > std::abs(v[1]) ? Vec3(-v[2], 0.0, v[0]) : Vec3(0.0, v[2], -v[1]);
+  e1.normalize();
+  const Vec3 e2 = v.cross(e1);
+  const Mat3 dm = (Mat3() << d0, d3, d5, d3, d1, d4, d5, d4, d2).finished();
+  const Vec3 de1 = dm * e1, de2 = dm * e2;
+  double lo, hi, cx, cy;
+  eig2(e1.dot(de1), e2.dot(de2), e1.dot(de2), lo, hi, cx, cy);
+  const Vec3 vhi = cx * e1 + cy * e2, vlo = cx * e2 - cy * e1;
+  const double vi = v.dot(dm * v);  // the Rayleigh quotient: li to round-off
+  if (c3 >= 0.0) {
+    out.values = Vec3(p + lo, p + hi, p + vi);
+    out.vectors << vlo, vhi, v;
+  } else {
+    out.values = Vec3(p + vi, p + lo, p + hi);
+    out.vectors << v, vlo, vhi;
+  }
+  // Round-off can only swap values within a near-equal pair; keep the ascending order.
+  for (int i = 0; i < 2; ++i)
+    if (out.values[i + 1] < out.values[i]) {
+      std::swap(out.values[i], out.values[i + 1]);
+      out.vectors.col(i).swap(out.vectors.col(i + 1));
+    }
+  if (out.values[1] < out.values[0]) {
+    std::swap(out.values[0], out.values[1]);
+    out.vectors.col(0).swap(out.vectors.col(1));
+  }
+  return out;
+}
+
+}  // namespace detail
+
 // Principal values (ascending) and orthonormal directions.
 inline Principal principal_decomposition(const Sym3& s) {
   Principal p;
@@ -188,10 +277,7 @@ inline Principal principal_decomposition(const Sym3& s) {
     for (int i = 0; i < 3; ++i) p.vectors.col(i) = cand.col(k[i]);
     return p;
   }
-  Eigen::SelfAdjointEigenSolver<Mat3> es(to_matrix(s), Eigen::ComputeEigenvectors);
-  p.values = es.eigenvalues();
-  p.vectors = es.eigenvectors();
-  return p;
+  return detail::principal_decomposition_3d(s);
 }
 
 // Inverse: sum_i values[i] v_i v_i^T in Voigt storage (tensor shear components). Exact zeros
