@@ -235,20 +235,46 @@ TEST(Shape, PackedWeightsRoundTrip) {
   check_packing(BsplineKernel<2>{}, true);
 }
 
-// The 3D GIMP size factor det(F)^(1/3) (eq. 3.23) matches the library's cube root to a few
-// units in the last place over the range of volume ratios a run meets and far beyond it, and
-// leaves zero, negative and non-finite values to std::cbrt.
-TEST(Shape, GimpCubeRootMatchesTheLibrary) {
+// The 3D GIMP size (eq. 3.23): det(F)^(-1/3) matches the library's cube root to a few units in
+// the last place over the range of volume ratios a run meets and far beyond it, and the
+// half-lengths and their inverses formed with one division match lam = l0 J^(1/3) / L and
+// 1/lam from std::cbrt and divisions, also where they are clamped and for zero, negative and
+// non-finite J.
+TEST(Shape, GimpSizeMatchesTheLibraryCubeRoot) {
   double worst = 0.0;
-  for (double J = 1e-12; J < 1e12; J *= 1.0007) {
-    worst = std::max(worst, std::abs(gimp_cube_root(J) - std::cbrt(J)) / std::cbrt(J));
-  }
-  std::printf("largest relative difference to std::cbrt: %.2e\n", worst);
+  for (double J = 1e-12; J < 1e12; J *= 1.0007)
+    worst = std::max(worst, std::abs(gimp_inverse_cube_root(J) * std::cbrt(J) - 1.0));
+  std::printf("largest relative difference of 1/cbrt to std::cbrt: %.2e\n", worst);
   EXPECT_LT(worst, 1e-15);
-  EXPECT_EQ(gimp_cube_root(0.0), 0.0);
-  EXPECT_EQ(gimp_cube_root(-8.0), -2.0);
-  EXPECT_TRUE(std::isnan(gimp_cube_root(std::nan(""))));
-  EXPECT_EQ(gimp_cube_root(1.0), 1.0);
+  const GimpKernel<3> k;
+  GridGeometry<3> g;
+  g.h = 0.25;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  double worst_lam = 0.0, worst_inv = 0.0;
+  for (int n = 0; n < 20000; ++n) {
+    Mat<3> F = Mat<3>::Identity();
+    for (int i = 0; i < 9; ++i) F(i / 3, i % 3) += u(rng);
+    if (n % 5 == 1) F *= 3.0;                                             // beyond the clamp at 1/2
+    if (n % 5 == 2) F *= 1e-5;                                            // the lower clamp
+    if (n % 97 == 3) F.col(0) = F.col(1);                                 // J = 0
+    if (n % 89 == 4) F(0, 0) = std::numeric_limits<double>::quiet_NaN();  // non-finite
+    const Vec<3> half0(0.0625 * (1.0 + u(rng)), 0.0625 * (1.0 + u(rng)), 0.0625);
+    const auto s = k.size(g, half0, F);
+    const double c = std::cbrt(F.determinant());
+    for (int d = 0; d < 3; ++d) {
+      const double lam = std::clamp(half0[d] * c / g.h, 1e-12, 0.5);
+      if (std::isnan(lam)) {
+        EXPECT_TRUE(std::isnan(s.lam[d]));
+        continue;
+      }
+      worst_lam = std::max(worst_lam, std::abs(s.lam[d] - lam) / lam);
+      worst_inv = std::max(worst_inv, std::abs(s.inv[d] * lam - 1.0));
+    }
+  }
+  std::printf("GIMP size: lam %.2e, 1/lam %.2e from the library's\n", worst_lam, worst_inv);
+  EXPECT_LT(worst_lam, 2e-15);  // a few units in the last place
+  EXPECT_LT(worst_inv, 2e-15);
 }
 
 // gather_layers (the walls' share of the lumped mass's loss reads s_i, zero off the walls, on the
