@@ -206,10 +206,10 @@ SKRED_INLINE Vec3 null_vector(double a0, double a1, double a2, double a3, double
 // deviator d = s - p I (p = tr s / 3) with r = 2 sqrt(J2/3), the principal values are p + r u,
 // u the roots of 4u^3 - 3u = cos(3 theta) = 4 J3 / r^3 (the screen's cubic above). The root
 // farthest from the other two (the largest for J3 >= 0, else the smallest) is simple, at
-// least 0.87 r from them, so Newton finds it and its direction (a null vector of d - r u I) to
-// round-off. The other two come from the 2 x 2 block of d in the plane normal to it (eig2),
-// which is accurate also when they are equal or nearly so, where the trigonometric formula of
-// Eigen's computeDirect loses half the digits.
+// least 0.87 r from them, so largest_cubic_root finds it and a null vector of d - r u I its
+// direction, both to round-off. The other two come from the 2 x 2 block of d in the plane
+// normal to it (eig2), which is accurate also when they are equal or nearly so, where the
+// trigonometric formula of Eigen's computeDirect loses half the digits.
 inline Principal principal_decomposition_3d(const Sym3& s) {
   Principal out;
   const double p = (s[0] + s[1] + s[2]) / 3.0;
@@ -226,8 +226,8 @@ inline Principal principal_decomposition_3d(const Sym3& s) {
   const double ui = c3 >= 0.0 ? largest_cubic_root(c3) : -largest_cubic_root(-c3);
   const double li = r * ui;  // the isolated value of the deviator
   const Vec3 v = null_vector(d0 - li, d1 - li, d2 - li, d3, d4, d5);
-  // An orthonormal basis (e1, e2) of the plane normal to v, e1 built from v's two larger
-  // components.
+  // An orthonormal basis (e1, e2) of the plane normal to v; e1 from v_z and the larger of v_x
+  // and v_y, so its length before normalising is at least 1/sqrt(2) of v's.
   Vec3 e1 = std::abs(v[0]) > std::abs(v[1]) ? Vec3(-v[2], 0.0, v[0]) : Vec3(0.0, v[2], -v[1]);
   e1.normalize();
   const Vec3 e2 = v.cross(e1);
