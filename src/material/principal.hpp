@@ -119,23 +119,6 @@ SKRED_INLINE PlanePrincipal plane_principal(const V& s) {
   return p;
 }
 
-namespace detail {
-inline Principal principal_decomposition_3d(const Sym3& s);
-}
-
-// Principal values only, ascending (the cheap check on the elastic path).
-SKRED_INLINE Vec3 principal_values(const Sym3& s) {
-  if (is_plane(s)) {
-    double lo, hi, cx, cy;
-    detail::eig2(s[0], s[1], s[3], lo, hi, cx, cy);
-    double v[3] = {lo, hi, s[2]};
-    int k[3] = {0, 1, 2};
-    detail::sort3(v, k);
-    return Vec3(v[0], v[1], v[2]);
-  }
-  return detail::principal_decomposition_3d(s).values;
-}
-
 // Bounds lo <= sigma_1 and hi >= sigma_3 on the extreme principal values, without
 // trigonometry, for the 3D elastic screen. With p = tr(s)/3 and r = 2 sqrt(J2/3) the principal
 // values are p + r u, u the roots of 4u^3 - 3u = cos(3 theta) = 4 J3 / r^3. Newton's method
@@ -279,6 +262,9 @@ inline Principal principal_decomposition(const Sym3& s) {
   }
   return detail::principal_decomposition_3d(s);
 }
+
+// Principal values only, ascending.
+inline Vec3 principal_values(const Sym3& s) { return principal_decomposition(s).values; }
 
 // Inverse: sum_i values[i] v_i v_i^T in Voigt storage (tensor shear components). Exact zeros
 // are preserved for plane-strain directions (v_z = 0 in-plane, e_z out of plane).
