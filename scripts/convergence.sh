@@ -15,6 +15,8 @@
 #   VOLUMETRIC=cell-average scripts/convergence.sh build/skred apic   (solver.volumetric_strain)
 #   SPLIT=1 VOLUMETRIC=cell-average scripts/convergence.sh build/skred apic   (split = true on the
 #                                                  body: material-point splitting, Thesis §3.4)
+#   XPIC_PERIOD=2 scripts/convergence.sh build/skred xpic   (solver.xpic_period: XPIC once per 2 h/c)
+#   DT_FACTOR=0.5 PROBLEMS=column ...   (the column's time step times 0.5)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -24,7 +26,10 @@ threads=${THREADS:-1}
 out=${OUT:-out/convergence}
 volumetric=${VOLUMETRIC:-point}
 split=${SPLIT:-0}
-tag=$volumetric
+period=${XPIC_PERIOD:-}
+dtf=${DT_FACTOR:-1}
+tag=$volumetric${period:+_p$period}
+[ "$dtf" = 1 ] || tag=${tag}_dt$dtf
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
   tag=${volumetric}_split
@@ -33,18 +38,19 @@ fi
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
-# scenario FILE H DT TRANSFER > toml: the example at cell size H (DT: fixed time step, or
-# empty to keep the example's cfl), with the velocity transfer and no PIC share.
+# scenario FILE H DT TRANSFER EXTRA > toml: the example at cell size H (DT: fixed time step, or
+# empty to keep the example's cfl), with the velocity transfer, no PIC share and the [solver]
+# lines EXTRA (sed's \n between lines).
 scenario() {
   sed -e "s/^cell_size = .*/cell_size = $2/" \
     -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^volumetric_strain/d' \
-    -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"/" \
+    -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"$5/" \
     ${3:+-e "s/^time_step = .*/time_step = $3/"} \
     -e "$splitexpr" "$1"
 }
 
 fronts=
-echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')"
+echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')${period:+, xpic_period = $period}"
 printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
 for tr in $transfers; do
   for problem in $problems; do
@@ -57,10 +63,12 @@ for tr in $transfers; do
     dirs=
     for h in $sizes; do
       dt=
-      [ "$problem" = column ] && dt=$(awk -v h="$h" 'BEGIN { printf "%g", 0.002 * h }')
+      [ "$problem" = column ] && dt=$(awk -v h="$h" -v f="$dtf" 'BEGIN { printf "%g", 0.002 * h * f }')
       dir=$out/${problem}_${tr}_${tag}_$h
       dirs="$dirs $dir"
-      scenario "$file" "$h" "$dt" "$tr" > "$dir.toml"
+      extra=
+      [ -n "$period" ] && [ "$tr" = xpic ] && extra="\\nxpic_period = $period"
+      scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
       "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
         > "$dir.log" 2>&1 || true
       /usr/bin/python3 - "$dir/summary.json" "$problem" "$tr" "$h" << 'EOF'

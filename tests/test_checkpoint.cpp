@@ -132,13 +132,16 @@ fs::path fresh_dir(const std::string& name) { return skred::test::fresh_temp_dir
 }  // namespace
 
 TEST(Checkpoint, RestartReproducesTheUninterruptedRunBitForBit) {
-  // (the last two: with the cell-averaged volumetric strain, whose cell sums are not state)
+  // (the fourth and fifth: with the cell-averaged volumetric strain, whose cell sums are not state)
   const std::pair<const char*, const char*> runs[] = {
       {"usf", "usf"},
       {"usl", "usl"},
       {"averaged", "averaged"},
       {"usf-cell-average", "usf\"\nvolumetric_strain = \"cell-average"},
-      {"averaged-cell-average", "averaged\"\nvolumetric_strain = \"cell-average"}};
+      {"averaged-cell-average", "averaged\"\nvolumetric_strain = \"cell-average"},
+      // XPIC once per 2.5 h/c (every 8 or 9 steps): the filter steps come from the time alone
+      {"usf-periodic-xpic",
+       "usf\"\nvelocity_transfer = \"xpic\"\nxpic_period = 2.5\ninterpolation = \"gimp"}};
   for (const auto& [name, scheme] : runs) {
     SCOPED_TRACE(name);
     const fs::path dir = fresh_dir(name);

@@ -25,6 +25,7 @@
 #include "run/stability.hpp"
 #include "run/version.hpp"
 #include "scenario/build.hpp"
+#include "scenario/estimate.hpp"
 #include "scenario/initial_stress.hpp"
 
 namespace skred {
@@ -70,6 +71,7 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   st.velocity_transfer = s.velocity_transfer;
   st.hyperelastic = s.hyperelastic;
   st.xpic_order = s.xpic_order;
+  st.xpic_period = s.xpic_period * stable_time_step(s);  // seconds
   st.volumetric_averaging = s.volumetric_averaging;
   return st;
 }

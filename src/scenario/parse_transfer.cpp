@@ -23,6 +23,9 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
   s.xpic_order = static_cast<int>(t.integer("xpic_order"));
   if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)
     t.fail_at("xpic_order", "applies to velocity_transfer = \"xpic\" only");
+  s.xpic_period = t.number("xpic_period");
+  if (t.has("xpic_period") && s.velocity_transfer != VelocityTransfer::Xpic)
+    t.fail_at("xpic_period", "applies to velocity_transfer = \"xpic\" only");
   // Cell-averaged volumetric strain (solver/volumetric_averaging.hpp), with every scheme.
   s.volumetric_averaging =
       t.choice<bool>("volumetric_strain", {{"point", false}, {"cell-average", true}}, false);

@@ -188,7 +188,8 @@ struct ScenarioCommon {
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
   bool hyperelastic = false;                                    // solver.elastic_update = "hyperelastic"
   int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
-  bool volumetric_averaging = false;                            // solver.volumetric_strain = "cell-average"
+  double xpic_period = 0.0;           // solver.xpic_period, in crossing times h / (c + v0); 0: every step
+  bool volumetric_averaging = false;  // solver.volumetric_strain = "cell-average"
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

@@ -125,6 +125,14 @@ void add_run_sections(std::vector<Section>& s) {
             .range = Range::closed(1, 20),
             .doc = "\"xpic\" only: the m of XPIC(m); 1 is PIC; each order above 1 costs one more pass "
                    "over the points"},
+           {.name = "xpic_period",
+            .unit = "h/c",
+            .def = value(0.0),
+            .range = Range{0.0, 1.0e6, false, false},
+            .doc = "\"xpic\" only: 0 filters every step; above 0, FLIP at every step and XPIC(m) once per "
+                   "this many crossing times of a cell by the fastest P wave, h / (c + v0) (the step at "
+                   "cfl = 1), so the filter's damping per second does not depend on the time step "
+                   "(docs/method.md, \"The filter per unit time\")"},
            {.name = "volumetric_strain",
             .type = Type::Choice,
             .def = derived("\"point\""),

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <climits>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <variant>
@@ -43,6 +44,10 @@ struct SolverSettings {
   // The particle velocity update (velocity_transfer.hpp); pic_fraction applies to flip only.
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
   int xpic_order = 2;  // m of XPIC(m), >= 1
+  // XPIC only: the filter's period in seconds. 0: every step. Above 0: FLIP at every step and
+  // XPIC(m) on the steps that cross a multiple of it (NairnMPM's PeriodicXPIC), so the filter's
+  // damping per second does not follow the time step (docs/method.md, "The filter per unit time").
+  double xpic_period = 0.0;
   // Cell-averaged volumetric strain against volumetric locking (volumetric_averaging.hpp).
   bool volumetric_averaging = false;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
@@ -226,9 +231,18 @@ class ExplicitSolver {
   // XPIC(m): the nodal velocity the points take, into velocity_next (before m_i, p_i are cleared).
   template <class K>
   void xpic_grid_velocity(const K& kernel);
-  // The PIC share of the particle update: pic_fraction for FLIP, 1 for XPIC and APIC.
+  // The PIC share of the particle update: pic_fraction for FLIP, 1 for APIC and for XPIC on its
+  // filter steps, 0 on XPIC's other steps (xpic_period).
   double pic_share() const {
+    if (settings_.velocity_transfer == VelocityTransfer::Xpic) return filter_step_ ? 1.0 : 0.0;
     return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
+  }
+  // Whether the step from time_ to time_ + dt filters the velocity (XPIC): every step without a
+  // period, else the steps that cross a multiple of it. Taken from the time alone, so a restart
+  // filters on the same steps.
+  bool filters_at(double t) const {
+    const double T = settings_.xpic_period, dt = settings_.dt;
+    return T <= 0.0 || std::floor((t + dt) / T) > std::floor(t / T);
   }
   // Whether the grid update forms v_i^{k+1} = p_i / m_i + dt a_i (velocity_next): for a PIC share
   // of FLIP and for APIC (XPIC forms its own, xpic_grid_velocity).
@@ -240,7 +254,8 @@ class ExplicitSolver {
   // lumped mass's loss pairs with it (wall_update_loss in explicit_solver_impl.hpp).
   bool update_from_flip() const {
     return settings_.velocity_transfer == VelocityTransfer::Apic ||
-           (settings_.velocity_transfer == VelocityTransfer::Flip && settings_.pic_fraction <= 0.0);
+           (settings_.velocity_transfer == VelocityTransfer::Flip && settings_.pic_fraction <= 0.0) ||
+           (settings_.velocity_transfer == VelocityTransfer::Xpic && !filter_step_);
   }
   void clear_mass_momentum();
   // The grid phases per body in a run with contact (contact.cpp).
@@ -283,6 +298,7 @@ class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
+  bool filter_step_ = true;            // this step filters the velocity (XPIC; filters_at)
   std::size_t mapped_points_ = 0;      // the number of points the map was made for
   std::vector<double> node_mass_;      // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;      // nodal stresses for smoothing (eq. 4.18)

@@ -175,6 +175,7 @@ template <int D>
 template <class K, class Scheme>
 StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
+  filter_step_ = filters_at(time_);
   status_ = StepStatus{};
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
   if (settings_.velocity_transfer == VelocityTransfer::Apic && particles_.affine.size() != particles_.size())
@@ -574,7 +575,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
 template <int D>
 template <class K>
 void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
-  if (settings_.velocity_transfer != VelocityTransfer::Xpic) return;
+  if (settings_.velocity_transfer != VelocityTransfer::Xpic || !filter_step_) return;
   const double dt = settings_.dt;
   for_each_continuum([&](GridFields<D>& f, auto sel) {
     Vec<D>* const star = f.velocity_next.data();  // v*_i, then v_i^{k+1} - p_i / m_i + v*_i in place
