@@ -176,6 +176,10 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"usf", "usl", "averaged"}));
   bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic")
       ->check(CLI::IsMember({"flip", "xpic", "apic"}));
+  bench
+      ->add_option("--xpic-period", bo.xpic_period,
+                   "xpic: once per this many crossing times h/c (0: every step)")
+      ->check(CLI::Range(0.0, 1.0e6));
 
   skred::PostCommands post(app);  // render, report
 
@@ -205,6 +209,10 @@ int main(int argc, char** argv) {
       }
       if (bo.bodies == 2 && bo.problem != "column") {
         fmt::print(stderr, "skred: --bodies 2 is available for --problem column only\n");
+        return code::kUsage;
+      }
+      if (bo.xpic_period > 0 && transfer != "xpic") {
+        fmt::print(stderr, "skred: --xpic-period applies to --velocity-transfer xpic only\n");
         return code::kUsage;
       }
       bo.threads = threads > 0 ? threads : omp_get_max_threads();

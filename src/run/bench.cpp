@@ -11,6 +11,7 @@
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
+#include "scenario/estimate.hpp"
 #include "scenario/initial_stress.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -123,6 +124,7 @@ BenchResult run_column(const BenchOptions& opt) {
     const GridGeometry<D> grid = scenario_grid(s);
     SolverSettings<D> st = solver_settings(s);
     st.velocity_transfer = opt.velocity_transfer;
+    st.xpic_period = opt.xpic_period * stable_time_step(s);  // seconds
     ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
     const SurfaceProfile before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const PhaseTimer before_phases = solver.phase_times();
@@ -178,6 +180,7 @@ BenchResult run_bench(const BenchOptions& opt) {
     st.quadrature_points = opt.quadrature_points;
     st.scheme = opt.scheme;
     st.velocity_transfer = opt.velocity_transfer;
+    st.xpic_period = opt.xpic_period * h / soil.wave_speed();
     st.dt = 0.3 * h / soil.wave_speed();
     st.gravity = Vec<2>(0.0, -9.81);
     st.boundaries = {BoundarySide{BoundaryKind::Roller, 0}, BoundarySide{BoundaryKind::Roller, 0},

@@ -31,6 +31,7 @@ struct BenchOptions {
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
+  double xpic_period = 0.0;      // xpic: filter once per this many crossing times h/c (0: every step)
   long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
   int bodies = 1;                // column: 2 for two halves in frictional contact
 };
