@@ -34,6 +34,21 @@ inline void fill_rectangle(Particles<2>& P, const Material& m, double h, int n, 
             material, body);
 }
 
+// The vibrating block of the velocity-transfer tests: an elastic block (rho = 1000 kg/m^3,
+// E = 10 kPa, nu = 0.3: c_p = 3.7 m/s), 2 x 2 points per cell of h = 0.1 m filling
+// [0.5, 1.5]^2, free in space, whose points start with a short-wave velocity field (wavelength
+// 4 h). On a 20 x 20 grid2(0.1, ...).
+inline Material vibrating_block(Particles<2>& P) {
+  const Material m = elastic(1000.0, 1.0e4, 0.3);
+  const double h = 0.1;
+  fill_rectangle(P, m, h, 2, 0.5, 0.5, 1.5, 1.5);
+  const double k = M_PI / (2.0 * h);  // wavelength 4 h
+  for (std::size_t p = 0; p < P.size(); ++p)
+    P.v[p] = Vec<2>(0.05 * std::sin(k * P.x[p][0]) * std::cos(0.3 * k * P.x[p][1]),
+                    0.05 * std::sin(k * P.x[p][1]));
+  return m;
+}
+
 inline GridGeometry<2> grid2(double h, int nx, int ny) {
   GridGeometry<2> g;
   g.h = h;

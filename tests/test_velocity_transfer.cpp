@@ -60,20 +60,14 @@ DiscEnergy discs(VelocityTransfer t, StressScheme scheme, int steps = 3000, doub
 // over the initial kinetic energy, after `steps` steps (2 s).
 double vibrating_block_balance(VelocityTransfer t, double pic_fraction, StressScheme scheme,
                                int steps = 200) {
-  const Material m = elastic(1000.0, 1.0e4, 0.3);  // c_p = 3.7 m/s: c dt / h = 0.37
-  const double h = 0.1;
   Particles<2> P;
-  fill_rectangle(P, m, h, 2, 0.5, 0.5, 1.5, 1.5);
-  const double k = M_PI / (2.0 * h);  // wavelength 4 h
-  for (std::size_t p = 0; p < P.size(); ++p)
-    P.v[p] = Vec<2>(0.05 * std::sin(k * P.x[p][0]) * std::cos(0.3 * k * P.x[p][1]),
-                    0.05 * std::sin(k * P.x[p][1]));
+  const Material m = vibrating_block(P);  // c_p = 3.7 m/s: c dt / h = 0.37
   SolverSettings<2> st;
   st.scheme = scheme;
   st.velocity_transfer = t;
   st.pic_fraction = pic_fraction;
   st.dt = 0.01;
-  ExplicitSolver<2> solver(grid2(h, 20, 20), P, {m}, st, 1);
+  ExplicitSolver<2> solver(grid2(0.1, 20, 20), P, {m}, st, 1);
   const double ke0 = solver.totals().kinetic_energy;
   for (int s = 0; s < steps; ++s) EXPECT_TRUE(solver.step().ok);
   const EnergyTotals& e = solver.energy();
