@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,6 +48,18 @@ inline Material vibrating_block(Particles<2>& P) {
     P.v[p] = Vec<2>(0.05 * std::sin(k * P.x[p][0]) * std::cos(0.3 * k * P.x[p][1]),
                     0.05 * std::sin(k * P.x[p][1]));
   return m;
+}
+
+// The velocity-transfer lines of examples/soil_column.toml and examples/slope_collapse.toml.
+inline const std::string kExampleTransfer = "velocity_transfer = \"xpic\"\nxpic_period = 2.0";
+
+// An example's scenario text with its transfer lines replaced by `lines` (empty: the engine's
+// default); throws if the example no longer has them.
+inline std::string with_transfer(std::string text, const std::string& lines) {
+  const auto at = text.find(kExampleTransfer);
+  if (at == std::string::npos)
+    throw std::runtime_error("the example's velocity-transfer lines are not in it");
+  return text.replace(at, kExampleTransfer.size(), lines);
 }
 
 inline GridGeometry<2> grid2(double h, int nx, int ny) {

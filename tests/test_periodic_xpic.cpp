@@ -57,8 +57,8 @@ struct Column {
 };
 Column column(const std::string& period_keys, double dt_factor) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
-  text.replace(text.find("velocity_transfer = \"apic\""), 26,
-               "velocity_transfer = \"xpic\"\nvolumetric_strain = \"cell-average\"\n" + period_keys);
+  text = with_transfer(text,
+                       "velocity_transfer = \"xpic\"\nvolumetric_strain = \"cell-average\"\n" + period_keys);
   text.replace(text.find("time_step = 0.001"), 17, "time_step = " + std::to_string(0.001 * dt_factor));
   const fs::path out = fresh_temp_dir();
   RunOptions opt;
@@ -111,9 +111,7 @@ TEST(PeriodicXpic, SoilColumnRunoutDoesNotFollowTheTimeStep) {
 TEST(PeriodicXpic, ScenarioKey) {
   std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   const auto with = [&](const std::string& keys) {
-    std::string t = base;
-    t.replace(t.find("velocity_transfer = \"apic\""), 26, keys);
-    return parse_scenario(t, "column.toml");
+    return parse_scenario(with_transfer(base, keys), "column.toml");
   };
   const Scenario x = with("velocity_transfer = \"xpic\"\nxpic_period = 2.0");
   // in crossing times of a cell, h / (c + v0), converted to seconds for the solver

@@ -13,6 +13,7 @@
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 #include "solver/explicit_solver.hpp"
+#include "support.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -121,13 +122,14 @@ TEST(Slides, DrySlopesFailWhenSteeperThanPhiAndStandWhenGentler) {
 
 TEST(Slides, SoilColumnCollapsesSymmetricallyAndComesToRest) {
   // Thesis §5.1 (examples/soil_column.toml): the column is not supported at its sides and
-  // collapses into a lower, wider mound that comes to rest; the deposit is symmetric.
+  // collapses into a lower, wider mound that comes to rest (by 4.13 s with the example's XPIC
+  // once per 2 h/c; 4.5 s are run); the deposit is symmetric.
   const Scenario s = load_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   Particles<2> P = build_particles(s);
   apply_initial_stress(s, P);
   ExplicitSolver<2> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), solver_settings(s), 2);
   double peak = 0.0, last = 0.0;
-  for (int k = 0; k < 3000; ++k) {
+  for (int k = 0; k < 4500; ++k) {
     ASSERT_TRUE(solver.step().ok) << "step " << k;
     if (k % 10 == 0) {
       last = solver.totals().mean_speed;
@@ -185,7 +187,7 @@ TEST(Slides, EnergyBalanceOverAPlasticCollapse) {
     text.replace(at, a.size(), b);
   };
   replace("y_min = { type = \"friction\", friction = 0.6 }", "y_min = \"roller\"");
-  replace("velocity_transfer = \"apic\"", "velocity_transfer = \"flip\"");
+  replace(test::kExampleTransfer, "velocity_transfer = \"flip\"");
   replace("duration = 6.0", "duration = 1.5");
   for (const char* scheme : {"usf", "averaged"}) {
     std::string t = text;

@@ -138,7 +138,7 @@ struct ColumnRun {
 ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   text.replace(text.find("duration = 6.0"), 14, "duration = 3.0");
-  text.replace(text.find("velocity_transfer = \"apic\""), 26, "velocity_transfer = \"" + t + "\"");
+  text = with_transfer(text, "velocity_transfer = \"" + t + "\"");
   const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
   if (!wall.empty()) text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
   const fs::path out = fresh_temp_dir();
@@ -193,9 +193,7 @@ TEST(VelocityTransfer, ColumnOnFixedAndRollerBasesBooksTheWallsShare) {
 TEST(VelocityTransfer, ScenarioKeys) {
   std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   const auto with = [&](const std::string& keys) {
-    std::string t = base;
-    t.replace(t.find("velocity_transfer = \"apic\""), 26, keys);
-    return parse_scenario(t, "column.toml");
+    return parse_scenario(with_transfer(base, keys), "column.toml");
   };
   EXPECT_EQ(with("").velocity_transfer, VelocityTransfer::Flip);
   const Scenario x = with("velocity_transfer = \"xpic\"\nxpic_order = 3");
@@ -208,11 +206,11 @@ TEST(VelocityTransfer, ScenarioKeys) {
   EXPECT_ANY_THROW(with("velocity_transfer = \"apic\"\npic_fraction = 0.1"));
   // APIC with the linear kernel or quadrature GIMP is refused (each goes unstable), naming the key
   for (const char* kernel : {"linear", "gimp-quadrature"}) {
-    std::string text = base;  // the example sets apic
-    text.replace(text.find("interpolation = \"gimp\""), 22,
-                 std::string("interpolation = \"") + kernel + "\"");
-    std::string flip = text;
-    flip.replace(flip.find("velocity_transfer = \"apic\""), 26, "");
+    std::string kerneled = base;
+    kerneled.replace(kerneled.find("interpolation = \"gimp\""), 22,
+                     std::string("interpolation = \"") + kernel + "\"");
+    const std::string text = with_transfer(kerneled, "velocity_transfer = \"apic\"");
+    const std::string flip = with_transfer(kerneled, "");
     EXPECT_NO_THROW((void)parse_scenario(flip, "column.toml")) << kernel;
     try {
       (void)parse_scenario(text, "column.toml");

@@ -77,7 +77,9 @@ struct ColumnRun {
 // per metre of cell, as scripts/convergence.sh runs it) with the given volumetric strain.
 ColumnRun column(double h, const std::string& volumetric, double seconds, int threads = 1,
                  const std::string& scheme = "usf") {
-  std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  std::string text =
+      with_transfer(read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml"),
+                    "velocity_transfer = \"apic\"");
   text.replace(text.find("cell_size = 0.5"), 15, "cell_size = " + std::to_string(h));
   text.replace(text.find("time_step = 0.001"), 17, "time_step = " + std::to_string(0.002 * h));
   text.replace(text.find("duration = 6.0"), 14, "duration = " + std::to_string(seconds));
