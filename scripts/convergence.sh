@@ -43,7 +43,7 @@ mkdir -p "$out"
 # lines EXTRA (sed's \n between lines).
 scenario() {
   sed -e "s/^cell_size = .*/cell_size = $2/" \
-    -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^volumetric_strain/d' \
+    -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^xpic_period/d' -e '/^volumetric_strain/d' \
     -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"$5/" \
     ${3:+-e "s/^time_step = .*/time_step = $3/"} \
     -e "$splitexpr" "$1"
