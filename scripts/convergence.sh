@@ -28,13 +28,14 @@ volumetric=${VOLUMETRIC:-point}
 split=${SPLIT:-0}
 period=${XPIC_PERIOD:-}
 dtf=${DT_FACTOR:-1}
-tag=$volumetric${period:+_p$period}
-[ "$dtf" = 1 ] || tag=${tag}_dt$dtf
+tag=$volumetric
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
   tag=${volumetric}_split
   splitexpr='s/^shape = /split = true\nshape = /'
 fi
+tag=$tag${period:+_p$period}
+[ "$dtf" = 1 ] || tag=${tag}_dt$dtf
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
