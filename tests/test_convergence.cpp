@@ -9,14 +9,13 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
 #include "support.hpp"
 #include "temp_dir.hpp"
+#include "text_run.hpp"
 
-namespace fs = std::filesystem;
 using namespace skred;
 using namespace skred::test;
 
@@ -28,14 +27,10 @@ StageMeasures column(double h, double& balance) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   text.replace(text.find("cell_size = 0.5"), 15, "cell_size = " + std::to_string(h));
   text.replace(text.find("time_step = 0.001"), 17, "time_step = " + std::to_string(0.002 * h));
-  const fs::path out = fresh_temp_dir();
-  RunOptions opt;
-  opt.progress = false;
-  opt.threads = 1;  // 6 s of work in all; two threads on a loaded machine take far longer
-  const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
-  const auto row = last_series_row(out / "series.csv");
-  balance = row.at("total_energy") / row.at("gravity_work");
-  fs::remove_all(out);
+  // one thread: 6 s of work in all; two threads on a loaded machine take far longer
+  const TextRun run = run_text(text, 1);
+  const RunResult& r = run.result;
+  balance = run.balance();
   EXPECT_TRUE(r.completed) << r.message;
   return r.stages.empty() ? StageMeasures{} : r.stages.back();
 }

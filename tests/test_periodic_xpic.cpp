@@ -6,15 +6,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <filesystem>
 
 #include "run/simulation.hpp"
 #include "scenario/build.hpp"
 #include "scenario/estimate.hpp"
 #include "support.hpp"
 #include "temp_dir.hpp"
+#include "text_run.hpp"
 
-namespace fs = std::filesystem;
 using namespace skred;
 using namespace skred::test;
 
@@ -51,22 +50,12 @@ double filtered_block(StressScheme scheme, double period, int& filter_steps, int
 
 // examples/soil_column.toml as scripts/convergence.sh runs it at h = 0.5 m with the cell-averaged
 // volumetric strain and XPIC (`period_keys`), the time step 2 ms per metre of cell times `dt_factor`.
-struct Column {
-  RunResult result;
-  std::map<std::string, double> row;
-};
-Column column(const std::string& period_keys, double dt_factor) {
+TextRun column(const std::string& period_keys, double dt_factor) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   text = with_transfer(text,
                        "velocity_transfer = \"xpic\"\nvolumetric_strain = \"cell-average\"\n" + period_keys);
   text.replace(text.find("time_step = 0.001"), 17, "time_step = " + std::to_string(0.001 * dt_factor));
-  const fs::path out = fresh_temp_dir();
-  RunOptions opt;
-  opt.progress = false;
-  opt.threads = 1;
-  Column c{run_simulation(parse_scenario(text, "column.toml"), out, opt), {}};
-  c.row = last_series_row(out / "series.csv");
-  fs::remove_all(out);
+  TextRun c = run_text(text, 1);
   EXPECT_TRUE(c.result.completed) << c.result.message;
   return c;
 }
@@ -92,13 +81,13 @@ TEST(PeriodicXpic, FiltersOnTheStepsThatCrossAPeriodAndBooksItsLoss) {
 
 TEST(PeriodicXpic, SoilColumnRunoutDoesNotFollowTheTimeStep) {
   // XPIC(2) once per 2 h/c at the study's step (c dt / h = 0.45) and at half of it
-  const Column a = column("xpic_period = 2.0", 1.0), b = column("xpic_period = 2.0", 0.5);
+  const TextRun a = column("xpic_period = 2.0", 1.0), b = column("xpic_period = 2.0", 0.5);
   ASSERT_FALSE(a.result.stages.empty());
   ASSERT_FALSE(b.result.stages.empty());
   const StageMeasures &ma = a.result.stages.back(), &mb = b.result.stages.back();
-  for (const Column* c : {&a, &b}) {
+  for (const TextRun* c : {&a, &b}) {
     const StageMeasures& m = c->result.stages.back();
-    const double balance = c->row.at("total_energy") / c->row.at("gravity_work");
+    const double balance = c->balance();
     std::printf("soil column, XPIC per 2 h/c: ended by %s at %.2f s, runout %.3f m, balance %+.2f %%\n",
                 m.ended_by.c_str(), m.end_time, m.runout, 100 * balance);
     EXPECT_EQ(m.ended_by, "rest");

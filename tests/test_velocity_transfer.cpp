@@ -14,6 +14,7 @@
 #include "scenario/build.hpp"
 #include "support.hpp"
 #include "temp_dir.hpp"
+#include "text_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -128,27 +129,14 @@ namespace {
 // examples/soil_column.toml (Thesis §5.1) for 3 s with the velocity transfer t and, if given,
 // the base `wall` in place of its frictional one, on two threads: the run and the last
 // series.csv row (total_energy, gravity_work, ...).
-struct ColumnRun {
-  RunResult result;
-  std::map<std::string, double> row;
-  // The energy balance: total_energy (kinetic + strain + every dissipation - gravity work)
-  // against the gravity work.
-  double balance() const { return row.at("total_energy") / row.at("gravity_work"); }
-};
+using ColumnRun = TextRun;
 ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
   text.replace(text.find("duration = 6.0"), 14, "duration = 3.0");
   text = with_transfer(text, "velocity_transfer = \"" + t + "\"");
   const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
   if (!wall.empty()) text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
-  const fs::path out = fresh_temp_dir();
-  RunOptions opt;
-  opt.progress = false;
-  opt.threads = 2;
-  ColumnRun c{run_simulation(parse_scenario(text, "column.toml"), out, opt), {}};
-  c.row = last_series_row(out / "series.csv");
-  fs::remove_all(out);
-  return c;
+  return run_text(text, 2);
 }
 
 }  // namespace

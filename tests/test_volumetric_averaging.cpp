@@ -12,6 +12,7 @@
 #include "solver/volumetric_averaging.hpp"
 #include "support.hpp"
 #include "temp_dir.hpp"
+#include "text_run.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -85,18 +86,12 @@ ColumnRun column(double h, const std::string& volumetric, double seconds, int th
   text.replace(text.find("duration = 6.0"), 14, "duration = " + std::to_string(seconds));
   text.replace(text.find("scheme = \"usf\""), 14,
                "scheme = \"" + scheme + "\"\nvolumetric_strain = \"" + volumetric + "\"");
-  const fs::path out = fresh_temp_dir();
-  RunOptions opt;
-  opt.progress = false;
-  opt.threads = threads;  // one: two threads crawl on a loaded machine (libgomp's spin)
-  const RunResult r = run_simulation(parse_scenario(text, "column.toml"), out, opt);
-  const auto row = last_series_row(out / "series.csv");
-  fs::remove_all(out);
-  EXPECT_TRUE(r.completed) << r.message;
+  const TextRun run = run_text(text, threads);  // one: two threads crawl on a loaded machine (libgomp's spin)
+  EXPECT_TRUE(run.result.completed) << run.result.message;
   ColumnRun c;
-  if (!r.stages.empty()) c.stage = r.stages.back();
-  c.gravity_work = row.at("gravity_work");
-  c.balance = row.at("total_energy") / c.gravity_work;
+  if (!run.result.stages.empty()) c.stage = run.result.stages.back();
+  c.gravity_work = run.row.at("gravity_work");
+  c.balance = run.balance();
   return c;
 }
 
