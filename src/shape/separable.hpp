@@ -134,6 +134,50 @@ template <int S, class T>
 SKRED_INLINE T* row(T* f, const Separable<3, S>& sh, const NodeStrides<3>& st, int b, int c) {
   return f + 3 * (sh.base + b * st.s[1] + c * st.s[2]);
 }
+
+// Lane (a, i) = w[a] x_i: a 1D function's values times a 3-vector, as the row scatters add it.
+// For three nodes (GIMP) built in registers by permutes: written lane by lane through memory,
+// the row's wide load waits on the narrow stores (a store-forwarding stall per row vector).
+template <int S>
+SKRED_INLINE Row<S> outer(const double (&w)[S], double x0, double x1, double x2) {
+  Row<S> r;
+  if constexpr (S == 3) {
+    using V4 = RowLanes<9>::V4;
+    const V4 wv = {w[0], w[1], w[2], 0.0}, xv = {x0, x1, x2, 0.0};
+    r.w[0] = __builtin_shufflevector(wv, wv, 0, 0, 0, 1, 1, 1, 2, 2) *
+             __builtin_shufflevector(xv, xv, 0, 1, 2, 0, 1, 2, 0, 1);
+    r.t[0] = w[2] * x2;
+  } else {
+    double l[3 * S];
+    for (int a = 0; a < S; ++a) {
+      l[3 * a] = w[a] * x0;
+      l[3 * a + 1] = w[a] * x1;
+      l[3 * a + 2] = w[a] * x2;
+    }
+    r = Row<S>::load(l);
+  }
+  return r;
+}
+
+// out_i = sum_a w[a] r(a, i): a row sum weighted by a 1D function (the last step of a gather).
+template <int S>
+SKRED_INLINE Vec<3> contract(const Row<S>& r, const double (&w)[S]) {
+  if constexpr (S == 3) {
+    using V4 = RowLanes<9>::V4;
+    const V4 wv = {w[0], w[1], w[2], 0.0};
+    const auto prod = r.w[0] * __builtin_shufflevector(wv, wv, 0, 0, 0, 1, 1, 1, 2, 2);
+    const decltype(prod) zero{};  // lanes (0, i) + (1, i) + (2, i); (2, 2) is the tail
+    const V4 sum = __builtin_shufflevector(prod, prod, 0, 1, 2, 3) +
+                   __builtin_shufflevector(prod, prod, 3, 4, 5, 6) +
+                   __builtin_shufflevector(prod, zero, 6, 7, 8, 8);
+    return Vec<3>(sum[0], sum[1], sum[2] + w[2] * r.t[0]);
+  } else {
+    Vec<3> out = Vec<3>::Zero();
+    for (int a = 0; a < S; ++a)
+      for (int i = 0; i < 3; ++i) out[i] += w[a] * r[3 * a + i];
+    return out;
+  }
+}
 }  // namespace lanes3
 
 // sum_i N_ip f_i (eq. 2.56, Post eq. 31).
@@ -154,8 +198,7 @@ SKRED_INLINE T gather(const Separable<D, S>& sh, const NodeStrides<D>& st, const
     for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b)
         acc.add(sh.w[1][b] * sh.w[2][c], lanes3::Row<S>::load(lanes3::row(fd, sh, st, b, c)));
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) out[i] += sh.w[0][a] * acc[3 * a + i];
+    out = lanes3::contract(acc, sh.w[0]);
   } else {
     for (int c = 0; c < S; ++c) {
       T plane = T::Zero();
@@ -201,8 +244,7 @@ SKRED_INLINE Vec<D> gather_layers(const Separable<D, S>& sh, const NodeStrides<D
             if ((layers[0] >> a) & 1u) out += (sh.w[0][a] * k) * r[a];
         }
       }
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) out[i] += sh.w[0][a] * acc[3 * a + i];
+    out += lanes3::contract(acc, sh.w[0]);
   }
   return out;
 }
@@ -225,13 +267,8 @@ SKRED_INLINE void gather_pair(const Separable<D, S>& sh, const NodeStrides<D>& s
         af.add(k, lanes3::Row<S>::load(lanes3::row(fd, sh, st, b, c)));
         ag.add(k, lanes3::Row<S>::load(lanes3::row(gd, sh, st, b, c)));
       }
-    out_f.setZero();
-    out_g.setZero();
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) {
-        out_f[i] += sh.w[0][a] * af[3 * a + i];
-        out_g[i] += sh.w[0][a] * ag[3 * a + i];
-      }
+    out_f = lanes3::contract(af, sh.w[0]);
+    out_g = lanes3::contract(ag, sh.w[0]);
   }
 }
 
@@ -262,12 +299,9 @@ SKRED_INLINE Mat<D> gather_gradient(const Separable<D, S>& sh, const NodeStrides
         a1.add(sh.g[1][b] * sh.w[2][c], r);
         a2.add(sh.w[1][b] * sh.g[2][c], r);
       }
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) {
-        out(i, 0) += sh.g[0][a] * a0[3 * a + i];
-        out(i, 1) += sh.w[0][a] * a1[3 * a + i];
-        out(i, 2) += sh.w[0][a] * a2[3 * a + i];
-      }
+    out.col(0) = lanes3::contract(a0, sh.g[0]);
+    out.col(1) = lanes3::contract(a1, sh.w[0]);
+    out.col(2) = lanes3::contract(a2, sh.w[0]);
   }
   return out;
 }
@@ -283,10 +317,7 @@ SKRED_INLINE void scatter(const Separable<D, S>& sh, const NodeStrides<D>& st, c
     }
   } else if constexpr (std::is_same_v<T, Vec<3>>) {
     double* fd = reinterpret_cast<double*>(f);
-    double lx[3 * S];  // N_x(a) x_i in lane (a, i)
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) lx[3 * a + i] = sh.w[0][a] * x[i];
-    const auto px = lanes3::Row<S>::load(lx);
+    const auto px = lanes3::outer(sh.w[0], x[0], x[1], x[2]);  // N_x(a) x_i in lane (a, i)
     for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b) {
         double* r = lanes3::row(fd, sh, st, b, c);
@@ -323,14 +354,9 @@ SKRED_INLINE void scatter_gradient(const Separable<D, S>& sh, const NodeStrides<
     // Lane (a, i) holds dN_x(a) A_i0, N_x(a) A_i1, N_x(a) A_i2; a row adds them weighted by
     // its N_y N_z, dN_y N_z, N_y dN_z.
     double* fd = reinterpret_cast<double*>(f);
-    double l0[3 * S], l1[3 * S], l2[3 * S];
-    for (int a = 0; a < S; ++a)
-      for (int i = 0; i < 3; ++i) {
-        l0[3 * a + i] = sh.g[0][a] * A(i, 0);
-        l1[3 * a + i] = sh.w[0][a] * A(i, 1);
-        l2[3 * a + i] = sh.w[0][a] * A(i, 2);
-      }
-    const auto p0 = lanes3::Row<S>::load(l0), p1 = lanes3::Row<S>::load(l1), p2 = lanes3::Row<S>::load(l2);
+    const auto p0 = lanes3::outer(sh.g[0], A(0, 0), A(1, 0), A(2, 0));
+    const auto p1 = lanes3::outer(sh.w[0], A(0, 1), A(1, 1), A(2, 1));
+    const auto p2 = lanes3::outer(sh.w[0], A(0, 2), A(1, 2), A(2, 2));
     for (int c = 0; c < S; ++c)
       for (int b = 0; b < S; ++b) {
         double* r = lanes3::row(fd, sh, st, b, c);

@@ -281,19 +281,31 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
         const int t = omp_get_thread_num();
         Vec<D>* __restrict force = buffers.vec_target(t, forces);
         BaseSpan span;
+        constexpr long B = 8;
+        const long nb = (n + B - 1) / B;
 #pragma omp for schedule(static) nowait
-        for (long p = 0; p < n; ++p) {
-          if (!sel(p)) continue;
-          typename K::Shape sh;
-          kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
-          const Mat<D> grad_v = gather_gradient(sh, strides, vel);
-          const auto r = S.update(p, grad_v, dt_stress);
-          work += r.strain_energy;
-          dissipation += r.dissipation;
-          if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
-          const Mat<D> sv = -r.volume * sym_block<D>(S.stress[p]);
-          scatter_gradient(sh, strides, sv, force);
-          span.add(sh.base);
+        for (long blk = 0; blk < nb; ++blk) {
+          const long p0 = blk * B, p1 = std::min(n, p0 + B);
+          typename K::Shape sh[B];
+          Mat<D> m[B];
+          for (long p = p0; p < p1; ++p) {
+            if (!sel(p)) continue;
+            kernel.load(shape[p], g, P.x[p], P.half0[p], sh[p - p0]);
+            m[p - p0] = gather_gradient(sh[p - p0], strides, vel);
+          }
+          for (long p = p0; p < p1; ++p) {
+            if (!sel(p)) continue;
+            const auto r = S.update(p, m[p - p0], dt_stress);
+            work += r.strain_energy;
+            dissipation += r.dissipation;
+            if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
+            m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
+          }
+          for (long p = p0; p < p1; ++p) {
+            if (!sel(p)) continue;
+            scatter_gradient(sh[p - p0], strides, m[p - p0], force);
+            span.add(sh[p - p0].base);
+          }
         }
         buffers.touched(t, span);
       }
