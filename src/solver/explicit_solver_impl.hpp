@@ -50,6 +50,11 @@ SKRED_INLINE bool sound_point(const StressUpdateResult& r, const V& stress) {
 
 // The per-point arrays the stress update reads and writes (Thesis eq. 4.1-4.4, Post 72-73),
 // for the two phases that update stresses.
+// Points per block of the stress phase: a block's gathers run first, then its material
+// updates, then its scatters, so the out-of-order core overlaps the independent points' long
+// update chains (docs/method.md, "The stress phase in blocks").
+inline constexpr long kPointBlock = 8;
+
 template <int D>
 struct StressArrays {
   const double* __restrict volume0;
@@ -281,7 +286,7 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
         const int t = omp_get_thread_num();
         Vec<D>* __restrict force = buffers.vec_target(t, forces);
         BaseSpan span;
-        constexpr long B = 8;
+        constexpr long B = kPointBlock;
         const long nb = (n + B - 1) / B;
 #pragma omp for schedule(static) nowait
         for (long blk = 0; blk < nb; ++blk) {
