@@ -19,6 +19,7 @@
 
 #include "core/inline.hpp"
 #include "solver/gravity.hpp"
+#include "solver/stress_arrays.hpp"
 #include "solver/stress_update.hpp"
 #include "solver/wall_share.hpp"
 #include "transfer/size_ahead.hpp"
@@ -40,47 +41,6 @@ SKRED_INLINE bool move_point(const GridGeometry<D>& grid, const WallBox<D>& wall
   for (int d = 0; d < D; ++d) x[d] = std::min(std::max(x[d], walls.lo[d]), walls.hi[d]);
   return grid.inside(x) && std::isfinite(v.sum());
 }
-
-// After a stress update: false if the point's volume collapsed or inverted (det F <= 0) or its
-// stress is not finite.
-template <class V>
-SKRED_INLINE bool sound_point(const StressUpdateResult& r, const V& stress) {
-  return r.volume > 0.0 && std::isfinite(stress.sum());
-}
-
-// The per-point arrays the stress update reads and writes (Thesis eq. 4.1-4.4, Post 72-73),
-// for the two phases that update stresses.
-// Points per block of the stress phase: a block's gathers run first, then its material
-// updates, then its scatters, so the out-of-order core overlaps the independent points' long
-// update chains (docs/method.md, "The stress phase in blocks").
-inline constexpr long kPointBlock = 8;
-
-template <int D>
-struct StressArrays {
-  const double* __restrict volume0;
-  const std::int16_t* __restrict material;
-  Mat<D>* __restrict F;
-  Mat<D>* __restrict Fe;
-  PointStress<D>* __restrict stress;
-  PointState* __restrict state;
-  const Material* mats;
-  bool single;  // one material: the ids need not be read
-
-  StressArrays(Particles<D>& P, const std::vector<Material>& materials)
-      : volume0(P.volume0.data()),
-        material(P.material.data()),
-        F(P.F.data()),
-        Fe(P.Fe.data()),
-        stress(P.stress.data()),
-        state(P.state.data()),
-        mats(materials.data()),
-        single(materials.size() == 1) {}
-
-  SKRED_INLINE StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
-    return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
-                                  F[p], Fe[p]);
-  }
-};
 
 // The particle velocity update (velocity_transfer.hpp). FLIP, Thesis eq. 2.56: v_p + dt sum
 // N_ip a_i (acc_p = sum N_ip a_i, gathered by the caller), blended with a PIC share alpha of sum N_ip
@@ -286,13 +246,12 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
         const int t = omp_get_thread_num();
         Vec<D>* __restrict force = buffers.vec_target(t, forces);
         BaseSpan span;
-        constexpr long B = kPointBlock;
-        const long nb = (n + B - 1) / B;
+        const PointBlocks blocks{n};
 #pragma omp for schedule(static) nowait
-        for (long blk = 0; blk < nb; ++blk) {
-          const long p0 = blk * B, p1 = std::min(n, p0 + B);
-          typename K::Shape sh[B];
-          Mat<D> m[B];
+        for (long b = 0; b < blocks.count(); ++b) {
+          const long p0 = blocks.first(b), p1 = blocks.last(b);
+          typename K::Shape sh[kPointBlock];
+          Mat<D> m[kPointBlock];
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh[p - p0]);
@@ -300,10 +259,7 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
-            const auto r = S.update(p, m[p - p0], dt_stress);
-            work += r.strain_energy;
-            dissipation += r.dissipation;
-            if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
+            const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
             m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
           }
           for (long p = p0; p < p1; ++p) {

@@ -86,13 +86,12 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       };
       double work = 0.0, dissipation = 0.0;
       long bad = LONG_MAX;
-      constexpr long B = kPointBlock;  // a block's gradients first, then its updates
-      const long nb = (n + B - 1) / B;
+      const PointBlocks blocks{n};  // a block's gradients first, then its updates
 #pragma omp parallel for num_threads(threads()) schedule(static) reduction(+ : work, dissipation) \
     reduction(min : bad)
-      for (long blk = 0; blk < nb; ++blk) {
-        const long p0 = blk * B, p1 = std::min(n, p0 + B);
-        Mat<D> g_p[B];
+      for (long b = 0; b < blocks.count(); ++b) {
+        const long p0 = blocks.first(b), p1 = blocks.last(b);
+        Mat<D> g_p[kPointBlock];
         for (long p = p0; p < p1; ++p) {
           if (!sel(p)) continue;
           g_p[p - p0] = grad_v(p);
@@ -100,10 +99,7 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
         }
         for (long p = p0; p < p1; ++p) {
           if (!sel(p)) continue;
-          const auto r = S.update(p, g_p[p - p0], dt_stress);
-          work += r.strain_energy;
-          dissipation += r.dissipation;
-          if (!sound_point(r, S.stress[p])) bad = std::min(bad, p);
+          const auto r = S.update_booked(p, g_p[p - p0], dt_stress, work, dissipation, bad);
           A.mean[p] = sym_block<D>(S.stress[p]).trace() / D;
           A.volume[p] = r.volume;
         }
