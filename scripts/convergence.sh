@@ -17,6 +17,9 @@
 #                                                  body: material-point splitting, Thesis §3.4)
 #   XPIC_PERIOD=2 scripts/convergence.sh build/skred xpic   (solver.xpic_period: XPIC once per 2 h/c)
 #   DT_FACTOR=0.5 PROBLEMS=column ...   (the column's time step times 0.5)
+#   INTERPOLATION=bspline ...   (solver.interpolation; the examples use gimp)
+#   RUNOUT_THICKNESS=1.0 ...   (runout_thickness [m] of the stages with a rest criterion: the
+#                               runout where the deposit is that thick, not half a cell)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -28,6 +31,8 @@ volumetric=${VOLUMETRIC:-point}
 split=${SPLIT:-0}
 period=${XPIC_PERIOD:-}
 dtf=${DT_FACTOR:-1}
+interp=${INTERPOLATION:-}
+thick=${RUNOUT_THICKNESS:-}
 tag=$volumetric
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
@@ -36,6 +41,7 @@ if [ "$split" = 1 ]; then
 fi
 tag=$tag${period:+_p$period}
 [ "$dtf" = 1 ] || tag=${tag}_dt$dtf
+tag=$tag${interp:+_$interp}${thick:+_t$thick}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -47,11 +53,13 @@ scenario() {
     -e '/^pic_fraction/d' -e '/^velocity_transfer/d' -e '/^xpic_period/d' -e '/^volumetric_strain/d' \
     -e "s/^\[solver\]$/[solver]\nvelocity_transfer = \"$4\"\nvolumetric_strain = \"$volumetric\"$5/" \
     ${3:+-e "s/^time_step = .*/time_step = $3/"} \
+    ${interp:+-e "s/^interpolation = .*/interpolation = \"$interp\"/"} \
+    ${thick:+-e "s/^rest_time = \(.*\)$/rest_time = \1\nrunout_thickness = $thick/"} \
     -e "$splitexpr" "$1"
 }
 
 fronts=
-echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')${period:+, xpic_period = $period}"
+echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')${period:+, xpic_period = $period}${interp:+, interpolation = \"$interp\"}${thick:+, runout_thickness = $thick}"
 printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
 for tr in $transfers; do
   for problem in $problems; do

@@ -3,7 +3,10 @@
 // flown off or a voxel sheared into a needle cannot move the front.
 #include <gtest/gtest.h>
 
+#include <string>
+
 #include "run/slide_measures.hpp"
+#include "scenario/scenario.hpp"
 
 using namespace skred;
 
@@ -122,4 +125,62 @@ TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
   add(after, 5.35, 1.4, 0.25, 0.4);
   add(after, 9.5, 1.2, 0.3, 0.2);
   EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 2.6, 1e-12);
+}
+
+// The stage's runout_thickness (metres) is the level the runout's front must stand above the
+// original surface, in place of half a cell. On the slope of the test above, a point lying on
+// the ground 0.4 m thick, its outer edge at 9.8 m, is the front at 0.3 m: the toe is where the
+// original surface comes down to 1.3 m, between (2.5, 2) and (3.5, 1): x = 3.2, so the runout is
+// 9.8 - 3.2 = 6.6 m; at half a cell (0.5 m) it is not, and the runout stays 2.6 m.
+TEST(SlideMeasures, TheStagesRunoutThicknessSetsTheFrontsLevel) {
+  const auto text = [](const std::string& slide_extra) {
+    return std::string(R"(
+[grid]
+size = [20.0, 8.0]
+cell_size = 1.0
+[[material]]
+name = "soil"
+model = "linear-elastic"
+density = 2000.0
+young = 1e7
+poisson = 0.3
+[[body]]
+material = "soil"
+particles_per_cell = 2
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [20.0, 1.0]
+[[stage]]
+name = "equilibrium"
+duration = 0.1
+[[stage]]
+name = "slide"
+duration = 0.1
+)") + slide_extra;
+  };
+  const Scenario s = parse_scenario(text("runout_thickness = 0.3\n"), "slide.toml");
+  EXPECT_EQ(s.stages[0].runout_thickness, 0.0);  // not given: half a cell
+  EXPECT_EQ(s.stages[1].runout_thickness, 0.3);
+  try {
+    parse_scenario(text("runout_thickness = -0.3\n"), "slide.toml");
+    ADD_FAILURE() << "a negative thickness was accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("runout_thickness"), std::string::npos) << e.what();
+  }
+
+  Particles<2> slope;
+  const auto add = [](Particles<2>& P, double x, double y, double hx, double hy) {
+    P.add(Vec<2>(x, y), Vec<2>::Zero(), 1.0, 4 * hx * hy, Vec<2>(hx, hy), 0, 0);
+  };
+  for (int k = 0; k < 20; ++k) add(slope, k + 0.5, 0.5, 0.45, 0.5);
+  add(slope, 0.5, 2.5, 0.45, 1.5);
+  add(slope, 1.5, 2.0, 0.45, 1.0);
+  add(slope, 2.5, 1.5, 0.45, 0.5);
+  Particles<2> after = slope;
+  add(after, 5.35, 1.4, 0.25, 0.4);
+  add(after, 9.5, 1.2, 0.3, 0.2);
+  const StageTracker<2> at_half_cell("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.5);
+  const StageTracker<2> at_thickness("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.3);
+  EXPECT_NEAR(at_half_cell.runout(after), 2.6, 1e-12);
+  EXPECT_NEAR(at_thickness.runout(after), 6.6, 1e-12);
 }

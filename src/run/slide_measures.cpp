@@ -42,12 +42,12 @@ MaterialExtent material_extent(const Particles<D>& P) {
 template <int D>
 StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
                               double rest_speed, double rest_time, double x0, double width, double length,
-                              double z0, double z_length)
+                              double threshold, double z0, double z_length)
     : start_(material_extent(P)),
       kinetic_start_(kinetic_energy),
       rest_speed_(rest_speed),
       rest_time_(rest_time),
-      threshold_(0.5 * width),
+      threshold_(threshold),
       x0_(x0),
       width_(width),
       length_(length),

@@ -46,6 +46,8 @@ std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
   }
   if (st.rest_speed > 0)
     t += fmt::format(", ends when the mean speed stays below {} m/s for {} s", st.rest_speed, st.rest_time);
+  if (st.runout_thickness > 0)
+    t += fmt::format(", runout where the deposit is {} m thick", st.runout_thickness);
   return t;
 }
 

@@ -254,6 +254,7 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
     st.rest_time = t.number_or("rest_time", 0.0);
     if (st.rest_speed > 0.0 && !t.has("rest_time")) t.fail_missing("rest_time");
     st.local_damping = t.number("local_damping");
+    st.runout_thickness = t.number_or("runout_thickness", 0.0);
     s.end_time += st.duration;
     s.stages.push_back(std::move(st));
   }

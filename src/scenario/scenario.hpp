@@ -140,6 +140,9 @@ struct Stage {
   // for rest_time seconds (after the gravity ramp). rest_speed = 0 disables this.
   double rest_speed = 0.0;
   double rest_time = 0.0;
+  // The runout's threshold: the deposit's front is the outermost column it has raised by more
+  // than this [m] (slide_measures.hpp). 0: half a cell.
+  double runout_thickness = 0.0;
   // Local (non-viscous, Cundall type) damping alpha of the stage's grid update (0: off).
   double local_damping = 0.0;
 };

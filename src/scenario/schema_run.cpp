@@ -186,6 +186,13 @@ void add_run_sections(std::vector<Section>& s) {
             .def = derived("required with rest_speed"),
             .range = Range::positive(kMaxTime),
             .doc = "see `rest_speed`"},
+           {.name = "runout_thickness",
+            .unit = "m",
+            .def = derived("half a cell"),
+            .range = Range::positive(1e4),
+            .doc = "the stage's runout (summary.json, series.csv) ends where the deposit raises the "
+                   "original surface by less than this; a thickness in metres keeps the measure "
+                   "from shrinking with the cell (docs/method.md, \"Runout at a thickness\")"},
            {.name = "local_damping",
             .unit = "-",
             .def = value(0),
