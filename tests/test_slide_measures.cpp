@@ -22,6 +22,22 @@ Particles<2> block(double right_edge) {
   return P;
 }
 
+// A point [x - hx, x + hx] x [y - hy, y + hy].
+void add(Particles<2>& P, double x, double y, double hx, double hy) {
+  P.add(Vec<2>(x, y), Vec<2>::Zero(), 1.0, 4 * hx * hy, Vec<2>(hx, hy), 0, 0);
+}
+
+// A slope by hand (1 m columns, points 0.9 m wide so no point touches a neighbour): ground
+// 1 m deep everywhere on [0, 20], the surface 4, 3, 2 m high over the first three columns.
+Particles<2> hand_made_slope() {
+  Particles<2> slope;
+  for (int k = 0; k < 20; ++k) add(slope, k + 0.5, 0.5, 0.45, 0.5);
+  add(slope, 0.5, 2.5, 0.45, 1.5);
+  add(slope, 1.5, 2.0, 0.45, 1.0);
+  add(slope, 2.5, 1.5, 0.45, 0.5);
+  return slope;
+}
+
 }  // namespace
 
 TEST(SlideMeasures, ADetachedPointOrANeedleDoesNotMoveTheFront) {
@@ -96,14 +112,7 @@ TEST(SlideMeasures, RunoutIsTheFrontEdgeMinusTheToeEdge) {
 // the point moves by fractions of a column, across a column boundary.
 TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
   const double width = 1.0;
-  Particles<2> slope;
-  const auto add = [](Particles<2>& P, double x, double y, double hx, double hy) {
-    P.add(Vec<2>(x, y), Vec<2>::Zero(), 1.0, 4 * hx * hy, Vec<2>(hx, hy), 0, 0);
-  };
-  for (int k = 0; k < 20; ++k) add(slope, k + 0.5, 0.5, 0.45, 0.5);
-  add(slope, 0.5, 2.5, 0.45, 1.5);
-  add(slope, 1.5, 2.0, 0.45, 1.0);
-  add(slope, 2.5, 1.5, 0.45, 0.5);
+  const Particles<2> slope = hand_made_slope();
   const SurfaceProfile before = surface_profile(slope, 0.0, width, 20);
   ASSERT_EQ(before.top[2], 2.0);
   ASSERT_EQ(before.top[3], 1.0);
@@ -168,14 +177,7 @@ duration = 0.1
     EXPECT_NE(std::string(e.what()).find("runout_thickness"), std::string::npos) << e.what();
   }
 
-  Particles<2> slope;
-  const auto add = [](Particles<2>& P, double x, double y, double hx, double hy) {
-    P.add(Vec<2>(x, y), Vec<2>::Zero(), 1.0, 4 * hx * hy, Vec<2>(hx, hy), 0, 0);
-  };
-  for (int k = 0; k < 20; ++k) add(slope, k + 0.5, 0.5, 0.45, 0.5);
-  add(slope, 0.5, 2.5, 0.45, 1.5);
-  add(slope, 1.5, 2.0, 0.45, 1.0);
-  add(slope, 2.5, 1.5, 0.45, 0.5);
+  Particles<2> slope = hand_made_slope();  // (the tracker records each point's strain in it)
   Particles<2> after = slope;
   add(after, 5.35, 1.4, 0.25, 0.4);
   add(after, 9.5, 1.2, 0.3, 0.2);
