@@ -185,4 +185,18 @@ duration = 0.1
   const StageTracker<2> at_thickness("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.3);
   EXPECT_NEAR(at_half_cell.runout(after), 2.6, 1e-12);
   EXPECT_NEAR(at_thickness.runout(after), 6.6, 1e-12);
+
+  // On bare ground (the block of the first test on the floor y = 0, 0.1 m columns), a column
+  // that held no material counts any material by default, and with a thickness set its
+  // surface is the floor: a sheet 0.1 m thick to 2.4 m is the front by default and not at
+  // 0.3 m, where a lump 0.5 m thick to 2.2 m is.
+  Particles<2> column = block(2.0);
+  const StageTracker<2> any("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.05);
+  const StageTracker<2> on_floor("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.3, true);
+  Particles<2> sheet = block(2.0);
+  add(sheet, 2.2, 0.05, 0.2, 0.05);
+  EXPECT_NEAR(any.runout(sheet), 0.4, 1e-12);
+  EXPECT_EQ(on_floor.runout(sheet), 0.0);
+  add(sheet, 2.1, 0.25, 0.1, 0.25);
+  EXPECT_NEAR(on_floor.runout(sheet), 0.2, 1e-12);
 }

@@ -42,12 +42,13 @@ MaterialExtent material_extent(const Particles<D>& P) {
 template <int D>
 StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
                               double rest_speed, double rest_time, double x0, double width, double length,
-                              double threshold, double z0, double z_length)
+                              double threshold, bool bare_floor, double z0, double z_length)
     : start_(material_extent(P)),
       kinetic_start_(kinetic_energy),
       rest_speed_(rest_speed),
       rest_time_(rest_time),
       threshold_(threshold),
+      floor_(bare_floor ? start_.y_min : -INFINITY),
       x0_(x0),
       width_(width),
       length_(length),
@@ -103,10 +104,11 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
 
 template <int D>
 Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
-                 double threshold, int axis) {
+                 double threshold, int axis, double floor) {
   const int n = static_cast<int>(before.top.size());
   std::vector<double> level(before.top.size());
-  for (std::size_t b = 0; b < level.size(); ++b) level[b] = before.top[b] + threshold;
+  for (std::size_t b = 0; b < level.size(); ++b)
+    level[b] = (std::isfinite(before.top[b]) ? before.top[b] : floor) + threshold;
   // after.lo/hi: the edges of the points that raise their column by more than `threshold`.
   const SurfaceProfile after = surface_profile(P, x0, width, n, axis, level);
   Runout r;
@@ -159,7 +161,7 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
 
 template <int D>
 double StageTracker<D>::runout(const Particles<D>& P) const {
-  const Runout r = runout_of(profile_, P, x0_, width_, threshold_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_);
   return std::max(r.x_min, r.x_max);
 }
 
@@ -172,12 +174,12 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
   m.end_time = time;
   m.steps = steps;
   m.ended_by = ended_by;
-  const Runout r = runout_of(profile_, P, x0_, width_, threshold_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_);
   m.runout_x_min = r.x_min;
   m.runout_x_max = r.x_max;
   m.runout = std::max(r.x_min, r.x_max);
   if constexpr (D == 3) {
-    const Runout z = runout_of(profile_z_, P, z0_, width_, threshold_, 2);
+    const Runout z = runout_of(profile_z_, P, z0_, width_, threshold_, 2, floor_);
     m.runout_z_min = z.x_min;
     m.runout_z_max = z.x_max;
   }
@@ -209,8 +211,8 @@ template SurfaceProfile surface_profile<2>(const Particles<2>&, double, double, 
                                            const std::vector<double>&);
 template SurfaceProfile surface_profile<3>(const Particles<3>&, double, double, int, int,
                                            const std::vector<double>&);
-template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int);
-template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int);
+template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int, double);
+template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int, double);
 template class StageTracker<2>;
 template class StageTracker<3>;
 

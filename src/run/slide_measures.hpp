@@ -2,6 +2,7 @@
 // deposit height, mean speeds (Thesis eq. 5.12), work of gravity (eq. 5.13), the energy
 // balance, the plastified volume and the time the slide stopped.
 #pragma once
+#include <cmath>
 #include <optional>
 #include <string>
 #include <utility>
@@ -44,13 +45,14 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
 // nothing stood beyond it (a column's side), else the point where the original surface,
 // its column tops joined by straight lines between column centres, comes down to the
 // original surface at the tip plus `threshold`, the level the front's points stand above (a
-// slope's toe). Never negative.
+// slope's toe). Never negative. A column that held no material has no original surface: any
+// material raises it, unless `floor` is finite, which then stands for its surface.
 struct Runout {
   double x_min = 0.0, x_max = 0.0;
 };
 template <int D>
 Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
-                 double threshold, int axis = 0);
+                 double threshold, int axis = 0, double floor = -INFINITY);
 
 // Reads or writes a stage's measures through `a` (see StageTracker::archive).
 template <class A>
@@ -89,13 +91,15 @@ class StageTracker {
  public:
   // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length]
   // (3D: also over [z0, z0 + z_length] along z); the runout's `threshold` is that of runout_of
-  // (the stage's runout_thickness, by default half a cell). Records every point's plastic shear strain
-  // in P.plastic_ref (a particle field, so it follows the points through every change of
-  // their number or order).
+  // (the stage's runout_thickness, by default half a cell). `bare_floor`: a column without
+  // material at the stage start has the floor, the lowest material edge then, for its original
+  // surface (set with runout_thickness), else any material raises it. Records every point's plastic shear
+  // strain in P.plastic_ref (a particle field, so it follows the points through every change of their number
+  // or order).
   StageTracker() = default;  // to be filled by archive() (checkpoint restart)
   StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy, double rest_speed,
-               double rest_time, double x0, double width, double length, double threshold, double z0 = 0.0,
-               double z_length = 0.0);
+               double rest_time, double x0, double width, double length, double threshold,
+               bool bare_floor = false, double z0 = 0.0, double z_length = 0.0);
   // Records a sample of the mean speed at `time`; true once the rest criterion is met.
   bool observe(double time, double mean_speed);
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
@@ -125,6 +129,7 @@ class StageTracker {
     a(rest_speed_);
     a(rest_time_);
     a(threshold_);
+    a(floor_);
     a(x0_);
     a(width_);
     a(length_);
@@ -144,6 +149,7 @@ class StageTracker {
   MaterialExtent start_;
   double kinetic_start_ = 0.0;
   double rest_speed_ = 0.0, rest_time_ = 0.0, threshold_ = 0.0;
+  double floor_ = -INFINITY;  // original surface of the columns that held no material
   double x0_ = 0.0, width_ = 1.0, length_ = 0.0, z0_ = 0.0, z_length_ = 0.0;
   SurfaceProfile profile_;    // surface profile along x at the stage start
   SurfaceProfile profile_z_;  // 3D: along z
