@@ -161,7 +161,7 @@ end_time = 1.5
   const double mass0 = solver.totals().mass;
   EXPECT_NEAR(mass0, 1800.0 * 1.5, 1e-9 * mass0);
   const double L = s.cells[0] * kCell;
-  StageTracker<3> tracker("collapse", P, 0.0, 0.0, 0.0, 0.0, 0.0, kCell, L, 0.5 * kCell, false, 0.0, L);
+  StageTracker<3> tracker("collapse", P, 0.0, 0.0, 0.0, 0.0, 0.0, kCell, L, 0.0, 0.0, L);
   while (solver.time() < s.end_time - 0.5 * solver.dt()) ASSERT_TRUE(solver.step().ok);
   const auto t = solver.totals();
   const StageMeasures m =

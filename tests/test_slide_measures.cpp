@@ -181,7 +181,7 @@ duration = 0.1
   Particles<2> after = slope;
   add(after, 5.35, 1.4, 0.25, 0.4);
   add(after, 9.5, 1.2, 0.3, 0.2);
-  const StageTracker<2> at_half_cell("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.5);
+  const StageTracker<2> at_half_cell("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.0);
   const StageTracker<2> at_thickness("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.3);
   EXPECT_NEAR(at_half_cell.runout(after), 2.6, 1e-12);
   EXPECT_NEAR(at_thickness.runout(after), 6.6, 1e-12);
@@ -191,8 +191,8 @@ duration = 0.1
   // surface is the floor: a sheet 0.1 m thick to 2.4 m is the front by default and not at
   // 0.3 m, where a lump 0.5 m thick to 2.2 m is.
   Particles<2> column = block(2.0);
-  const StageTracker<2> any("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.05);
-  const StageTracker<2> on_floor("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.3, true);
+  const StageTracker<2> any("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.0);
+  const StageTracker<2> on_floor("slide", column, 0.0, 0.0, 0.0, 0.0, 0.0, 0.1, 10.0, 0.3);
   Particles<2> sheet = block(2.0);
   add(sheet, 2.2, 0.05, 0.2, 0.05);
   EXPECT_NEAR(any.runout(sheet), 0.4, 1e-12);

@@ -252,11 +252,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       at.in_stage = true;
       at.stage_first_step = solver.steps();
       at.stage_start = solver.time();
-      at.tracker = StageTracker<D>(
-          st.name, particles, at.stage_start, solver.totals().kinetic_energy, st.rest_speed, st.rest_time,
-          s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
-          st.runout_thickness > 0.0 ? st.runout_thickness : 0.5 * s.cell_size, st.runout_thickness > 0.0,
-          s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+      at.tracker =
+          StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy, st.rest_speed,
+                          st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
+                          st.runout_thickness, s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
     }
     const long first_step = at.stage_first_step;
     const double stage_start = at.stage_start;

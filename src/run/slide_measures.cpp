@@ -42,13 +42,13 @@ MaterialExtent material_extent(const Particles<D>& P) {
 template <int D>
 StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
                               double rest_speed, double rest_time, double x0, double width, double length,
-                              double threshold, bool bare_floor, double z0, double z_length)
+                              double thickness, double z0, double z_length)
     : start_(material_extent(P)),
       kinetic_start_(kinetic_energy),
       rest_speed_(rest_speed),
       rest_time_(rest_time),
-      threshold_(threshold),
-      floor_(bare_floor ? start_.y_min : -INFINITY),
+      threshold_(thickness > 0.0 ? thickness : 0.5 * width),
+      floor_(thickness > 0.0 ? start_.y_min : -INFINITY),
       x0_(x0),
       width_(width),
       length_(length),

@@ -90,16 +90,16 @@ template <int D>
 class StageTracker {
  public:
   // The surface profile is taken in columns of `width` (a grid cell) over [x0, x0 + length]
-  // (3D: also over [z0, z0 + z_length] along z); the runout's `threshold` is that of runout_of
-  // (the stage's runout_thickness, by default half a cell). `bare_floor`: a column without
-  // material at the stage start has the floor, the lowest material edge then, for its original
-  // surface (set with runout_thickness), else any material raises it. Records every point's plastic shear
-  // strain in P.plastic_ref (a particle field, so it follows the points through every change of their number
-  // or order).
+  // (3D: also over [z0, z0 + z_length] along z). `thickness` is the stage's runout_thickness:
+  // 0 takes the runout at half a cell with any material raising a column that held none at the
+  // stage start; > 0 takes it at that thickness, with the floor (the lowest material edge then)
+  // for such a column's original surface (runout_of's threshold and floor). Records every
+  // point's plastic shear strain in P.plastic_ref (a particle field, so it follows the points
+  // through every change of their number or order).
   StageTracker() = default;  // to be filled by archive() (checkpoint restart)
   StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy, double rest_speed,
-               double rest_time, double x0, double width, double length, double threshold,
-               bool bare_floor = false, double z0 = 0.0, double z_length = 0.0);
+               double rest_time, double x0, double width, double length, double thickness = 0.0,
+               double z0 = 0.0, double z_length = 0.0);
   // Records a sample of the mean speed at `time`; true once the rest criterion is met.
   bool observe(double time, double mean_speed);
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
