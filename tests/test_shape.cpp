@@ -6,6 +6,8 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -275,6 +277,41 @@ TEST(Shape, GimpSizeMatchesTheLibraryCubeRoot) {
   std::printf("GIMP size: lam %.2e, 1/lam %.2e from the library's\n", worst_lam, worst_inv);
   EXPECT_LT(worst_lam, 2e-15);  // a few units in the last place
   EXPECT_LT(worst_inv, 2e-15);
+}
+
+// GimpKernel<3>::sizes (eight points' sizes in the lanes of vectors, for the move phase) gives
+// what size() gives, bit for bit, for every count of points and where size() takes its
+// fallback (J = 0, not finite, l0 = 0).
+TEST(Shape, GimpSizesInLanesEqualSize) {
+  const GimpKernel<3> k;
+  GridGeometry<3> g;
+  g.h = 0.25;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-0.3, 0.3);
+  std::vector<Mat<3>> F(4000, Mat<3>::Identity());
+  std::vector<Vec<3>> half0(F.size());
+  for (std::size_t n = 0; n < F.size(); ++n) {
+    for (int i = 0; i < 9; ++i) F[n](i / 3, i % 3) += u(rng);
+    if (n % 5 == 1) F[n] *= 3.0;
+    if (n % 5 == 2) F[n] *= 1e-5;
+    if (n % 97 == 3) F[n].col(0) = F[n].col(1);
+    if (n % 89 == 4) F[n](0, 0) = std::numeric_limits<double>::quiet_NaN();
+    half0[n] = Vec<3>(0.0625 * (1.0 + u(rng)), 0.0625 * (1.0 + u(rng)), n % 101 == 7 ? 0.0 : 0.0625);
+  }
+  long compared = 0, differ = 0;
+  GimpKernel<3>::Size out[GimpKernel<3>::kSizeLanes];
+  for (std::size_t first = 0; first + 8 <= F.size(); first += 8) {
+    const int count = 1 + static_cast<int>(first / 8) % 8;  // 1 to 8 points
+    k.sizes(g, half0.data() + first, F.data() + first, count, out);
+    for (int l = 0; l < count; ++l) {
+      const auto s = k.size(g, half0[first + l], F[first + l]);
+      for (int d = 0; d < 3; ++d, ++compared)
+        differ += std::memcmp(&s.lam[d], &out[l].lam[d], sizeof(double)) != 0 ||
+                  std::memcmp(&s.inv[d], &out[l].inv[d], sizeof(double)) != 0;
+    }
+  }
+  EXPECT_GT(compared, 5000);
+  EXPECT_EQ(differ, 0);
 }
 
 // gather_layers (the walls' share of the lumped mass's loss reads s_i, zero off the walls, on the

@@ -105,6 +105,47 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
     }
     return s;
   }
+  // size() of `count` <= 8 consecutive points at once: the root's Newton steps, the division
+  // and the clamps of eight points in the lanes of vectors. The same operations as size(), so the
+  // same results; a point outside size()'s range of J and l0 takes size() itself.
+  static constexpr int kSizeLanes = 8;
+  SKRED_INLINE void sizes(const GridGeometry<D>& g, const Vec<D>* __restrict half0, const Mat<D>* __restrict F,
+                          int count, Size* __restrict out) const
+    requires(D == 3)
+  {
+    constexpr int L = kSizeLanes;
+    alignas(64) double J[L], y[L], h[3][L];
+    for (int l = 0; l < L; ++l) {
+      const bool real = l < count;
+      J[l] = real ? F[l].determinant() : 1.0;
+      for (int d = 0; d < 3; ++d) h[d][l] = real ? half0[l][d] : 1.0;
+    }
+    for (int l = 0; l < L; ++l)  // gimp_inverse_cube_root's first guess
+      y[l] = std::bit_cast<double>(0x553EF1A9FBE76C00ull - std::bit_cast<std::uint64_t>(J[l]) / 3);
+    for (int k = 0; k < 4; ++k)
+      for (int l = 0; l < L; ++l) y[l] *= (4.0 - J[l] * (y[l] * y[l] * y[l])) * (1.0 / 3.0);
+    const double inv_h = 1.0 / g.h;
+    alignas(64) double lam[3][L], inv[3][L];
+    for (int l = 0; l < L; ++l) {
+      const double scale = J[l] * y[l] * y[l], q = g.h * y[l] / (h[0][l] * h[1][l] * h[2][l]);
+      const double inv0[3] = {h[1][l] * h[2][l], h[0][l] * h[2][l], h[0][l] * h[1][l]};
+      for (int d = 0; d < 3; ++d) {
+        lam[d][l] = std::clamp(h[d][l] * scale * inv_h, 1e-12, 0.5);
+        inv[d][l] = std::clamp(inv0[d] * q, 2.0, 1e12);
+      }
+    }
+    for (int l = 0; l < count; ++l) {
+      const double v0 = h[0][l] * h[1][l] * h[2][l];
+      if (!(J[l] > 1e-200 && J[l] < 1e200 && v0 > 1e-100)) {
+        out[l] = size(g, half0[l], F[l]);
+        continue;
+      }
+      for (int d = 0; d < 3; ++d) {
+        out[l].lam[d] = lam[d][l];
+        out[l].inv[d] = inv[d][l];
+      }
+    }
+  }
   SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Size& size, Shape& sh) const {
     const double inv_h = 1.0 / g.h;
     std::array<int, D> start{};

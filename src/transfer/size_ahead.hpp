@@ -1,11 +1,12 @@
 // Look-ahead of the part of a point's weighting functions that does not depend on its
 // position: GIMP's half-lengths l_p = l_p^0 det(F)^(1/ndim) (Thesis eq. 3.23), a root and
 // divisions that are the longest chain of a point's weights. A loop that moves points and
-// maps them at their new positions, without changing F, forms point p + 1's while it moves
-// point p, so they are ready (computed out of order beside p's transfers) when p + 1 comes.
+// maps them at their new positions, without changing F, forms them for the next 8 points at
+// once, in the lanes of vectors (GimpKernel::sizes), when it reaches a point it has none for.
 // In 2D (a square root) it does not pay: there, and for kernels without such a part, the
 // point's initial half-lengths are passed on and shape() forms the rest as before.
 #pragma once
+#include <algorithm>
 #include <type_traits>
 
 #include "core/grid.hpp"
@@ -37,20 +38,21 @@ struct SizeAhead {
   SKRED_INLINE auto take(const K& kernel, const GridGeometry<D>& g, const Vec<D>* __restrict half0,
                          const Mat<D>* __restrict F, long p, long n) {
     if constexpr (kSizeAhead<D, K>) {
-      const typename K::Size s = at_ == p ? next_ : kernel.size(g, half0[p], F[p]);
-      if (p + 1 < n) {
-        next_ = kernel.size(g, half0[p + 1], F[p + 1]);
-        at_ = p + 1;
+      if (p < first_ || p >= first_ + count_) {
+        first_ = p;
+        count_ = static_cast<int>(std::min<long>(K::kSizeLanes, n - p));
+        kernel.sizes(g, half0 + p, F + p, count_, next_);
       }
-      return s;
+      return next_[p - first_];
     } else {
       return half0[p];
     }
   }
 
  private:
-  typename SizeOf<K, kSizeAhead<D, K>>::type next_{};
-  long at_ = -1;
+  typename SizeOf<K, kSizeAhead<D, K>>::type next_[8]{};
+  long first_ = -1;
+  int count_ = 0;
 };
 
 }  // namespace skred
