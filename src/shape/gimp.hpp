@@ -109,10 +109,9 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   // and the clamps of eight points in the lanes of vectors. The same operations as size(), so the
   // same results; a point outside size()'s range of J and l0 takes size() itself.
   static constexpr int kSizeLanes = 8;
-  SKRED_INLINE void sizes(const GridGeometry<D>& g, const Vec<D>* __restrict half0, const Mat<D>* __restrict F,
-                          int count, Size* __restrict out) const
-    requires(D == 3)
-  {
+  SKRED_INLINE void sizes(const GridGeometry<D>& g, const Vec<D>* __restrict half0,
+                          const Mat<D>* __restrict F, int count, Size* __restrict out) const
+      requires(D == 3) {
     constexpr int L = kSizeLanes;
     alignas(64) double J[L], y[L], h[3][L];
     for (int l = 0; l < L; ++l) {
