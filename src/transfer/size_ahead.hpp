@@ -38,19 +38,21 @@ struct SizeAhead {
   SKRED_INLINE auto take(const K& kernel, const GridGeometry<D>& g, const Vec<D>* __restrict half0,
                          const Mat<D>* __restrict F, long p, long n) {
     if constexpr (kSizeAhead<D, K>) {
+      static_assert(K::kSizeLanes <= kBlock);
       if (p < first_ || p >= first_ + count_) {
         first_ = p;
         count_ = static_cast<int>(std::min<long>(K::kSizeLanes, n - p));
-        kernel.sizes(g, half0 + p, F + p, count_, next_);
+        kernel.sizes(g, half0 + p, F + p, count_, block_);
       }
-      return next_[p - first_];
+      return block_[p - first_];
     } else {
       return half0[p];
     }
   }
 
  private:
-  typename SizeOf<K, kSizeAhead<D, K>>::type next_[8]{};
+  static constexpr int kBlock = 8;
+  typename SizeOf<K, kSizeAhead<D, K>>::type block_[kBlock]{};  // points [first_, first_ + count_)
   long first_ = -1;
   int count_ = 0;
 };
