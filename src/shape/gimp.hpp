@@ -59,9 +59,17 @@ SKRED_INLINE void gimp_3nodes(double e, double lam, double inv, double* w, doubl
 // refined by four Newton steps y <- y (4 - J y^3)/3, each taking the relative error e to
 // about -2 e^2 (3.5e-2 -> 2.4e-3 -> 1.2e-5 -> 3e-10 -> round-off). The library's cbrt, or a
 // root by Halley steps, costs divisions, the slowest arithmetic of a point's weights.
+// Its two parts, the guess and a step, also run in the lanes of GimpKernel<3>::sizes.
+SKRED_INLINE double gimp_cube_root_guess(double J) {
+  return std::bit_cast<double>(0x553EF1A9FBE76C00ull - std::bit_cast<std::uint64_t>(J) / 3);
+}
+SKRED_INLINE double gimp_cube_root_step(double J, double y) {
+  return y * ((4.0 - J * (y * y * y)) * (1.0 / 3.0));
+}
+inline constexpr int kGimpCubeRootSteps = 4;
 SKRED_INLINE double gimp_inverse_cube_root(double J) {
-  double y = std::bit_cast<double>(0x553EF1A9FBE76C00ull - std::bit_cast<std::uint64_t>(J) / 3);
-  for (int k = 0; k < 4; ++k) y *= (4.0 - J * (y * y * y)) * (1.0 / 3.0);
+  double y = gimp_cube_root_guess(J);
+  for (int k = 0; k < kGimpCubeRootSteps; ++k) y = gimp_cube_root_step(J, y);
   return y;
 }
 
@@ -84,17 +92,9 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
     const double inv_h = 1.0 / g.h;
     Size s;
     if constexpr (D == 3) {
-      // One division per point: J^(1/3) = J y^2 and 1/lam_d = y L / l0_d with y = J^(-1/3), the
-      // three 1/l0_d from 1/(l0_x l0_y l0_z). The inverses are clamped to [2, 1e12] as lam to
-      // [1e-12, 1/2].
-      const double v0 = half0[0] * half0[1] * half0[2];
-      if (J > 1e-200 && J < 1e200 && v0 > 1e-100) {
-        const double y = gimp_inverse_cube_root(J), scale = J * y * y, q = g.h * y / v0;
-        const double inv0[3] = {half0[1] * half0[2], half0[0] * half0[2], half0[0] * half0[1]};
-        for (int d = 0; d < D; ++d) {
-          s.lam[d] = std::clamp(half0[d] * scale * inv_h, 1e-12, 0.5);
-          s.inv[d] = std::clamp(inv0[d] * q, 2.0, 1e12);
-        }
+      const double h[3] = {half0[0], half0[1], half0[2]};
+      if (root_in_range(J, h)) {
+        from_root(g, J, gimp_inverse_cube_root(J), h, s.lam, s.inv);
         return s;
       }
     }
@@ -105,6 +105,22 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
     }
     return s;
   }
+  // The 3D half-lengths from y = J^(-1/3): one division per point, J^(1/3) = J y^2 and
+  // 1/lam_d = y L / l0_d, the three 1/l0_d from 1/(l0_x l0_y l0_z); the inverses clamped to
+  // [2, 1e12] as lam to [1e-12, 1/2]. For J and l0 where root_in_range holds.
+  SKRED_INLINE static bool root_in_range(double J, const double (&h)[3]) {
+    return J > 1e-200 && J < 1e200 && h[0] * h[1] * h[2] > 1e-100;
+  }
+  SKRED_INLINE static void from_root(const GridGeometry<D>& g, double J, double y, const double (&h)[3],
+                                     double (&lam)[3], double (&inv)[3]) requires(D == 3) {
+    const double inv_h = 1.0 / g.h;
+    const double scale = J * y * y, q = g.h * y / (h[0] * h[1] * h[2]);
+    const double inv0[3] = {h[1] * h[2], h[0] * h[2], h[0] * h[1]};
+    for (int d = 0; d < 3; ++d) {
+      lam[d] = std::clamp(h[d] * scale * inv_h, 1e-12, 0.5);
+      inv[d] = std::clamp(inv0[d] * q, 2.0, 1e12);
+    }
+  }
   // size() of `count` <= 8 consecutive points at once: the root's Newton steps, the division
   // and the clamps of eight points in the lanes of vectors. The same operations as size(), so the
   // same results; a point outside size()'s range of J and l0 takes size() itself.
@@ -113,37 +129,18 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
                           const Mat<D>* __restrict F, int count, Size* __restrict out) const
       requires(D == 3) {
     constexpr int L = kSizeLanes;
-    alignas(64) double J[L], y[L], h[3][L];
+    alignas(64) double J[L], y[L], h[L][3];
     for (int l = 0; l < L; ++l) {
       const bool real = l < count;
       J[l] = real ? F[l].determinant() : 1.0;
-      for (int d = 0; d < 3; ++d) h[d][l] = real ? half0[l][d] : 1.0;
+      for (int d = 0; d < 3; ++d) h[l][d] = real ? half0[l][d] : 1.0;
     }
-    for (int l = 0; l < L; ++l)  // gimp_inverse_cube_root's first guess
-      y[l] = std::bit_cast<double>(0x553EF1A9FBE76C00ull - std::bit_cast<std::uint64_t>(J[l]) / 3);
-    for (int k = 0; k < 4; ++k)
-      for (int l = 0; l < L; ++l) y[l] *= (4.0 - J[l] * (y[l] * y[l] * y[l])) * (1.0 / 3.0);
-    const double inv_h = 1.0 / g.h;
-    alignas(64) double lam[3][L], inv[3][L];
-    for (int l = 0; l < L; ++l) {
-      const double scale = J[l] * y[l] * y[l], q = g.h * y[l] / (h[0][l] * h[1][l] * h[2][l]);
-      const double inv0[3] = {h[1][l] * h[2][l], h[0][l] * h[2][l], h[0][l] * h[1][l]};
-      for (int d = 0; d < 3; ++d) {
-        lam[d][l] = std::clamp(h[d][l] * scale * inv_h, 1e-12, 0.5);
-        inv[d][l] = std::clamp(inv0[d] * q, 2.0, 1e12);
-      }
-    }
-    for (int l = 0; l < count; ++l) {
-      const double v0 = h[0][l] * h[1][l] * h[2][l];
-      if (!(J[l] > 1e-200 && J[l] < 1e200 && v0 > 1e-100)) {
-        out[l] = size(g, half0[l], F[l]);
-        continue;
-      }
-      for (int d = 0; d < 3; ++d) {
-        out[l].lam[d] = lam[d][l];
-        out[l].inv[d] = inv[d][l];
-      }
-    }
+    for (int l = 0; l < L; ++l) y[l] = gimp_cube_root_guess(J[l]);
+    for (int k = 0; k < kGimpCubeRootSteps; ++k)
+      for (int l = 0; l < L; ++l) y[l] = gimp_cube_root_step(J[l], y[l]);
+    Size lanes[L];
+    for (int l = 0; l < L; ++l) from_root(g, J[l], y[l], h[l], lanes[l].lam, lanes[l].inv);
+    for (int l = 0; l < count; ++l) out[l] = root_in_range(J[l], h[l]) ? lanes[l] : size(g, half0[l], F[l]);
   }
   SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Size& size, Shape& sh) const {
     const double inv_h = 1.0 / g.h;
