@@ -54,12 +54,18 @@ inline Material vibrating_block(Particles<2>& P) {
 inline const std::string kExampleTransfer = "velocity_transfer = \"xpic\"\nxpic_period = 2.0";
 
 // An example's scenario text with its transfer lines replaced by `lines` (empty: the engine's
-// default); throws if the example no longer has them.
+// default); throws if the example no longer has them. If `lines` set the volumetric strain,
+// the example's own volumetric_strain line goes.
 inline std::string with_transfer(std::string text, const std::string& lines) {
   const auto at = text.find(kExampleTransfer);
   if (at == std::string::npos)
     throw std::runtime_error("the example's velocity-transfer lines are not in it");
-  return text.replace(at, kExampleTransfer.size(), lines);
+  text.replace(at, kExampleTransfer.size(), lines);
+  if (lines.find("volumetric_strain") != std::string::npos) {
+    const auto own = text.find("\nvolumetric_strain", at + lines.size());
+    if (own != std::string::npos) text.erase(own + 1, text.find('\n', own + 1) - own);
+  }
+  return text;
 }
 
 inline GridGeometry<2> grid2(double h, int nx, int ny) {

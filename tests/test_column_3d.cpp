@@ -151,6 +151,8 @@ y_min = "fixed"
 scheme = "usf"
 cfl = 0.4
 end_time = 1.5
+velocity_transfer = "flip"
+volumetric_strain = "point"
 )",
                                                                          kCell),
                                                              "square.toml"));

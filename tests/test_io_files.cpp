@@ -206,6 +206,10 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
   s.phase_seconds = {{"stress_update_force", 0.25}, {"grid_update", 1.5}};
   s.version = "0.1.0";
   s.git_commit = "unknown";
+  s.velocity_transfer = "xpic";
+  s.xpic_order = 2;
+  s.xpic_period = 2.0;
+  s.volumetric_strain = "cell-average";
   const fs::path file = dir / "summary.json";
   write_summary_json(file, s);
   const auto [status, out] = run_python("read_json.py", {file.string()});
@@ -227,6 +231,10 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"scenario", R"("slope \"A\".toml")"},
       {"interpolation", "\"gimp\""},
       {"scheme", "\"usl\""},
+      {"velocity_transfer", "\"xpic\""},
+      {"xpic_order", "2"},
+      {"xpic_period", "2"},
+      {"volumetric_strain", "\"cell-average\""},
       {"time_step", "1e-05"},
       {"phase_seconds", R"({"stress_update_force": 0.25, "grid_update": 1.5})"},
       {"stages", "[]"},

@@ -218,6 +218,8 @@ x_min = "roller"
 y_min = "fixed"
 [solver]
 end_time = 1.0
+velocity_transfer = "flip"
+volumetric_strain = "point"
 [output]
 interval = 0.5
 )";

@@ -183,14 +183,13 @@ TEST(VelocityTransfer, ScenarioKeys) {
   const auto with = [&](const std::string& keys) {
     return parse_scenario(with_transfer(base, keys), "column.toml");
   };
-  EXPECT_EQ(with("").velocity_transfer, VelocityTransfer::Flip);
   const Scenario x = with("velocity_transfer = \"xpic\"\nxpic_order = 3");
   EXPECT_EQ(x.velocity_transfer, VelocityTransfer::Xpic);
   EXPECT_EQ(x.xpic_order, 3);
   EXPECT_EQ(with("velocity_transfer = \"apic\"").velocity_transfer, VelocityTransfer::Apic);
   EXPECT_EQ(solver_settings(with("velocity_transfer = \"apic\"")).velocity_transfer, VelocityTransfer::Apic);
   EXPECT_ANY_THROW(with("velocity_transfer = \"pic\""));
-  EXPECT_ANY_THROW(with("xpic_order = 3"));  // flip
+  EXPECT_ANY_THROW(with("velocity_transfer = \"flip\"\nxpic_order = 3"));
   EXPECT_ANY_THROW(with("velocity_transfer = \"apic\"\npic_fraction = 0.1"));
   // APIC with the linear kernel or quadrature GIMP is refused (each goes unstable), naming the key
   for (const char* kernel : {"linear", "gimp-quadrature"}) {
@@ -212,4 +211,59 @@ TEST(VelocityTransfer, ScenarioKeys) {
   EXPECT_FALSE(solver_settings(with("")).hyperelastic);
   EXPECT_TRUE(solver_settings(with("elastic_update = \"hyperelastic\"")).hyperelastic);
   EXPECT_ANY_THROW(with("elastic_update = \"hyper\""));
+}
+
+// solver.velocity_transfer and volumetric_strain = "auto" (the defaults; docs/method.md, "The
+// defaults"): a scenario whose deformable bodies can yield (the Mohr-Coulomb soil column) gets
+// exactly the settings of XPIC(2) once per 2 h/c with the cell-averaged volumetric strain; an
+// elastic one (R3's discs) FLIP with each point's own strain; a key of one transfer alone picks it.
+TEST(VelocityTransfer, AutoPicksTheTransferByTheMaterials) {
+  std::string column = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  const std::string point = "volumetric_strain = \"point\"";
+  column.replace(column.find(point), point.size(), "");
+  const auto with = [&](const std::string& keys) {
+    return solver_settings(parse_scenario(with_transfer(column, keys), "column.toml"));
+  };
+  const SolverSettings a = with(""), x = with(kExampleTransfer + "\nvolumetric_strain = \"cell-average\"");
+  EXPECT_EQ(a.velocity_transfer, VelocityTransfer::Xpic);
+  EXPECT_GT(a.xpic_period, 0.0);
+  EXPECT_EQ(a.xpic_period, x.xpic_period);  // 2 h/c, in seconds
+  EXPECT_EQ(a.xpic_order, 2);
+  EXPECT_TRUE(a.volumetric_averaging);
+  EXPECT_EQ(a.pic_fraction, 0.0);
+  EXPECT_TRUE(parse_scenario(with_transfer(column, ""), "column.toml").transfer_by_default);
+  // one transfer's key alone picks that transfer; an explicit choice keeps its own defaults
+  EXPECT_EQ(with("pic_fraction = 0.1").velocity_transfer, VelocityTransfer::Flip);
+  EXPECT_EQ(with("xpic_order = 3").xpic_order, 3);
+  EXPECT_EQ(with("xpic_order = 3").xpic_period, x.xpic_period);
+  EXPECT_EQ(with("velocity_transfer = \"xpic\"").xpic_period, 0.0);
+  EXPECT_FALSE(with("volumetric_strain = \"point\"").volumetric_averaging);
+  EXPECT_EQ(with("velocity_transfer = \"auto\"").velocity_transfer, VelocityTransfer::Xpic);
+
+  const Scenario discs = parse_scenario(
+      read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/colliding_discs.toml"), "discs.toml");
+  const SolverSettings e = solver_settings(discs);
+  EXPECT_TRUE(discs.transfer_by_default);
+  EXPECT_EQ(e.velocity_transfer, VelocityTransfer::Flip);
+  EXPECT_EQ(e.pic_fraction, 0.0);
+  EXPECT_FALSE(e.volumetric_averaging);
+}
+
+// End to end: the soil column (1 s of it) naming no transfer runs as the one naming XPIC(2) once
+// per 2 h/c with the cell-averaged strain, to the last bit of series.csv's last row.
+TEST(VelocityTransfer, AutoRunsAsTheSlideDefaultsNamed) {
+  std::string column = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  column.replace(column.find("duration = 6.0"), 14, "duration = 1.0");
+  std::string unset = with_transfer(column, "");
+  const std::string point = "volumetric_strain = \"point\"";
+  unset.replace(unset.find(point), point.size(), "");
+  const TextRun a = run_text(unset, 1);
+  const TextRun x =
+      run_text(with_transfer(column, kExampleTransfer + "\nvolumetric_strain = \"cell-average\""), 1);
+  ASSERT_TRUE(a.result.completed) << a.result.message;
+  ASSERT_FALSE(a.row.empty());
+  EXPECT_EQ(a.row, x.row);
+  ASSERT_FALSE(a.result.stages.empty());
+  EXPECT_EQ(a.result.stages.back().runout, x.result.stages.back().runout);
+  EXPECT_GT(a.result.stages.back().runout, 0.0);
 }

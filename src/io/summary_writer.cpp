@@ -113,6 +113,18 @@ std::string phases_json(const std::vector<std::pair<std::string, double>>& phase
   return phases.empty() ? out : out + "\n  ";
 }
 
+// "velocity_transfer" with its parameters and "volumetric_strain", if the run set them.
+std::string transfer_json(const Summary& s) {
+  if (s.velocity_transfer.empty()) return "";
+  std::string out = fmt::format("  \"velocity_transfer\": {},\n", json_string(s.velocity_transfer));
+  if (s.velocity_transfer == "xpic")
+    out += fmt::format("  \"xpic_order\": {},\n  \"xpic_period\": {},\n", s.xpic_order,
+                       json_number(s.xpic_period));
+  if (s.velocity_transfer == "flip")
+    out += fmt::format("  \"pic_fraction\": {},\n", json_number(s.pic_fraction));
+  return out + fmt::format("  \"volumetric_strain\": {},\n", json_string(s.volumetric_strain));
+}
+
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
@@ -130,7 +142,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"threads\": {},\n"
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
-      "  \"scheme\": {},\n"
+      "  \"scheme\": {},\n{}"
       "  \"time_step\": {},\n"
       "  \"phase_seconds\": {{{}}},\n"
       "  \"stages\": [{}],\n"
@@ -141,8 +153,9 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_number(s.end_time), s.particles, s.cells,
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
       json_number(s.wall_seconds), json_number(s.particle_updates_per_second), s.threads,
-      json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), json_number(s.time_step),
-      phases_json(s.phase_seconds), stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
+      json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
+      json_number(s.time_step), phases_json(s.phase_seconds), stages_json(s.stages), json_string(s.version),
+      json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

@@ -58,6 +58,11 @@ struct Summary {
   std::vector<std::pair<std::string, double>> phase_seconds = {};
   int dimension = 2;                          // written (after cells) only when 3
   std::string version = {}, git_commit = {};  // of the skred that ran (written last)
+  // The velocity transfer and volumetric strain the run used (written after the scheme when
+  // set; "auto" resolved): xpic_order and xpic_period [h/c] for "xpic", pic_fraction for "flip".
+  std::string velocity_transfer = {}, volumetric_strain = {};
+  int xpic_order = 0;
+  double xpic_period = 0.0, pic_fraction = 0.0;
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

@@ -406,6 +406,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.scenario = s.source;
   sum.interpolation = to_string(s.interpolation);
   sum.scheme = to_string(s.scheme);
+  sum.velocity_transfer = to_string(s.velocity_transfer);
+  sum.xpic_order = s.xpic_order;
+  sum.xpic_period = s.xpic_period;
+  sum.pic_fraction = s.pic_fraction;
+  sum.volumetric_strain = s.volumetric_averaging ? "cell-average" : "point";
   sum.time_step = dt;
   sum.stages = at.finished;
   sum.phase_seconds = solver.phase_times().report();

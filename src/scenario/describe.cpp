@@ -160,6 +160,16 @@ std::string describe(const ScenarioOf<D>& s) {
                                              : fmt::format("time step from CFL {}", s.cfl);
   line(fmt::format("solver: {} interpolation, {} scheme, end time {} s, {}", interp, to_string(s.scheme),
                    s.end_time, step));
+  std::string transfer = to_string(s.velocity_transfer);
+  if (s.velocity_transfer == VelocityTransfer::Xpic) {
+    transfer += fmt::format("({})", s.xpic_order);
+    transfer += s.xpic_period > 0.0 ? fmt::format(" once per {} h/c", s.xpic_period) : " every step";
+  }
+  if (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction > 0.0)
+    transfer += fmt::format(" with PIC share {}", s.pic_fraction);
+  if (s.transfer_by_default) transfer += " (by \"auto\")";
+  line(fmt::format("velocity transfer: {}; volumetric strain: {}", transfer,
+                   s.volumetric_averaging ? "cell-average" : "point"));
   line(fmt::format("output: particle frames every {} s, series rows every {} s", s.output_interval,
                    s.series_interval));
   return out;

@@ -1,15 +1,35 @@
-// [solver] velocity_transfer and xpic_order (docs/scenario.md): the particle velocity update.
+// [solver] velocity_transfer, xpic_order, xpic_period and volumetric_strain (docs/scenario.md):
+// the particle velocity update and the volumetric strain.
 #include "scenario/parse_transfer.hpp"
 
 #include <fmt/format.h>
 
 namespace skred::scenario_detail {
 
-void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
-  const auto V = [](VelocityTransfer x) { return std::pair{to_string(x), x}; };
-  s.velocity_transfer = t.choice<VelocityTransfer>(
-      "velocity_transfer", {V(VelocityTransfer::Flip), V(VelocityTransfer::Xpic), V(VelocityTransfer::Apic)},
-      VelocityTransfer::Flip);
+namespace {
+enum class Pick { Auto, Flip, Xpic, Apic };
+}  // namespace
+
+void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s, bool slide) {
+  const Pick pick = t.choice<Pick>(
+      "velocity_transfer",
+      {{"auto", Pick::Auto}, {"flip", Pick::Flip}, {"xpic", Pick::Xpic}, {"apic", Pick::Apic}}, Pick::Auto);
+  // "auto" (docs/method.md, "The defaults"): a slide gets XPIC(m) once per 2 h/c, which comes to
+  // rest and whose runout does not follow the time step; elastic dynamics FLIP, which keeps the
+  // energy (R1-R4). A key of one transfer alone (pic_fraction; xpic_order or xpic_period) picks it.
+  s.transfer_by_default = pick == Pick::Auto;
+  if (pick == Pick::Auto) {
+    if (t.has("pic_fraction"))
+      s.velocity_transfer = VelocityTransfer::Flip;
+    else if (t.has("xpic_order") || t.has("xpic_period"))
+      s.velocity_transfer = VelocityTransfer::Xpic;
+    else
+      s.velocity_transfer = slide ? VelocityTransfer::Xpic : VelocityTransfer::Flip;
+  } else {
+    s.velocity_transfer = pick == Pick::Flip   ? VelocityTransfer::Flip
+                          : pick == Pick::Xpic ? VelocityTransfer::Xpic
+                                               : VelocityTransfer::Apic;
+  }
   // Measured (docs/method.md, "Velocity transfers"): APIC's gradient-form C_p with the linear
   // kernel's jumping gradients inverts points where they cross cell boundaries (R3 with USL,
   // R4's sliding block), and with quadrature GIMP the soil column blows up within 0.16 s.
@@ -23,12 +43,14 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s) {
   s.xpic_order = static_cast<int>(t.integer("xpic_order"));
   if (t.has("xpic_order") && s.velocity_transfer != VelocityTransfer::Xpic)
     t.fail_at("xpic_order", "applies to velocity_transfer = \"xpic\" only");
-  s.xpic_period = t.number("xpic_period");
+  s.xpic_period = t.number_or("xpic_period", s.transfer_by_default ? kAutoXpicPeriod : 0.0);
   if (t.has("xpic_period") && s.velocity_transfer != VelocityTransfer::Xpic)
     t.fail_at("xpic_period", "applies to velocity_transfer = \"xpic\" only");
   // Cell-averaged volumetric strain (solver/volumetric_averaging.hpp), with every scheme.
-  s.volumetric_averaging =
-      t.choice<bool>("volumetric_strain", {{"point", false}, {"cell-average", true}}, false);
+  // "auto": the cell average for a slide (no volumetric locking in isochoric plastic flow).
+  const int volumetric =
+      t.choice<int>("volumetric_strain", {{"auto", -1}, {"point", 0}, {"cell-average", 1}}, -1);
+  s.volumetric_averaging = volumetric < 0 ? slide : volumetric == 1;
   s.hyperelastic = t.choice<bool>("elastic_update", {{"incremental", false}, {"hyperelastic", true}}, false);
   if (t.has("pic_fraction") && s.velocity_transfer != VelocityTransfer::Flip)
     t.fail_at("pic_fraction", "applies to velocity_transfer = \"flip\" only");

@@ -137,7 +137,9 @@ void parse_materials(const TableReader& root, ScenarioCommon& s) {
   }
 }
 
-void parse_solver(const TableReader& root, ScenarioCommon& s) {
+// `slide`: a deformable body's material can yield (what solver.velocity_transfer = "auto" and
+// volumetric_strain = "auto" decide by).
+void parse_solver(const TableReader& root, ScenarioCommon& s, bool slide) {
   // [solver] may be left out when [[stage]] tables give the end time.
   static const toml::table empty;
   const TableReader t =
@@ -166,7 +168,7 @@ void parse_solver(const TableReader& root, ScenarioCommon& s) {
   if (s.allow_unstable_time_step && !t.has("time_step"))
     t.fail_at("allow_unstable_time_step", "only meaningful with a fixed solver.time_step");
   s.pic_fraction = t.number("pic_fraction");
-  scenario_detail::parse_velocity_transfer(t, s);
+  scenario_detail::parse_velocity_transfer(t, s, slide);
 }
 
 void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
@@ -472,7 +474,9 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
   scenario_detail::parse_contacts<D>(root, s);
   scenario_detail::add_dilation_continua<D>(root, s);
   parse_initial_stress(root, s);
-  parse_solver(root, s);
+  parse_solver(root, s, std::ranges::any_of(s.bodies, [&](const BodyOf<D>& b) {
+                 return !b.rigid && s.materials[static_cast<std::size_t>(b.material)].plastic();
+               }));
   parse_stages(root, s);
   parse_output(root, s);
   check_time_step(root, s);

@@ -155,6 +155,9 @@ struct ContactPair {
 };
 
 // What a scenario says apart from its geometry: the same in 2D and 3D.
+// The xpic_period that velocity_transfer = "auto" gives a slide (docs/method.md, "The defaults").
+inline constexpr double kAutoXpicPeriod = 2.0;
+
 struct ScenarioCommon {
   std::string source;  // path of the scenario file (for messages)
   std::string title;
@@ -189,8 +192,9 @@ struct ScenarioCommon {
   // dilated continua too.
   std::vector<ContactPair> contacts;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
-  bool hyperelastic = false;                                    // solver.elastic_update = "hyperelastic"
-  int xpic_order = 2;                                           // solver.xpic_order (XPIC(m))
+  bool transfer_by_default = false;   // velocity_transfer "auto" (absent): picked by the materials
+  bool hyperelastic = false;          // solver.elastic_update = "hyperelastic"
+  int xpic_order = 2;                 // solver.xpic_order (XPIC(m))
   double xpic_period = 0.0;           // solver.xpic_period, in crossing times h / (c + v0); 0: every step
   bool volumetric_averaging = false;  // solver.volumetric_strain = "cell-average"
 

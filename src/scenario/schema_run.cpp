@@ -114,11 +114,15 @@ void add_run_sections(std::vector<Section>& s) {
                    "returns exactly the energy of F at large elastic strains (docs/method.md)"},
            {.name = "velocity_transfer",
             .type = Type::Choice,
-            .def = derived("\"flip\""),
-            .choices = "flip|xpic|apic",
+            .def = derived("\"auto\""),
+            .choices = "auto|flip|xpic|apic",
             .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
                    "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
-                   "al. 2015); all three work with [[contact]] and rigid bodies"},
+                   "al. 2015); all three work with [[contact]] and rigid bodies. \"auto\": \"xpic\" with "
+                   "`xpic_period` 2 when a deformable body's material can yield (a slide comes to rest and "
+                   "its runout does not follow the time step), else \"flip\" (keeps the energy of elastic "
+                   "dynamics); `pic_fraction` alone picks \"flip\", `xpic_order` or `xpic_period` alone "
+                   "\"xpic\" (docs/method.md, \"The defaults\")"},
            {.name = "xpic_order",
             .type = Type::Integer,
             .def = value(2),
@@ -127,7 +131,7 @@ void add_run_sections(std::vector<Section>& s) {
                    "over the points"},
            {.name = "xpic_period",
             .unit = "h/c",
-            .def = value(0.0),
+            .def = derived("2 with velocity_transfer \"auto\", else 0"),
             .range = Range{0.0, 1.0e6, false, false},
             .doc = "\"xpic\" only: 0 filters every step; above 0, FLIP at every step and XPIC(m) once per "
                    "this many crossing times of a cell by the fastest P wave, h / (c + v0) (the step at "
@@ -135,9 +139,11 @@ void add_run_sections(std::vector<Section>& s) {
                    "(docs/method.md, \"The filter per unit time\")"},
            {.name = "volumetric_strain",
             .type = Type::Choice,
-            .def = derived("\"point\""),
-            .choices = "point|cell-average",
-            .doc = "\"point\": each point's own strain increment (Thesis eq. 2.20); \"cell-average\": the "
+            .def = derived("\"auto\""),
+            .choices = "auto|point|cell-average",
+            .doc = "\"auto\": \"cell-average\" when a deformable body's material can yield, else "
+                   "\"point\"; \"point\": each point's own strain increment (Thesis eq. 2.20); "
+                   "\"cell-average\": the "
                    "volume-weighted mean volumetric strain of the points in its cell with its own "
                    "deviatoric strain, and the cell's mean pressure in the internal force (B-bar "
                    "against volumetric locking in isochoric plastic flow; docs/method.md); every scheme"},
