@@ -121,3 +121,50 @@ TEST(Transfers, MapsConserveAndReproduceLinearFields) {
     });
   });
 }
+
+// A thread's scatter buffer holds pages only for the layers of nodes its points span now, not
+// for the region they swept (issue 10: buffers must not grow as threads x grid). Thread 1's
+// "points" write to 4 layers that move one layer per step along a 3D grid of 400 layers (6.8 MB
+// of buffer); the grid receives every write, and the buffer keeps at most the release slack
+// (1 MiB of the vector array, 1/3 of that of the mass array) beyond the 4 layers. Released pages
+// read as zero when written again.
+TEST(Transfers, ScatterBufferHoldsOnlyThePagesOfItsPointsLayers) {
+  GridGeometry<3> g;
+  g.h = 1.0;
+  g.cells = {20, 20, 400};
+  const std::size_t layer = g.stride(2), nodes = g.node_count();
+  GridArray<double> mass(nodes);
+  GridArray<Vec<3>> mom(nodes);
+  ScatterBuffers<3> S(nodes, 2);
+  NodeBox<3> box;
+  for (int d = 0; d < 3; ++d) box.lo[d] = 0, box.hi[d] = g.nodes(d) - 1;
+  const auto step = [&](int k) {  // 4 layers from layer k, 1 per node
+    double* m = S.mass_target(1, mass.data());
+    Vec<3>* p = S.vec_target(1, mom.data());
+    for (std::size_t i = k * layer; i < (k + kMaxStencil) * layer; ++i) {
+      m[i] += 1.0;
+      p[i] += Vec<3>(1.0, 2.0, 3.0);
+    }
+    BaseSpan span;
+    span.add(k * layer);
+    S.touched(1, span);
+    S.reduce(g, box, 1, mass.data(), mom.data());
+  };
+  const int steps = g.nodes(2) - kMaxStencil + 1;
+  for (int k = 0; k < steps; ++k) step(k);
+  const std::size_t held = S.resident_bytes(1), swept = nodes * (sizeof(double) + sizeof(Vec<3>));
+  std::printf("scatter buffer after the sweep: %zu bytes resident of %zu swept\n", held, swept);
+  EXPECT_LE(held, (std::size_t{1} << 20) * 4 / 3 + 2 * kMaxStencil * layer * 32 + 4 * 4096);
+  EXPECT_GT(held, 0u);
+  step(0);  // back to the released start of the grid
+  double total = 0.0;
+  Vec<3> momentum = Vec<3>::Zero();
+  for (std::size_t i = 0; i < nodes; ++i) {
+    total += mass[i];
+    momentum += mom[i];
+  }
+  const double writes = static_cast<double>((steps + 1) * kMaxStencil * layer);
+  EXPECT_EQ(total, writes);
+  EXPECT_EQ(momentum, Vec<3>(1.0, 2.0, 3.0) * writes);
+  EXPECT_EQ(mass[0], 2.0);  // written twice, the second time into a released page
+}

@@ -1,7 +1,13 @@
 // Lock-free particle-to-grid scatters: thread 0 writes straight into the grid arrays, every
 // other thread into its own buffer, which reduce() adds to the grid and clears again.
 #pragma once
+#include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <climits>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -17,7 +23,9 @@ class ScatterBuffers {
   ScatterBuffers() = default;
   // One buffer per thread beyond the first, each of `nodes` zero nodes. The buffers come
   // from untouched zero pages (GridArray): only the pages a thread's points reach become
-  // resident, so their memory follows the region the points cover, not the grid.
+  // resident, and reduce() hands back to the kernel the pages its points have left (release),
+  // so a buffer's memory follows the layers of nodes its thread's points span now, not the
+  // grid nor the region they swept.
   ScatterBuffers(std::size_t nodes, int threads) : buffers_(threads > 1 ? threads - 1 : 0) {
     for (auto& b : buffers_) {
       b.mass.resize(nodes);
@@ -55,16 +63,69 @@ class ScatterBuffers {
           },
           first, last);
       b.span = BaseSpan{};
+      release(b, first, last, layer);
     }
+  }
+
+  // Bytes of thread t's buffer (t >= 1) that are resident in memory (mincore), for tests.
+  std::size_t resident_bytes(int t) const {
+    const Buffer& b = buffers_[static_cast<std::size_t>(t - 1)];
+    return resident(b.mass.data(), b.mass.size() * sizeof(double)) +
+           resident(b.vec.data(), b.vec.size() * sizeof(Vec<D>));
   }
 
  private:
   struct Buffer {
     GridArray<double> mass;
     GridArray<Vec<D>> vec;
-    BaseSpan span;  // stencil bases written since the last reduction
+    BaseSpan span;                        // stencil bases written since the last reduction
+    int held_lo = INT_MAX, held_hi = -1;  // layers (last-axis indices) that may hold resident pages
   };
   std::vector<Buffer> buffers_;
+
+  // Layers further than this many bytes of the vector array from the ones just reduced are
+  // handed back: the buffer holds at most that much beyond its points' span, and a slowly
+  // moving span costs a system call only every so often.
+  static constexpr std::size_t kReleaseSlack = std::size_t{1} << 20;
+
+  // After b was reduced over the layers [first, last] of `layer` nodes (and so is zero everywhere), gives the
+  // pages of the layers it held outside them back to the kernel (MADV_DONTNEED: private
+  // anonymous pages read as zero again when next touched) once they exceed kReleaseSlack.
+  void release(Buffer& b, int first, int last, std::size_t layer) {
+    last = std::min(last, static_cast<int>(b.vec.size() / layer) - 1);
+    b.held_lo = std::min(b.held_lo, first);
+    b.held_hi = std::max(b.held_hi, last);
+    const auto bytes = [&](int lo, int hi) {
+      return hi < lo ? 0 : static_cast<std::size_t>(hi - lo + 1) * layer * sizeof(Vec<D>);
+    };
+    if (bytes(b.held_lo, first - 1) + bytes(last + 1, b.held_hi) < kReleaseSlack) return;
+    for (const auto& [lo, hi] : {std::pair{b.held_lo, first - 1}, std::pair{last + 1, b.held_hi}}) {
+      if (hi < lo) continue;
+      const std::size_t n0 = static_cast<std::size_t>(lo) * layer,
+                        n1 = static_cast<std::size_t>(hi + 1) * layer;
+      drop(b.mass.data() + n0, (n1 - n0) * sizeof(double));
+      drop(b.vec.data() + n0, (n1 - n0) * sizeof(Vec<D>));
+    }
+    b.held_lo = first;
+    b.held_hi = last;
+  }
+  // The whole pages inside [p, p + bytes) back to the kernel.
+  static void drop(void* p, std::size_t bytes) {
+    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    const auto begin = (reinterpret_cast<std::uintptr_t>(p) + page - 1) & ~(page - 1);
+    const auto end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(page - 1);
+    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+  }
+  static std::size_t resident(const void* p, std::size_t bytes) {
+    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+    const auto begin = reinterpret_cast<std::uintptr_t>(p) & ~(page - 1);
+    const auto end = reinterpret_cast<std::uintptr_t>(p) + bytes;
+    std::vector<unsigned char> in((end - begin + page - 1) / page);
+    if (mincore(reinterpret_cast<void*>(begin), end - begin, in.data()) != 0) return 0;
+    return static_cast<std::size_t>(
+               std::count_if(in.begin(), in.end(), [](unsigned char c) { return c & 1; })) *
+           page;
+  }
 };
 
 }  // namespace skred
