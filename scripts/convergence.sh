@@ -20,6 +20,7 @@
 #   INTERPOLATION=bspline ...   (solver.interpolation; the examples use gimp)
 #   RUNOUT_THICKNESS=1.0 ...   (runout_thickness [m] of the stages with a rest criterion: the
 #                               runout where the deposit is that thick, not half a cell)
+#   XPIC_ORDER=4 ... xpic   (solver.xpic_order: the m of XPIC(m))
 #   PPC=2 ...   (particles_per_cell: n x n points per cell instead of the examples' 3 x 3)
 #   scripts/convergence.sh build/skred auto   (the engine's defaults: for these slides XPIC once
 #                               per 2 h/c; with VOLUMETRIC=auto also the cell-averaged strain)
@@ -37,6 +38,7 @@ dtf=${DT_FACTOR:-1}
 interp=${INTERPOLATION:-}
 thick=${RUNOUT_THICKNESS:-}
 ppc=${PPC:-}
+order=${XPIC_ORDER:-}
 tag=$volumetric
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
@@ -45,7 +47,7 @@ if [ "$split" = 1 ]; then
 fi
 tag=$tag${period:+_p$period}
 [ "$dtf" = 1 ] || tag=${tag}_dt$dtf
-tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}
+tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}${order:+_m$order}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -82,6 +84,7 @@ for tr in $transfers; do
       dirs="$dirs $dir"
       extra=
       [ -n "$period" ] && [ "$tr" = xpic ] && extra="\\nxpic_period = $period"
+      [ -n "$order" ] && [ "$tr" = xpic ] && extra="$extra\\nxpic_order = $order"
       scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
       "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
         > "$dir.log" 2>&1 || true
