@@ -176,6 +176,11 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({"usf", "usl", "averaged"}));
   bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic")
       ->check(CLI::IsMember({"flip", "xpic", "apic"}));
+  std::string volumetric = "point";
+  bench
+      ->add_option("--volumetric-strain", volumetric,
+                   "point | cell-average (point unless asked: the benches' own setting, not \"auto\")")
+      ->check(CLI::IsMember({"point", "cell-average"}));
   bench
       ->add_option("--xpic-period", bo.xpic_period,
                    "xpic: once per this many crossing times h/c (0: every step)")
@@ -226,12 +231,14 @@ int main(int argc, char** argv) {
       bo.velocity_transfer = transfer == "xpic"   ? skred::VelocityTransfer::Xpic
                              : transfer == "apic" ? skred::VelocityTransfer::Apic
                                                   : skred::VelocityTransfer::Flip;
+      bo.volumetric_averaging = volumetric == "cell-average";
       const auto r = skred::run_bench(bo);
       fmt::print(
           "bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
           bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
           bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats,
-          bo.threads, interp, bo.problem == "column" ? "usf" : scheme, transfer);
+          bo.threads, interp, bo.problem == "column" ? "usf" : scheme,
+          transfer + (bo.volumetric_averaging ? " / cell-average" : ""));
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n", r.status,
                    r.runout, bo.steps * 1e-4, r.yielding, r.particles);

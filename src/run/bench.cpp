@@ -125,6 +125,7 @@ BenchResult run_column(const BenchOptions& opt) {
     SolverSettings<D> st = solver_settings(s);
     st.velocity_transfer = opt.velocity_transfer;
     st.xpic_period = opt.xpic_period * stable_time_step(s);  // seconds
+    st.volumetric_averaging = opt.volumetric_averaging;
     ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
     const SurfaceProfile before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
     const PhaseTimer before_phases = solver.phase_times();
@@ -181,6 +182,7 @@ BenchResult run_bench(const BenchOptions& opt) {
     st.scheme = opt.scheme;
     st.velocity_transfer = opt.velocity_transfer;
     st.xpic_period = opt.xpic_period * h / soil.wave_speed();
+    st.volumetric_averaging = opt.volumetric_averaging;
     st.dt = 0.3 * h / soil.wave_speed();
     st.gravity = Vec<2>(0.0, -9.81);
     st.boundaries = {BoundarySide{BoundaryKind::Roller, 0}, BoundarySide{BoundaryKind::Roller, 0},

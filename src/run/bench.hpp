@@ -31,7 +31,10 @@ struct BenchOptions {
   int quadrature_points = 2;
   StressScheme scheme = StressScheme::Averaged;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;
-  double xpic_period = 0.0;      // xpic: filter once per this many crossing times h/c (0: every step)
+  double xpic_period = 0.0;  // xpic: filter once per this many crossing times h/c (0: every step)
+  // The cell-averaged volumetric strain; off (each point's own), as the benches were measured,
+  // whatever a scenario's "auto" would pick.
+  bool volumetric_averaging = false;
   long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
   int bodies = 1;                // column: 2 for two halves in frictional contact
 };
