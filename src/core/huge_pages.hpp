@@ -4,6 +4,9 @@
 // ask for 2 MiB pages before they are first touched.
 #pragma once
 #include <sys/mman.h>
+#include <unistd.h>
+
+#include <algorithm>
 
 #include <cstddef>
 #include <cstdint>
@@ -14,15 +17,40 @@
 
 namespace skred {
 
+// The whole pages of `page` bytes (a power of two) inside [p, p + bytes): [begin, end), empty
+// when end <= begin.
+inline std::pair<std::uintptr_t, std::uintptr_t> whole_pages(const void* p, std::size_t bytes,
+                                                             std::uintptr_t page) {
+  const auto a = reinterpret_cast<std::uintptr_t>(p);
+  return {(a + page - 1) & ~(page - 1), (a + bytes) & ~(page - 1)};
+}
+
 // Advises huge pages for the whole 2 MiB pages inside [p, p + bytes). A hint only: failure
 // (or a kernel without THP) changes nothing but speed.
 inline void advise_huge_pages(const void* p, std::size_t bytes) {
-  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
-  const auto begin = (reinterpret_cast<std::uintptr_t>(p) + kHuge - 1) & ~(kHuge - 1);
-  const auto end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(kHuge - 1);
+  [[maybe_unused]] const auto [begin, end] = whole_pages(p, bytes, std::uintptr_t{1} << 21);
 #ifdef MADV_HUGEPAGE
   if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 #endif
+}
+
+// Gives the whole pages inside [p, p + bytes) of private anonymous memory (a GridArray) back
+// to the kernel; they read as zero when next touched (MADV_DONTNEED).
+inline void release_pages(void* p, std::size_t bytes) {
+  const auto [begin, end] = whole_pages(p, bytes, static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE)));
+  if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
+}
+
+// Bytes of the pages touching [p, p + bytes) that are resident in memory (mincore; for tests).
+inline std::size_t resident_bytes(const void* p, std::size_t bytes) {
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const auto begin = reinterpret_cast<std::uintptr_t>(p) & ~(page - 1);
+  const auto end = reinterpret_cast<std::uintptr_t>(p) + bytes;
+  std::vector<unsigned char> in((end - begin + page - 1) / page);
+  if (mincore(reinterpret_cast<void*>(begin), end - begin, in.data()) != 0) return 0;
+  return static_cast<std::size_t>(
+             std::count_if(in.begin(), in.end(), [](unsigned char c) { return c & 1; })) *
+         page;
 }
 
 // Reserves room for n entries and advises huge pages for it, before any entry is touched.

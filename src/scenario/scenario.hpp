@@ -154,10 +154,10 @@ struct ContactPair {
   double friction = 0.0;
 };
 
-// What a scenario says apart from its geometry: the same in 2D and 3D.
 // The xpic_period that velocity_transfer = "auto" gives a slide (docs/method.md, "The defaults").
 inline constexpr double kAutoXpicPeriod = 2.0;
 
+// What a scenario says apart from its geometry: the same in 2D and 3D.
 struct ScenarioCommon {
   std::string source;  // path of the scenario file (for messages)
   std::string title;

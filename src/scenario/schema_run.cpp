@@ -143,8 +143,8 @@ void add_run_sections(std::vector<Section>& s) {
             .choices = "auto|point|cell-average",
             .doc = "\"auto\": \"cell-average\" when a deformable body's material can yield, else "
                    "\"point\"; \"point\": each point's own strain increment (Thesis eq. 2.20); "
-                   "\"cell-average\": the "
-                   "volume-weighted mean volumetric strain of the points in its cell with its own "
+                   "\"cell-average\": the volume-weighted mean volumetric strain of the points in its cell "
+                   "with its own "
                    "deviatoric strain, and the cell's mean pressure in the internal force (B-bar "
                    "against volumetric locking in isochoric plastic flow; docs/method.md); every scheme"},
            {.name = "pic_fraction",

@@ -1,9 +1,6 @@
 // Lock-free particle-to-grid scatters: thread 0 writes straight into the grid arrays, every
 // other thread into its own buffer, which reduce() adds to the grid and clears again.
 #pragma once
-#include <sys/mman.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <climits>
 #include <cstddef>
@@ -70,8 +67,8 @@ class ScatterBuffers {
   // Bytes of thread t's buffer (t >= 1) that are resident in memory (mincore), for tests.
   std::size_t resident_bytes(int t) const {
     const Buffer& b = buffers_[static_cast<std::size_t>(t - 1)];
-    return resident(b.mass.data(), b.mass.size() * sizeof(double)) +
-           resident(b.vec.data(), b.vec.size() * sizeof(Vec<D>));
+    return skred::resident_bytes(b.mass.data(), b.mass.size() * sizeof(double)) +
+           skred::resident_bytes(b.vec.data(), b.vec.size() * sizeof(Vec<D>));
   }
 
  private:
@@ -103,28 +100,11 @@ class ScatterBuffers {
       if (hi < lo) continue;
       const std::size_t n0 = static_cast<std::size_t>(lo) * layer,
                         n1 = static_cast<std::size_t>(hi + 1) * layer;
-      drop(b.mass.data() + n0, (n1 - n0) * sizeof(double));
-      drop(b.vec.data() + n0, (n1 - n0) * sizeof(Vec<D>));
+      release_pages(b.mass.data() + n0, (n1 - n0) * sizeof(double));
+      release_pages(b.vec.data() + n0, (n1 - n0) * sizeof(Vec<D>));
     }
     b.held_lo = first;
     b.held_hi = last;
-  }
-  // The whole pages inside [p, p + bytes) back to the kernel.
-  static void drop(void* p, std::size_t bytes) {
-    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-    const auto begin = (reinterpret_cast<std::uintptr_t>(p) + page - 1) & ~(page - 1);
-    const auto end = (reinterpret_cast<std::uintptr_t>(p) + bytes) & ~(page - 1);
-    if (end > begin) madvise(reinterpret_cast<void*>(begin), end - begin, MADV_DONTNEED);
-  }
-  static std::size_t resident(const void* p, std::size_t bytes) {
-    const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-    const auto begin = reinterpret_cast<std::uintptr_t>(p) & ~(page - 1);
-    const auto end = reinterpret_cast<std::uintptr_t>(p) + bytes;
-    std::vector<unsigned char> in((end - begin + page - 1) / page);
-    if (mincore(reinterpret_cast<void*>(begin), end - begin, in.data()) != 0) return 0;
-    return static_cast<std::size_t>(
-               std::count_if(in.begin(), in.end(), [](unsigned char c) { return c & 1; })) *
-           page;
   }
 };
 
