@@ -135,7 +135,8 @@ double polygon_area(const Polygon& p) {
 }
 
 double layer_area(const Layer& l) {
-  const auto [lo, hi] = layer_span(l);
+  const auto span = layer_span(l);
+  const double lo = span.first, hi = span.second;  // (plain names: a lambda captures them)
   if (!(hi > lo)) return 0.0;
   // Between two consecutive profile points every profile is linear; min(top, surface) kinks
   // where they cross and max(0, thickness) where the thickness changes sign: split there
