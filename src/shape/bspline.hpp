@@ -67,6 +67,7 @@ struct BsplineKernel : SeparableKernel<BsplineKernel<D>, D, 4, 1> {
   static constexpr int S = 4;
   using typename SeparableKernel<BsplineKernel<D>, D, 4, 1>::Shape;
   static constexpr const char* name = "bspline";
+  static constexpr bool apic_inertia = true;  // APIC's C_p = B_p D_p^-1 (apic_affine_velocity)
 
   SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Vec<D>& /*half0*/,
                           const Mat<D>& /*F*/, Shape& sh) const {

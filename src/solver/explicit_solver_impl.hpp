@@ -55,15 +55,16 @@ SKRED_INLINE bool move_point(const GridGeometry<D>& grid, const WallBox<D>& wall
 // (w = 0): (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2) and the affine velocity's share of the FLIP-updated
 // kinetic energy (affine_trial_energy; the new C_p's share is taken off where the point is next
 // mapped, at its new position).
-template <class Shape, int D>
-SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const NodeStrides<D>& strides, const Vec<D>& v,
+template <class K, class Shape, int D>
+SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const GridGeometry<D>& g,
+                                      const NodeStrides<D>& strides, const Vec<D>& x, const Vec<D>& v,
                                       double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
                                       double alpha, Mat<D>* affine, double m, double w, double& lost) {
   const Vec<D> flip = v + dt * acc_p;
   if (alpha <= 0.0) return flip;
   Vec<D> vp;
   if (alpha >= 1.0) {
-    if (affine) *affine = gather_gradient(sh, strides, vnext);
+    if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);
     vp = gather(sh, strides, vnext);
   } else {
     vp = (1.0 - alpha) * flip + alpha * gather(sh, strides, vnext);
@@ -342,8 +343,9 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
             if constexpr (apic)
               lost += affine_trial_energy(sh, g, strides, P.x[p], affine[p], acc, dt, pmass[p]);
-            const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, gather(sh, strides, acc), vnext, alpha,
-                                                apic ? affine + p : nullptr, pmass[p], w, lost);
+            const Vec<D> vp =
+                particle_velocity<K>(sh, g, strides, P.x[p], v[p], dt, gather(sh, strides, acc), vnext, alpha,
+                                     apic ? affine + p : nullptr, pmass[p], w, lost);
             v[p] = vp;
             if constexpr (apic)  // APIC: the remap carries the affine velocity too
               scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
@@ -505,8 +507,8 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           Vec<D> acc_p, vmove;
           gather_pair(sh, strides, acc, vel, acc_p, vmove);
           if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
-          const Vec<D> vp = particle_velocity(sh, strides, v[p], dt, acc_p, vnext, alpha,
-                                              affine ? affine + p : nullptr, pmass[p], 0.5, lost);
+          const Vec<D> vp = particle_velocity<K>(sh, g, strides, x[p], v[p], dt, acc_p, vnext, alpha,
+                                                 affine ? affine + p : nullptr, pmass[p], 0.5, lost);
           if (std::array<unsigned, D> layers;
               near_stopping_wall<K::S>(g.h, walls_, stopping, x[p]) &&
               boundaries_.template block_layers<K::S>(sh.base, stopping, layers))

@@ -86,6 +86,58 @@ SKRED_INLINE double affine_trial_energy(const Separable<D, S>& sh, const GridGeo
   return 0.5 * m * (e + 2.0 * dt * C.cwiseProduct(B).sum());
 }
 
+// APIC's affine velocity of a point from the new nodal velocities v_i. Jiang et al. (2015) take
+// C_p = B_p D_p^-1 with B_p = sum_i N_ip v_i (x_i - x_p)^T and the inertia D_p = sum_i N_ip (x_i -
+// x_p)(x_i - x_p)^T (their eq. 8-9), which makes a g2p and p2g round trip keep angular momentum
+// exactly for any kernel. For the linear kernel that C_p is the gradient sum_i v_i (x) grad N_ip
+// (per axis grad N D = N (x_i - x_p)), and D_p vanishes where a point sits on a node, so the linear
+// kernel and GIMP take the gradient form (the choice for them, which also reproduces affine
+// fields). A kernel that declares `apic_inertia` (the cubic B-spline, D_p = h^2/3 I away from the
+// walls) takes B_p D_p^-1. On a separable block D_p is diagonal (sum_a w_d[a] r_d[a] = 0 per axis),
+// and B_p is gather_gradient with the 1D derivatives replaced by w_d r_d (as affine_trial_energy).
+template <class K>
+inline constexpr bool apic_inertia_v = requires {
+  requires K::apic_inertia;
+};
+
+template <int D, int S>
+SKRED_INLINE Mat<D> affine_from_inertia(const Separable<D, S>& sh, const GridGeometry<D>& g,
+                                        const NodeStrides<D>& strides, const Vec<D>& x,
+                                        const Vec<D>* __restrict v) {
+  double r[D][S];
+  block_offsets(sh, g, x, r);
+  Separable<D, S> moment = sh;
+  double inertia[D];
+  for (int d = 0; d < D; ++d) {
+    inertia[d] = 0.0;
+    for (int a = 0; a < S; ++a) {
+      moment.g[d][a] = sh.w[d][a] * r[d][a];
+      inertia[d] += sh.w[d][a] * r[d][a] * r[d][a];
+    }
+  }
+  const Mat<D> B = gather_gradient(moment, strides, v);  // sum_i N_ip v_i (x) (x_i - x_p)
+  Mat<D> C = B;
+  // On a clamped B-spline's wall only the wall's DOF is non-zero and D_p's entry is zero there:
+  // that column keeps the gradient form.
+  const double tiny = 1e-12 * g.h * g.h;
+  bool degenerate = false;
+  for (int d = 0; d < D; ++d) degenerate |= !(inertia[d] > tiny);
+  const Mat<D> grad = degenerate ? gather_gradient(sh, strides, v) : Mat<D>::Zero();
+  for (int d = 0; d < D; ++d)
+    C.col(d) = inertia[d] > tiny ? Vec<D>(B.col(d) / inertia[d]) : Vec<D>(grad.col(d));
+  return C;
+}
+
+template <class K, int D, class Shape>
+SKRED_INLINE Mat<D> apic_affine_velocity(const Shape& sh, const GridGeometry<D>& g,
+                                         const NodeStrides<D>& strides, const Vec<D>& x,
+                                         const Vec<D>* __restrict v) {
+  if constexpr (apic_inertia_v<K>)
+    return affine_from_inertia(sh, g, strides, x, v);
+  else
+    return gather_gradient(sh, strides, v);
+}
+
 // APIC (Jiang et al. 2015, eq. 9 with C_p = B_p D_p^-1): p_i += N_ip m_p (v_p + C_p (x_i - x_p)).
 // The node positions x_i are the grid's degrees of freedom (Greville abscissae for the
 // B-spline). With `energy`, it gains 1/2 m_p sum_i N_ip |C_p (x_i - x_p)|^2: the kinetic energy the
