@@ -168,8 +168,9 @@ std::string describe(const ScenarioOf<D>& s) {
   if (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction > 0.0)
     transfer += fmt::format(" with PIC share {}", s.pic_fraction);
   if (s.transfer_by_default) transfer += " (by \"auto\")";
-  line(fmt::format("velocity transfer: {}; volumetric strain: {}", transfer,
-                   s.volumetric_averaging ? "cell-average" : "point"));
+  line(fmt::format("velocity transfer: {}; volumetric strain: {}{}", transfer,
+                   s.volumetric_averaging ? "cell-average" : "point",
+                   s.centre_shear ? "; shear strain: cell-centre (Thesis §4.5)" : ""));
   line(fmt::format("output: particle frames every {} s, series rows every {} s", s.output_interval,
                    s.series_interval));
   return out;

@@ -51,6 +51,19 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s, bool slide
   const int volumetric =
       t.choice<int>("volumetric_strain", {{"auto", -1}, {"point", 0}, {"cell-average", 1}}, -1);
   s.volumetric_averaging = volumetric < 0 ? slide : volumetric == 1;
+  // Selective integration of shear (Thesis §4.5; solver/selective_shear_impl.hpp): USF's stress
+  // phase only, and not beside the cell-averaged volumetric strain.
+  s.centre_shear = t.choice<bool>("shear_strain", {{"point", false}, {"cell-centre", true}}, false);
+  if (s.centre_shear && s.scheme != StressScheme::USF)
+    t.fail_at("shear_strain",
+              fmt::format("\"cell-centre\" is built for scheme = \"usf\" only (this scenario: "
+                          "\"{}\")",
+                          to_string(s.scheme)));
+  if (s.centre_shear && s.volumetric_averaging)
+    t.fail_at("shear_strain", volumetric < 0
+                                  ? "\"cell-centre\" needs volumetric_strain = \"point\" (\"auto\" "
+                                    "takes the cell average for this scenario's yielding material)"
+                                  : "\"cell-centre\" needs volumetric_strain = \"point\"");
   s.hyperelastic = t.choice<bool>("elastic_update", {{"incremental", false}, {"hyperelastic", true}}, false);
   if (t.has("pic_fraction") && s.velocity_transfer != VelocityTransfer::Flip)
     t.fail_at("pic_fraction", "applies to velocity_transfer = \"flip\" only");

@@ -197,6 +197,7 @@ struct ScenarioCommon {
   int xpic_order = 2;                 // solver.xpic_order (XPIC(m))
   double xpic_period = 0.0;           // solver.xpic_period, in crossing times h / (c + v0); 0: every step
   bool volumetric_averaging = false;  // solver.volumetric_strain = "cell-average"
+  bool centre_shear = false;          // solver.shear_strain = "cell-centre" (Thesis §4.5)
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

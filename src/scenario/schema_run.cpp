@@ -147,6 +147,15 @@ void add_run_sections(std::vector<Section>& s) {
                    "with its own "
                    "deviatoric strain, and the cell's mean pressure in the internal force (B-bar "
                    "against volumetric locking in isochoric plastic flow; docs/method.md); every scheme"},
+           {.name = "shear_strain",
+            .type = Type::Choice,
+            .def = derived("\"point\""),
+            .choices = "point|cell-centre",
+            .doc = "\"point\": each point's own shear strain increment; \"cell-centre\": selective "
+                   "integration of shear (Thesis §4.5), the shape functions' gradients at the centre of "
+                   "the point's cell in the shear strain rate and the shear stresses' internal force, "
+                   "against parasitic shear in bending (docs/method.md); scheme \"usf\" with "
+                   "volumetric_strain \"point\""},
            {.name = "pic_fraction",
             .unit = "-",
             .def = value(0),

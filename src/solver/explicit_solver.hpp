@@ -50,6 +50,9 @@ struct SolverSettings {
   double xpic_period = 0.0;
   // Cell-averaged volumetric strain against volumetric locking (volumetric_averaging.hpp).
   bool volumetric_averaging = false;
+  // Selective integration of shear, grad N at the cell's centre (Thesis §4.5; USF only;
+  // selective_shear_impl.hpp).
+  bool centre_shear = false;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
   // Multi-continuum contact (Paper III §C.2.7; contact.hpp): empty, every body shares the
@@ -210,6 +213,8 @@ class ExplicitSolver {
   bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K>
   bool stress_update_cell_volumetric(const K& kernel, double dt_stress);  // volumetric_averaging.hpp
+  template <class K>
+  bool stress_update_centre_shear(const K& kernel, double dt_stress);  // selective_shear_impl.hpp
   template <class K, class Sel>
   void cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel);  // volumetric_averaging_impl.hpp
   template <class Sel>

@@ -226,6 +226,7 @@ template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
   if (settings_.volumetric_averaging) return stress_update_cell_volumetric(kernel, dt_stress);
+  if (settings_.centre_shear) return stress_update_centre_shear(kernel, dt_stress);
   return timer_.time(Phase::StressUpdateForce, [&] {
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
@@ -565,4 +566,5 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
 }  // namespace skred
 
 #include "solver/contact_impl.hpp"  // the kernel-templated phases of contact runs
+#include "solver/selective_shear_impl.hpp"
 #include "solver/volumetric_averaging_impl.hpp"
