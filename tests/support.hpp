@@ -116,4 +116,47 @@ inline void fill_disc(Particles<2>& P, const Material& m, double h, int n, Vec<2
     }
 }
 
+// The cantilever of Thesis fig. 4.7 as a scenario: L = 8 m, H = 2 m (y = 2 ... 4 m), rho = 10
+// kg/m^3, g = 10 m/s^2 over a 1 s sine ramp, E = 10 MPa, nu = 0.3, 0.5 m cells, 2 x 2 points per
+// cell, clamped by a fixed wall at x = 0, USF, 2 s. `solver` and `stage` are further lines of
+// those tables.
+inline std::string thesis_cantilever(const std::string& solver, const std::string& stage = "") {
+  return R"(title = "Thesis fig. 4.7 cantilever"
+[grid]
+size = [10.0, 6.0]
+cell_size = 0.5
+[[material]]
+name = "beam"
+model = "linear-elastic"
+density = 10.0
+young = 10.0e6
+poisson = 0.3
+[[body]]
+name = "beam"
+material = "beam"
+particles_per_cell = 2
+shape = "rectangle"
+min = [0.0, 2.0]
+max = [8.0, 4.0]
+[gravity]
+acceleration = [0.0, -10.0]
+[boundary]
+x_min = "fixed"
+[solver]
+scheme = "usf"
+cfl = 0.4
+)" + solver +
+         R"(
+[[stage]]
+name = "load"
+duration = 2.0
+gravity_ramp_time = 1.0
+)" + stage +
+         R"(
+[output]
+interval = 2.0
+series_interval = 0.5
+)";
+}
+
 }  // namespace skred::test

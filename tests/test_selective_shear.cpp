@@ -14,6 +14,7 @@
 
 #include "run/simulation.hpp"
 #include "scenario/scenario.hpp"
+#include "support.hpp"
 #include "temp_dir.hpp"
 
 using namespace skred;
@@ -24,43 +25,8 @@ constexpr double kL = 8.0, kH = 2.0, kRho = 10.0, kG = 10.0, kE = 10.0e6, kNu = 
 constexpr double kBase = 2.0;  // the beam's underside: y = 2 ... 4 m
 
 std::string cantilever(const std::string& interpolation, const std::string& shear) {
-  return R"(title = "Thesis fig. 4.7 cantilever"
-[grid]
-size = [10.0, 6.0]
-cell_size = 0.5
-[[material]]
-name = "beam"
-model = "linear-elastic"
-density = 10.0
-young = 10.0e6
-poisson = 0.3
-[[body]]
-name = "beam"
-material = "beam"
-particles_per_cell = 2
-shape = "rectangle"
-min = [0.0, 2.0]
-max = [8.0, 4.0]
-[gravity]
-acceleration = [0.0, -10.0]
-[boundary]
-x_min = "fixed"
-[solver]
-interpolation = ")" +
-         interpolation + R"("
-scheme = "usf"
-cfl = 0.4
-velocity_transfer = "xpic"
-shear_strain = ")" +
-         shear + R"("
-[[stage]]
-name = "load"
-duration = 2.0
-gravity_ramp_time = 1.0
-[output]
-interval = 2.0
-series_interval = 0.5
-)";
+  return skred::test::thesis_cantilever("interpolation = \"" + interpolation +
+                                        "\"\nvelocity_transfer = \"xpic\"\nshear_strain = \"" + shear + "\"");
 }
 
 double timoshenko_tau(double x, double y) {

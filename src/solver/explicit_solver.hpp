@@ -314,7 +314,6 @@ class ExplicitSolver {
   Vec<D> gravity_now_ = Vec<D>::Zero();
   EnergyTotals energy_;
   double local_damping_ = 0.0;
-  std::vector<double> damping_sums_;   // per-thread work sums of the damping (padded)
   VolumetricAveraging<D> volumetric_;  // cell sums of the volumetric averaging
   StepStatus status_;
 };

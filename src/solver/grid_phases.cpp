@@ -104,32 +104,27 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
 // (Cundall type, as geotechnical codes offer it): per component, the unbalanced force f_i =
 // f_i^int + m_i g gets f_i^damp = -alpha |f_i| sign(v_i^k), opposed to the nodal velocity and
 // proportional to the force that is not in equilibrium, so it vanishes at rest and never
-// drives a node. Its work over the velocity the points move with, -dt f^damp . (v^k +
-// v^{k+1}) / 2, is booked in damping_work (at a frictional wall node the friction then
-// changes that velocity: there the work is counted over the velocity before the wall).
+// drives a node. Its share of a_i is kept in damping_acceleration; its work is booked where the
+// points take their velocity change (damping_work_of).
 template <int D>
 void ExplicitSolver<D>::damped_accelerations(GridFields<D>& f) {
-  constexpr std::size_t kPad = 8;  // one cache line per thread's sum
-  damping_sums_.assign(kPad * static_cast<std::size_t>(threads()), 0.0);
+  if (f.damping_acceleration.size() != f.size()) f.damping_acceleration.resize(f.size());
   const Vec<D> g = gravity_now_;
   const double alpha = local_damping_, half_dt = 0.5 * settings_.dt;
   transfer_.for_box([&](std::size_t i) {
     const double m = f.mass[i];
     const Vec<D>& v = f.velocity[i];
-    Vec<D> a = Vec<D>::Zero();
+    Vec<D> a = Vec<D>::Zero(), damp = Vec<D>::Zero();
     if (m > 0.0) a = f.internal_force[i] / m + g;
     if (m > 0.0 && !shared_node(i)) {
-      Vec<D> damp;
       for (int d = 0; d < D; ++d)
         damp[d] = v[d] > 0.0 ? -alpha * std::abs(a[d]) : v[d] < 0.0 ? alpha * std::abs(a[d]) : 0.0;
       a += damp;
-      damping_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())] -=
-          2.0 * half_dt * m * damp.dot(v + half_dt * a);
     }
+    f.damping_acceleration[i] = damp;
     f.acceleration[i] = a;
     f.velocity_move[i] = v + half_dt * a;
   });
-  for (std::size_t t = 0; t < damping_sums_.size(); t += kPad) energy_.damping_work += damping_sums_[t];
 }
 
 // With contact: whether more than one continuum has mass at node i (an interface node, where
