@@ -213,6 +213,8 @@ class ExplicitSolver {
   bool stress_update_and_internal_force(const K& kernel, double dt_stress);
   template <class K>
   bool stress_update_cell_volumetric(const K& kernel, double dt_stress);  // volumetric_averaging.hpp
+  template <class K, class Sel>
+  double damping_work_at_points(const K& kernel, const GridFields<D>& f, Sel sel);
   template <class K>
   bool stress_update_centre_shear(const K& kernel, double dt_stress);  // selective_shear_impl.hpp
   template <class K, class Sel>

@@ -76,19 +76,6 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const GridGeometry<D>& g,
   return vp;
 }
 
-// The local damping's work on point p (damping_work, positive where it takes energy): the
-// points take d_p = sum N_ip d_i of the nodes' damping accelerations into their FLIP velocity
-// change, over the step's mean velocity v_p + dt/2 acc_p, so it takes -m_p dt d_p . (v_p + dt/2
-// acc_p) from their kinetic energy. (Booked at the nodes, m_i d_i . (v_i^k + dt/2 a_i), it counted
-// the lumped mass of nodes that a point's GIMP domain barely reaches, where d_i is as large as
-// f_i / m_i: on a cantilever that overstated it by 90 % of the gravity work.)
-template <class Shape, int D>
-SKRED_INLINE double damping_work_of(const Shape& sh, const NodeStrides<D>& strides,
-                                    const Vec<D>* __restrict damp, double m, double dt, const Vec<D>& v,
-                                    const Vec<D>& acc_p) {
-  return -m * dt * gather(sh, strides, damp).dot(v + (0.5 * dt) * acc_p);
-}
-
 }  // namespace
 
 template <int D>
@@ -314,6 +301,37 @@ void ExplicitSolver<D>::internal_force(const K& kernel) {
   });
 }
 
+// The local damping's work (damping_work, positive where it takes energy), booked where the
+// points take it: their FLIP velocity change holds d_p = sum N_ip d_i of the nodes' damping
+// accelerations, so over the step's mean velocity v_p + dt/2 a_p the damping takes -m_p dt d_p .
+// (v_p + dt/2 a_p) from their kinetic energy. (Booked at the nodes, m_i d_i . (v_i^k + dt/2 a_i),
+// it counted the lumped mass of nodes that a point's GIMP domain barely reaches, where d_i is as
+// large as f_i / m_i: on the Thesis fig. 4.7 cantilever that overstated it by 89 % of the gravity
+// work.) A pass of its own, before the particle velocity update, so that the undamped phases keep
+// their loops; it runs only in a damped stage.
+template <int D>
+template <class K, class Sel>
+double ExplicitSolver<D>::damping_work_at_points(const K& kernel, const GridFields<D>& f, Sel sel) {
+  const GridGeometry<D>& g = grid();
+  const NodeStrides<D> strides = transfer_.strides();
+  const auto& P = particles_;
+  const long n = static_cast<long>(P.size());
+  const double dt = settings_.dt;
+  const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+  const Vec<D>* __restrict acc = f.acceleration.data();
+  const Vec<D>* __restrict damp = f.damping_acceleration.data();
+  double work = 0.0;
+#pragma omp parallel for num_threads(threads()) schedule(static) reduction(+ : work)
+  for (long p = 0; p < n; ++p) {
+    if (!sel(p)) continue;
+    typename K::Shape sh;
+    kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
+    const Vec<D> a_p = gather(sh, strides, acc);
+    work -= P.mass[p] * dt * gather(sh, strides, damp).dot(P.v[p] + (0.5 * dt) * a_p);
+  }
+  return work;
+}
+
 // Thesis eq. 2.56: v_p^{k+1} = v_p + dt sum N_ip a_i (with a PIC share, if set), and the
 // updated particle momenta mapped back to the grid, p~_i = sum N_ip m_p v_p^{k+1} (the double
 // mapping of USL and the averaged scheme, step 6 of §4.4). With contact, each body from and
@@ -331,12 +349,11 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
     const double alpha = pic_share();
     const double w = settings_.scheme == StressScheme::Averaged ? 1.0 : 0.5;  // particle_velocity
     ScatterBuffers<D>& buffers = transfer_.scatter();
-    double lost = 0.0;     // to the transfer
-    double damping = 0.0;  // to the local damping (damping_work_of)
+    double lost = 0.0;  // to the transfer
     for_each_continuum([&](GridFields<D>& f, auto sel) {
+      if (local_damping_ > 0.0) energy_.damping_work += damping_work_at_points(kernel, f, sel);
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-      const Vec<D>* const damp = local_damping_ > 0.0 ? f.damping_acceleration.data() : nullptr;
       Vec<D>* __restrict v = P.v.data();
       const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
@@ -347,7 +364,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       // One loop per transfer kind (APIC or not), so the FLIP loop carries no affine branch.
       const auto loop = [&](auto apic_tag) {
         constexpr bool apic = decltype(apic_tag)::value;
-#pragma omp parallel num_threads(threads()) reduction(+ : lost, damping)
+#pragma omp parallel num_threads(threads()) reduction(+ : lost)
         {
           const int t = omp_get_thread_num();
           Vec<D>* __restrict mom = buffers.vec_target(t, remap);
@@ -359,10 +376,9 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh);
             if constexpr (apic)
               lost += affine_trial_energy(sh, g, strides, P.x[p], affine[p], acc, dt, pmass[p]);
-            const Vec<D> acc_p = gather(sh, strides, acc);
-            if (damp) damping += damping_work_of(sh, strides, damp, pmass[p], dt, v[p], acc_p);
-            const Vec<D> vp = particle_velocity<K>(sh, g, strides, P.x[p], v[p], dt, acc_p, vnext, alpha,
-                                                   apic ? affine + p : nullptr, pmass[p], w, lost);
+            const Vec<D> vp =
+                particle_velocity<K>(sh, g, strides, P.x[p], v[p], dt, gather(sh, strides, acc), vnext, alpha,
+                                     apic ? affine + p : nullptr, pmass[p], w, lost);
             v[p] = vp;
             if constexpr (apic)  // APIC: the remap carries the affine velocity too
               scatter_affine(sh, g, strides, P.x[p], pmass[p], vp, affine[p], mom);
@@ -380,7 +396,6 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       transfer_.reduce(nullptr, remap);
     });
     energy_.transfer_dissipation += lost;
-    energy_.damping_work += damping;
     if (contact_on()) rigid_velocity();
   });
 }
@@ -486,11 +501,10 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
     const double alpha = pic_share();
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
-    double lost = 0.0;     // to the transfer
-    double damping = 0.0;  // to the local damping (damping_work_of)
-    Extent<D> all;         // of every moved point
+    double lost = 0.0;  // to the transfer
+    Extent<D> all;      // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
-      const Vec<D>* const damp = local_damping_ > 0.0 ? f.damping_acceleration.data() : nullptr;
+      if (local_damping_ > 0.0) energy_.damping_work += damping_work_at_points(kernel, f, sel);
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       Vec<D>* __restrict x = P.x.data();
@@ -511,7 +525,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       double affine_ke = 0.0;  // the new C_p's share of the kinetic energy (particle_velocity)
       Extent<D> extent;        // of the moved points
 #pragma omp parallel num_threads(threads()) reduction(vsum : mdx) reduction(min : bad) \
-    reduction(merge : extent) reduction(+ : lost, affine_ke, damping)
+    reduction(merge : extent) reduction(+ : lost, affine_ke)
       {
         const int t = omp_get_thread_num();
         double* __restrict mass = buffers.mass_target(t, f.mass.data());
@@ -527,7 +541,6 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           Vec<D> acc_p, vmove;
           gather_pair(sh, strides, acc, vel, acc_p, vmove);
           if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
-          if (damp) damping += damping_work_of(sh, strides, damp, pmass[p], dt, v[p], acc_p);
           const Vec<D> vp = particle_velocity<K>(sh, g, strides, x[p], v[p], dt, acc_p, vnext, alpha,
                                                  affine ? affine + p : nullptr, pmass[p], 0.5, lost);
           if (std::array<unsigned, D> layers;
@@ -552,7 +565,6 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       all.merge(extent);
     });
     energy_.transfer_dissipation += lost;
-    energy_.damping_work += damping;
     if (contact_on()) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
