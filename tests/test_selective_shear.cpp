@@ -1,5 +1,5 @@
 // Selective integration of shear (Thesis §4.5, solver.shear_strain = "cell-centre";
-// src/solver/selective_shear_impl.hpp) on the thesis's own example, the cantilever of fig. 4.7:
+// src/solver/selective_shear.hpp) on the thesis's own example, the cantilever of fig. 4.7:
 // L = 8 m, H = 2 m, rho = 10 kg/m^3, g = 10 m/s^2 over an incremental-gravity ramp, E = 10 MPa,
 // nu = 0.3, clamped at x = 0 (a fixed wall). The reference is Timoshenko beam theory: the shear
 // stress across a section is tau = 3/2 V/A (1 - (2 y/H)^2) with V = q (L - x), q = rho g H, and

@@ -51,7 +51,7 @@ struct SolverSettings {
   // Cell-averaged volumetric strain against volumetric locking (volumetric_averaging.hpp).
   bool volumetric_averaging = false;
   // Selective integration of shear, grad N at the cell's centre (Thesis §4.5; USF only;
-  // selective_shear_impl.hpp).
+  // selective_shear.hpp).
   bool centre_shear = false;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
@@ -215,8 +215,8 @@ class ExplicitSolver {
   bool stress_update_cell_volumetric(const K& kernel, double dt_stress);  // volumetric_averaging.hpp
   template <class K, class Sel>
   double damping_work_at_points(const K& kernel, const GridFields<D>& f, Sel sel);
-  template <class K>
-  bool stress_update_centre_shear(const K& kernel, double dt_stress);  // selective_shear_impl.hpp
+  template <class K, class CentreShear>
+  bool stress_phase(const K& kernel, double dt_stress, CentreShear);  // (std::bool_constant)
   template <class K, class Sel>
   void cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel);  // volumetric_averaging_impl.hpp
   template <class Sel>

@@ -19,6 +19,7 @@
 
 #include "core/inline.hpp"
 #include "solver/gravity.hpp"
+#include "solver/selective_shear.hpp"
 #include "solver/stress_arrays.hpp"
 #include "solver/stress_update.hpp"
 #include "solver/wall_share.hpp"
@@ -222,11 +223,19 @@ void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) from v_i^k,
 // then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51); with contact,
 // each body from and into its own fields.
+// With solver.shear_strain = "cell-centre", the shear takes grad N_ic (selective_shear.hpp).
 template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
   if (settings_.volumetric_averaging) return stress_update_cell_volumetric(kernel, dt_stress);
-  if (settings_.centre_shear) return stress_update_centre_shear(kernel, dt_stress);
+  if (settings_.centre_shear) return stress_phase(kernel, dt_stress, std::true_type{});
+  return stress_phase(kernel, dt_stress, std::false_type{});
+}
+
+template <int D>
+template <class K, class CentreShear>
+bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreShear) {
+  constexpr bool centre_shear = CentreShear::value;
   return timer_.time(Phase::StressUpdateForce, [&] {
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
@@ -254,10 +263,15 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
           const long p0 = blocks.first(b), p1 = blocks.last(b);
           typename K::Shape sh[kPointBlock];
           Mat<D> m[kPointBlock];
+          [[maybe_unused]] typename K::Shape centre[centre_shear ? kPointBlock : 1];
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh[p - p0]);
             m[p - p0] = gather_gradient(sh[p - p0], strides, vel);
+            if constexpr (centre_shear)
+              if (!centre_shear_gradient(kernel, g, strides, P.x[p], P.half0[p], P.F[p], vel, centre[p - p0],
+                                         m[p - p0]))
+                bad = std::min(bad, p);
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
@@ -266,6 +280,12 @@ bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
+            if constexpr (centre_shear) {
+              const Mat<D> normal = m[p - p0].diagonal().asDiagonal();
+              scatter_gradient(centre[p - p0], strides, Mat<D>(m[p - p0] - normal), force);
+              span.add(centre[p - p0].base);
+              m[p - p0] = normal;
+            }
             scatter_gradient(sh[p - p0], strides, m[p - p0], force);
             span.add(sh[p - p0].base);
           }
@@ -599,5 +619,4 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
 }  // namespace skred
 
 #include "solver/contact_impl.hpp"  // the kernel-templated phases of contact runs
-#include "solver/selective_shear_impl.hpp"
 #include "solver/volumetric_averaging_impl.hpp"
