@@ -3,7 +3,8 @@
 // tight, OpenMP-parallel loop. Phases that would read the points twice in a row are fused
 // point by point (the stress update with the force map, the position update with the next
 // step's map); their transfers are the transfer layer's (src/transfer), lock-free. Grid
-// phases: grid_phases.cpp; totals, smoothing and stage starts: solver_results.cpp.
+// phases: grid_phases.cpp; the stress phase: stress_phase_impl.hpp; totals, smoothing and
+// stage starts: solver_results.cpp.
 // Included only by explicit_solver_2d.cpp and explicit_solver_3d.cpp, which instantiate the
 // solver for one dimension each: two smaller translation units that build in parallel.
 #pragma once
@@ -19,7 +20,6 @@
 
 #include "core/inline.hpp"
 #include "solver/gravity.hpp"
-#include "solver/selective_shear.hpp"
 #include "solver/stress_arrays.hpp"
 #include "solver/stress_update.hpp"
 #include "solver/wall_share.hpp"
@@ -218,107 +218,6 @@ void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
     if (!settings_.contact.rigid[static_cast<std::size_t>(b)])
       fn(static_cast<GridFields<D>&>(bodies_[static_cast<std::size_t>(b)]),
          BodyPoints{particles_.body.data(), b});
-}
-
-// Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) from v_i^k,
-// then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51); with contact,
-// each body from and into its own fields.
-// With solver.shear_strain = "cell-centre", the shear takes grad N_ic (selective_shear.hpp).
-template <int D>
-template <class K>
-bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
-  if (settings_.volumetric_averaging) return stress_update_cell_volumetric(kernel, dt_stress);
-  if (settings_.centre_shear) return stress_phase(kernel, dt_stress, std::true_type{});
-  return stress_phase(kernel, dt_stress, std::false_type{});
-}
-
-template <int D>
-template <class K, class CentreShear>
-bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreShear) {
-  constexpr bool centre_shear = CentreShear::value;
-  return timer_.time(Phase::StressUpdateForce, [&] {
-    const GridGeometry<D>& g = grid();
-    const NodeStrides<D> strides = transfer_.strides();
-    auto& P = particles_;
-    const long n = static_cast<long>(P.size());
-    ScatterBuffers<D>& buffers = transfer_.scatter();
-    long first_bad = LONG_MAX;
-    for_each_continuum([&](GridFields<D>& f, auto sel) {
-      // (the point arrays declared here, in the loop's own scope, keep their __restrict)
-      const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-      const StressArrays<D> S(P, materials_);
-      Vec<D>* const forces = f.internal_force.data();
-      transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-      const Vec<D>* __restrict vel = f.velocity.data();
-      double work = 0.0, dissipation = 0.0;
-      long bad = LONG_MAX;
-#pragma omp parallel num_threads(threads()) reduction(+ : work, dissipation) reduction(min : bad)
-      {
-        const int t = omp_get_thread_num();
-        Vec<D>* __restrict force = buffers.vec_target(t, forces);
-        BaseSpan span;
-        const PointBlocks blocks{n};
-#pragma omp for schedule(static) nowait
-        for (long b = 0; b < blocks.count(); ++b) {
-          const long p0 = blocks.first(b), p1 = blocks.last(b);
-          typename K::Shape sh[kPointBlock];
-          Mat<D> m[kPointBlock];
-          [[maybe_unused]] typename K::Shape centre[centre_shear ? kPointBlock : 1];
-          for (long p = p0; p < p1; ++p) {
-            if (!sel(p)) continue;
-            kernel.load(shape[p], g, P.x[p], P.half0[p], sh[p - p0]);
-            m[p - p0] = gather_gradient(sh[p - p0], strides, vel);
-            if constexpr (centre_shear)
-              if (!centre_shear_gradient(kernel, g, strides, P.x[p], P.half0[p], P.F[p], vel, centre[p - p0],
-                                         m[p - p0]))
-                bad = std::min(bad, p);
-          }
-          for (long p = p0; p < p1; ++p) {
-            if (!sel(p)) continue;
-            const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
-            m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
-          }
-          for (long p = p0; p < p1; ++p) {
-            if (!sel(p)) continue;
-            if constexpr (centre_shear) {
-              const Mat<D> normal = m[p - p0].diagonal().asDiagonal();
-              scatter_gradient(centre[p - p0], strides, Mat<D>(m[p - p0] - normal), force);
-              span.add(centre[p - p0].base);
-              m[p - p0] = normal;
-            }
-            scatter_gradient(sh[p - p0], strides, m[p - p0], force);
-            span.add(sh[p - p0].base);
-          }
-        }
-        buffers.touched(t, span);
-      }
-      transfer_.reduce(nullptr, forces);
-      energy_.strain_energy += work;
-      energy_.plastic_dissipation += dissipation;
-      first_bad = std::min(first_bad, bad);
-    });
-    if (first_bad != LONG_MAX)
-      status_ = {false, first_bad, "material point became unstable (inverted or non-finite stress)"};
-    return first_bad == LONG_MAX;
-  });
-}
-
-// f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51) from the stresses as they are (USL).
-template <int D>
-template <class K>
-void ExplicitSolver<D>::internal_force(const K& kernel) {
-  timer_.time(Phase::InternalForce, [&] {
-    for_each_continuum([&](GridFields<D>& f, auto sel) {
-      Vec<D>* const forces = f.internal_force.data();
-      transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-      if (!settings_.volumetric_averaging)
-        return p2g_internal_force(transfer_, kernel, particles_, forces, sel);
-      cell_pressure(sel);  // the cell's mean pressure in place of the point's (volumetric_averaging.hpp)
-      p2g_internal_force(transfer_, kernel, particles_, forces, sel, [&](long q) {
-        return volumetric_.pressure_correction(static_cast<std::size_t>(q));
-      });
-    });
-  });
 }
 
 // The local damping's work (damping_work, positive where it takes energy), booked where the
@@ -618,5 +517,6 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
 
 }  // namespace skred
 
-#include "solver/contact_impl.hpp"  // the kernel-templated phases of contact runs
+#include "solver/contact_impl.hpp"       // the kernel-templated phases of contact runs
+#include "solver/stress_phase_impl.hpp"  // the stress phase and the USL force map
 #include "solver/volumetric_averaging_impl.hpp"

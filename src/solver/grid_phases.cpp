@@ -105,7 +105,7 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
 // f_i^int + m_i g gets f_i^damp = -alpha |f_i| sign(v_i^k), opposed to the nodal velocity and
 // proportional to the force that is not in equilibrium, so it vanishes at rest and never
 // drives a node. Its share of a_i is kept in damping_acceleration; its work is booked where the
-// points take their velocity change (damping_work_of).
+// points take their velocity change (damping_work_at_points).
 template <int D>
 void ExplicitSolver<D>::damped_accelerations(GridFields<D>& f) {
   if (f.damping_acceleration.size() != f.size()) f.damping_acceleration.resize(f.size());
