@@ -9,6 +9,8 @@
 # (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
 # Then, per problem, scripts/deposit_front.py: the front at thicknesses fixed in metres
 # (2, 4, 10 and 20 % of the initial height), the gravity work and the transfer's share of it.
+# PROBLEMS=slope50 runs examples/slope_50m.toml instead (the slope at the thesis's scale, 50 m
+# high; h = 5, 2.5, 1.25 m: 60, 120, 240 cells across).
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
 #   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
 #   PROBLEMS=column SIZES="0.125 0.0625" scripts/convergence.sh build/skred apic   (other sizes)
@@ -73,6 +75,7 @@ for tr in $transfers; do
     case $problem in
       column) file=$here/examples/soil_column.toml; sizes="0.5 0.25 0.125"; height=5 ;;
       slope) file=$here/examples/slope_collapse.toml; sizes="1.0 0.5 0.25"; height=10 ;;
+      slope50) file=$here/examples/slope_50m.toml; sizes="5 2.5 1.25"; height=50 ;;
       *) echo "unknown problem $problem" >&2; exit 4 ;;
     esac
     sizes=${SIZES:-$sizes}

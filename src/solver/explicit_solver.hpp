@@ -204,6 +204,13 @@ class ExplicitSolver {
   // Phases of one step (Thesis §2.2.1, §4.4), called in order by the scheme types. Each is
   // one tight parallel loop over the points or over the box of grid nodes; a phase that
   // finds a failing point sets status_ and returns false.
+  // The end of a phase: true if no point failed (first_bad == LONG_MAX), else status_ names
+  // the first failing point and why.
+  bool phase_ok(long first_bad, const char* why) {
+    if (first_bad == LONG_MAX) return true;
+    status_ = {false, first_bad, why};
+    return false;
+  }
   template <class K>
   bool map_mass_momentum(const K& kernel);  // eq. 2.53-2.54
   template <class K>

@@ -393,9 +393,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
     if (contact_on()) first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
     transfer_.set_box(all);  // the next step's box
     if (contact_on()) body_box_ = transfer_.box();
-    if (first_bad != LONG_MAX)
-      status_ = {false, first_bad, "material point became unstable or left the grid"};
-    return first_bad == LONG_MAX;
+    return phase_ok(first_bad, "material point became unstable or left the grid");
   });
 }
 
@@ -490,9 +488,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
     }
     transfer_.set_box(all);  // the next step's box
     if (contact_on()) body_box_ = transfer_.box();
-    if (first_bad != LONG_MAX)
-      status_ = {false, first_bad, "material point became unstable or left the grid"};
-    return first_bad == LONG_MAX;
+    return phase_ok(first_bad, "material point became unstable or left the grid");
   });
 }
 

@@ -117,9 +117,7 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       energy_.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);
     });
-    if (first_bad != LONG_MAX)
-      status_ = {false, first_bad, "material point became unstable (inverted or non-finite stress)"};
-    return first_bad == LONG_MAX;
+    return phase_ok(first_bad, "material point became unstable (inverted or non-finite stress)");
   });
 }
 
