@@ -201,9 +201,6 @@ class ExplicitSolver {
     return with_kernel<D>(settings_.interpolation, settings_.quadrature_points, f);
   }
 
-  // Phases of one step (Thesis §2.2.1, §4.4), called in order by the scheme types. Each is
-  // one tight parallel loop over the points or over the box of grid nodes; a phase that
-  // finds a failing point sets status_ and returns false.
   // The end of a phase: true if no point failed (first_bad == LONG_MAX), else status_ names
   // the first failing point and why.
   bool phase_ok(long first_bad, const char* why) {
@@ -211,6 +208,10 @@ class ExplicitSolver {
     status_ = {false, first_bad, why};
     return false;
   }
+
+  // Phases of one step (Thesis §2.2.1, §4.4), called in order by the scheme types. Each is
+  // one tight parallel loop over the points or over the box of grid nodes; a phase that
+  // finds a failing point sets status_ (phase_ok) and returns false.
   template <class K>
   bool map_mass_momentum(const K& kernel);  // eq. 2.53-2.54
   template <class K>

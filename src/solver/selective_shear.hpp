@@ -7,7 +7,7 @@
 // integration, so no zero-energy mode appears. The point's stress power is the nodal forces'
 // work: sum_ab sigma_ab L_ab with L_ab from grad N_ic where a != b, which is what the forces'
 // shear part does work against. USF only (the scenario parser asks for it). The phase is USF's
-// stress_phase (explicit_solver_impl.hpp) with these pieces (its
+// stress_phase (stress_phase_impl.hpp) with these pieces (its
 // `centre_shear` branch): the point's block gathers L with centre_shear_gradient, and the force
 // scatters the normal stresses with grad N_ip and the shear ones with grad N_ic.
 #pragma once

@@ -16,6 +16,7 @@
 #include "transfer/transfers.hpp"
 
 namespace skred {
+
 // Strain increment and stress update at every point (eq. 2.20, 3.5, 4.1-4.4) from v_i^k,
 // then the internal forces f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51); with contact,
 // each body from and into its own fields.
