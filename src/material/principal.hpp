@@ -134,13 +134,15 @@ struct PrincipalBounds {
 };
 template <class Enough>
 SKRED_INLINE PrincipalBounds principal_bounds(const Sym3& s, Enough&& enough) {
-  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  // (bounds: p and r by a product with 1/3, not a division, which the chain would wait for)
+  constexpr double third = 1.0 / 3.0;
+  const double p = (s[0] + s[1] + s[2]) * third;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
   if (!(j2 > 0.0)) return {p, p};
   const double j3 =
       d0 * (d1 * d2 - s[4] * s[4]) - s[3] * (s[3] * d2 - s[4] * s[5]) + s[5] * (s[3] * s[4] - d1 * s[5]);
-  const double r = 2.0 * std::sqrt(j2 / 3.0);
+  const double r = 2.0 * std::sqrt(j2 * third);
   const double c3 = std::clamp(4.0 * j3 / (r * r * r), -1.0, 1.0);
   double u = 1.0, w = -1.0;
   for (int k = 0; k < 8; ++k) {
@@ -195,7 +197,8 @@ SKRED_INLINE Vec3 null_vector(double a0, double a1, double a2, double a3, double
 // trigonometric formula of Eigen's computeDirect loses half the digits.
 inline Principal principal_decomposition_3d(const Sym3& s) {
   Principal out;
-  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  constexpr double third = 1.0 / 3.0;  // (products, not divisions, on the chain to the roots)
+  const double p = (s[0] + s[1] + s[2]) * third;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p, d3 = s[3], d4 = s[4], d5 = s[5];
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + d3 * d3 + d4 * d4 + d5 * d5;
   if (!(j2 > 0.0)) {  // hydrostatic: every direction is principal
@@ -204,7 +207,7 @@ inline Principal principal_decomposition_3d(const Sym3& s) {
     return out;
   }
   const double j3 = d0 * (d1 * d2 - d4 * d4) - d3 * (d3 * d2 - d4 * d5) + d5 * (d3 * d4 - d1 * d5);
-  const double r = 2.0 * std::sqrt(j2 / 3.0);
+  const double r = 2.0 * std::sqrt(j2 * third);
   const double c3 = std::clamp(4.0 * j3 / (r * r * r), -1.0, 1.0);
   const double ui = c3 >= 0.0 ? largest_cubic_root(c3) : -largest_cubic_root(-c3);
   const double li = r * ui;  // the isolated value of the deviator

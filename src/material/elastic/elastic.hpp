@@ -25,14 +25,14 @@ struct ElasticConstants {
       : lambda(e.lame_lambda()), two_g(2.0 * e.shear_modulus()) {}
 };
 
-// d_sigma = C : d_eps (Thesis eq. 2.5); strain in tensor components.
+// d_sigma = C : d_eps (Thesis eq. 2.5); strain in tensor components. Formed component by
+// component: 2G d_eps as a vector with its normal components patched after it left them in
+// memory in halves, which the next read of the whole waited for (a store-forwarding stall).
 SKRED_INLINE Sym3 elastic_increment(const ElasticConstants& e, const Sym3& deps) {
-  const double lam = e.lambda, two_g = e.two_g;
-  const double tr = deps[0] + deps[1] + deps[2];
-  Sym3 ds = two_g * deps;
-  ds[0] += lam * tr;
-  ds[1] += lam * tr;
-  ds[2] += lam * tr;
+  const double two_g = e.two_g, lt = e.lambda * (deps[0] + deps[1] + deps[2]);
+  Sym3 ds;
+  ds << two_g * deps[0] + lt, two_g * deps[1] + lt, two_g * deps[2] + lt, two_g * deps[3], two_g * deps[4],
+      two_g * deps[5];
   return ds;
 }
 

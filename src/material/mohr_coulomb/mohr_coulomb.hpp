@@ -163,12 +163,13 @@ SKRED_INLINE bool mohr_coulomb_admissible(const MohrCoulombConstants& k, const V
 // is sqrt(J2) sqrt(1 + sin^2(phi)/3) + p sin(phi) - c cos(phi); and sigma_3 <= p + 2 sqrt(J2/3).
 // Both bounds below zero: elastic, whatever the Lode angle.
 SKRED_INLINE bool clearly_elastic(const MohrCoulombConstants& k, const Sym3& s) {
-  const double p = (s[0] + s[1] + s[2]) / 3.0;
+  constexpr double third = 1.0 / 3.0;  // (a product, not a division: a sufficient check)
+  const double p = (s[0] + s[1] + s[2]) * third;
   const double d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p;
   const double j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
   const double room = k.c_cos_phi - p * k.sin_phi;  // f < 0 needs room > sqrt(J2 (1 + sin^2/3))
   const double cut = k.tension_cutoff - p;          // sigma_3 < t needs cut > sqrt(4 J2 / 3)
-  return room > 0.0 && j2 * (1.0 + k.sin_phi * k.sin_phi / 3.0) < room * room && cut > 0.0 &&
+  return room > 0.0 && j2 * (1.0 + k.sin_phi * k.sin_phi * third) < room * room && cut > 0.0 &&
          (cut == std::numeric_limits<double>::infinity() || 4.0 * j2 < 3.0 * cut * cut);
 }
 
