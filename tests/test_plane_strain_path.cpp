@@ -17,6 +17,7 @@
 #include <random>
 
 #include "material/law.hpp"
+#include "model_cases.hpp"
 #include "solver/stress_update.hpp"
 
 using namespace skred;
@@ -24,46 +25,10 @@ using namespace skred;
 namespace {
 
 constexpr double kPa = 1e3;
-constexpr double deg = std::numbers::pi / 180.0;
 constexpr double kRel = 1e-12;
 
-Material base(Model model) {
-  Material m;
-  m.model = model;
-  m.density = 2000.0;
-  m.elastic = {1e7, 0.3};
-  return m;
-}
-
-struct Named {
-  const char* name;
-  Material m;
-};
-
-std::vector<Named> models() {
-  std::vector<Named> out;
-  out.push_back({"linear-elastic", base(Model::LinearElastic)});
-  Material mc = base(Model::MohrCoulomb);
-  mc.mohr_coulomb.friction = 30 * deg;
-  mc.mohr_coulomb.cohesion = 10 * kPa;
-  mc.mohr_coulomb.dilation = 10 * deg;
-  out.push_back({"mohr-coulomb", mc});
-  Material mct = mc;
-  mct.mohr_coulomb.tension_cutoff = 5 * kPa;
-  out.push_back({"mohr-coulomb + tension cut-off", mct});
-  Material mcd = mc;
-  mcd.mohr_coulomb.initial_void_ratio = 0.6;
-  mcd.mohr_coulomb.max_void_ratio = 0.62;  // switch at volume strain ln(1.62/1.6) = 0.0124
-  out.push_back({"mohr-coulomb + dilation cut-off", mcd});
-  Material tr = base(Model::Tresca);
-  tr.mohr_coulomb.cohesion = 30 * kPa;
-  out.push_back({"tresca", tr});
-  Material vm = base(Model::VonMises);
-  vm.von_mises = {12 * kPa, 3 * kPa, -1e6};
-  out.push_back({"von-mises softening", vm});
-  for (Named& n : out) n.m.prepare();
-  return out;
-}
+using Named = test::NamedModel;
+std::vector<Named> models() { return test::model_cases(); }
 
 double rel(double a, double b, double scale) { return std::abs(a - b) / scale; }
 

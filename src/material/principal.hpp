@@ -166,14 +166,16 @@ namespace detail {
 // polynomial (a least-squares Chebyshev fit, within 1.3e-6 of the root) and one Halley step,
 // which cubes the error, give it to round-off (3e-16 against cos(acos(c)/3) on 2e5 samples):
 // one division instead of Newton's four or acos and cos.
-SKRED_INLINE double largest_cubic_root(double c) {
-  double u = 0.0019631785446316274;
+// (T: double, or eight lanes of them, core/lanes.hpp.)
+template <class T>
+SKRED_INLINE T largest_cubic_root(T c) {
+  T u = T{} + 0.0019631785446316274;
   u = u * c - 0.008972271811933727;
   u = u * c + 0.021865698860087997;
   u = u * c - 0.0474918764903172;
   u = u * c + 0.1666095405450996;
   u = u * c + 0.8660266884397412;
-  const double f = u * (4.0 * u * u - 3.0) - c, f1 = 12.0 * u * u - 3.0, f2 = 24.0 * u;
+  const T f = u * (4.0 * u * u - 3.0) - c, f1 = 12.0 * u * u - 3.0, f2 = 24.0 * u;
   return u - f * f1 / (f1 * f1 - 0.5 * f * f2);
 }
 

@@ -13,6 +13,7 @@
 #include "solver/explicit_solver.hpp"
 #include "solver/selective_shear.hpp"
 #include "solver/stress_arrays.hpp"
+#include "solver/stress_lanes_3d.hpp"
 #include "transfer/transfers.hpp"
 
 namespace skred {
@@ -70,8 +71,12 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
                                          m[p - p0]))
                 bad = std::min(bad, p);
           }
+          unsigned in_lanes = 0;  // 3D: the points whose elastic step ran in lanes
+          if constexpr (D == 3)
+            if (p1 - p0 == kPointBlock)
+              in_lanes = lanes3d::update_block(S, p0, sel, m, dt_stress, work, dissipation, bad);
           for (long p = p0; p < p1; ++p) {
-            if (!sel(p)) continue;
+            if (!sel(p) || ((in_lanes >> (p - p0)) & 1u)) continue;
             const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
             m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
           }
