@@ -24,6 +24,8 @@ using lanes::M8;
 using lanes::store_mat;
 using lanes::V8;
 static_assert(kPointBlock == kLanes, "one point per lane");
+static_assert(sizeof(Mat3) == 9 * sizeof(double) && sizeof(PointStress<3>) == 6 * sizeof(double),
+              "the point arrays are records of 9 and 6 contiguous doubles");
 
 // ... and back, to the lanes set in `mask`.
 template <int Stride>
