@@ -95,7 +95,6 @@ SKRED_INLINE V3 cross(const V3& a, const V3& b) {
   return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
 }
 SKRED_INLINE V8 dot(const V3& a, const V3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-SKRED_INLINE V3 scaled(const V3& a, V8 k) { return {a.x * k, a.y * k, a.z * k}; }
 SKRED_INLINE V3 divided(const V3& a, V8 k) { return {a.x / k, a.y / k, a.z / k}; }
 SKRED_INLINE V3 select(M8 m, const V3& a, const V3& b) {
   return {m ? a.x : b.x, m ? a.y : b.y, m ? a.z : b.z};

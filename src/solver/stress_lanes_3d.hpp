@@ -1,11 +1,12 @@
-// The 3D stress update of a block of eight points in the lanes of vectors, for the points whose
-// step is elastic (docs/method.md, "The 3D elastic update in lanes"). A point's scalar update
-// is a long dependent chain (trial stress, the Mohr-Coulomb screens with their square root and
-// divisions, the push-forward's division, F, Fe, the work), and the out-of-order core overlaps
-// little of one point's chain with the next's. Here the eight chains run side by side, one per
-// lane: the same equations as stress_update.hpp and kinematics_3d.hpp (Thesis eq. 2.5, 2.20,
-// 3.2, 4.4, 4.16; Post eq. 72-73). A lane whose step is not proven elastic (or that another
-// model, a second material or the point selection keeps out) is left to the scalar update.
+// The 3D stress update of a block of eight points in the lanes of vectors (docs/method.md, "The 3D
+// stress update in lanes"). A point's scalar update is a long dependent chain (trial stress, the
+// Mohr-Coulomb screens with their square root and divisions, the push-forward's division, F, Fe,
+// the work), and the out-of-order core overlaps little of one point's chain with the next's. Here
+// the eight chains run side by side, one per lane: the same equations as stress_update.hpp and
+// kinematics_3d.hpp (Thesis eq. 2.5, 2.20, 3.2, 4.4, 4.16; Post eq. 72-73), with Mohr-Coulomb's
+// screens and plane return from material/mohr_coulomb/lanes.hpp. A lane they do not settle (an
+// edge or apex return, a tension cut-off's plastic step, another model, a second material, a
+// point the selection leaves out) is left to the scalar update.
 #pragma once
 #include <cstring>
 
@@ -27,7 +28,8 @@ static_assert(kPointBlock == kLanes, "one point per lane");
 static_assert(sizeof(Mat3) == 9 * sizeof(double) && sizeof(PointStress<3>) == 6 * sizeof(double),
               "the point arrays are records of 9 and 6 contiguous doubles");
 
-// ... and back, to the lanes set in `mask`.
+// Component c of eight consecutive records of `Stride` doubles from the lanes set in `mask`
+// (lanes::load's way back).
 template <int Stride>
 SKRED_INLINE void store(double* __restrict base, int c, V8 v, unsigned mask) {
   if (mask == 0xffu) {
@@ -104,11 +106,8 @@ SKRED_INLINE unsigned update_block(const StressArrays<3>& S, long p0, const Sel&
       const lanes::Principal8 pd = lanes::principal_decomposition8(t);
       const V8 sin_psi = vstrain >= k.max_volume_strain ? splat(0.0) : splat(k.sin_psi);
       const lanes::PlaneReturn8 r = lanes::plane_return8(mat.elastic_constants, k, sin_psi, pd.values);
-      const V8 p = (t[0] + t[1] + t[2]) * (1.0 / 3.0), d0 = t[0] - p, d1 = t[1] - p, d2 = t[2] - p;
-      const unsigned deviatoric =
-          bits(0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + t[3] * t[3] + t[4] * t[4] + t[5] * t[5] > 0.0);
-      plastic = open & r.plane & deviatoric;
-      open &= ~((r.elastic & deviatoric) | plastic);  // (elastic after all: S = t, as above)
+      plastic = open & r.plane & pd.valid;
+      open &= ~((r.elastic & pd.valid) | plastic);  // (elastic after all: S = t, as above)
       V8 rs[6], re[6];
       lanes::from_principal8(r.sigma, pd.vectors, rs);
       lanes::from_principal8(r.deps_p, pd.vectors, re);

@@ -71,7 +71,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
                                          m[p - p0]))
                 bad = std::min(bad, p);
           }
-          unsigned in_lanes = 0;  // 3D: the points whose elastic step ran in lanes
+          unsigned in_lanes = 0;  // 3D: the points whose update ran in lanes
           if constexpr (D == 3)
             if (p1 - p0 == kPointBlock)
               in_lanes = lanes3d::update_block(S, p0, sel, m, dt_stress, work, dissipation, bad);

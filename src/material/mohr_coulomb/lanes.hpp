@@ -57,14 +57,17 @@ SKRED_INLINE unsigned mohr_coulomb_elastic(const MohrCoulombConstants& k, const 
 struct Principal8 {
   V8 values[3];
   V3 vectors[3];
+  unsigned valid = 0;  // the lanes with J2 > 0, where the values and directions hold
 };
-// Valid in the lanes with J2 > 0 (the others are the scalar update's).
+// Valid in the lanes with J2 > 0 (`valid`; the others are the scalar update's).
 SKRED_INLINE Principal8 principal_decomposition8(const V8 (&s)[6]) {
   constexpr double third = 1.0 / 3.0;
   const V8 p = (s[0] + s[1] + s[2]) * third;
   const V8 d0 = s[0] - p, d1 = s[1] - p, d2 = s[2] - p, d3 = s[3], d4 = s[4], d5 = s[5];
   const V8 j2 = 0.5 * (d0 * d0 + d1 * d1 + d2 * d2) + d3 * d3 + d4 * d4 + d5 * d5;
   const V8 j3 = d0 * (d1 * d2 - d4 * d4) - d3 * (d3 * d2 - d4 * d5) + d5 * (d3 * d4 - d1 * d5);
+  Principal8 out;
+  out.valid = bits(j2 > 0.0);
   const V8 r = 2.0 * sqrt8(j2 * third);
   V8 c3 = 4.0 * j3 / (r * r * r);
   c3 = c3 < -1.0 ? splat(-1.0) : c3;
@@ -99,7 +102,6 @@ SKRED_INLINE Principal8 principal_decomposition8(const V8 (&s)[6]) {
   const V3 vhi{cx * e1.x + cy * e2.x, cx * e1.y + cy * e2.y, cx * e1.z + cy * e2.z};
   const V3 vlo{cx * e2.x - cy * e1.x, cx * e2.y - cy * e1.y, cx * e2.z - cy * e1.z};
   const V8 vi = dot(v, dm(v));  // the Rayleigh quotient
-  Principal8 out;
   out.values[0] = up ? p + lo : p + vi;
   out.values[1] = up ? p + hi : p + lo;
   out.values[2] = up ? p + vi : p + hi;
@@ -152,15 +154,15 @@ SKRED_INLINE PlaneReturn8 plane_return8(const ElasticConstants& e, const MohrCou
   const double sp = k.sin_phi;
   const double a0 = -(1.0 - sp) * 0.5, a2 = (1.0 + sp) * 0.5;
   const V8 b0 = -(1.0 - sin_psi) * 0.5, b2 = (1.0 + sin_psi) * 0.5;
-  const V8 lb = e.lambda * (b0 + 0.0 + b2);  // D b = lambda (sum b) 1 + 2G b (stiffness_times)
-  const V8 db0 = lb + e.two_g * b0, db1 = lb + e.two_g * 0.0, db2 = lb + e.two_g * b2;
-  const V8 dl = (a0 * st[0] + 0.0 * st[1] + a2 * st[2] - k.c_cos_phi) / (a0 * db0 + 0.0 * db1 + a2 * db2);
+  // (a_1 = b_1 = 0) D b = lambda (sum b) 1 + 2G b (stiffness_times)
+  const V8 db1 = e.lambda * (b0 + b2), db0 = db1 + e.two_g * b0, db2 = db1 + e.two_g * b2;
+  const V8 dl = (a0 * st[0] + a2 * st[2] - k.c_cos_phi) / (a0 * db0 + a2 * db2);
   out.sigma[0] = st[0] - dl * db0;
   out.sigma[1] = st[1] - dl * db1;
   out.sigma[2] = st[2] - dl * db2;
   out.plane = bits((out.sigma[1] <= out.sigma[2]) & (out.sigma[0] <= out.sigma[1])) & ~out.elastic;
   out.deps_p[0] = dl * b0;
-  out.deps_p[1] = dl * 0.0;
+  out.deps_p[1] = lanes::splat(0.0);
   out.deps_p[2] = dl * b2;
   return out;
 }
