@@ -150,6 +150,22 @@ TEST(Lifecycle, SortByCellOrdersByFlatCellIndexStably) {
   EXPECT_FALSE(P.sort_by_cell(g));  // sorted already
 }
 
+TEST(Lifecycle, SortByNearestNodeOrdersByTheNodeNearestEachPoint) {
+  GridGeometry<2> g;
+  g.h = 1.0;
+  g.cells = {3, 2};  // 4 x 3 nodes
+  Particles<2> P = stamped(6);
+  const Vec<2> at[] = {{2.6, 1.4}, {0.4, 1.6}, {2.2, 0.2}, {0.1, 0.9}, {0.7, 0.4}, {3.0, 2.0}};
+  for (std::size_t p = 0; p < 6; ++p) P.x[p] = at[p];
+  // Nearest nodes (axis 0 fastest, 4 per row): 7, 8, 2, 4, 1, 11 (a point on the far wall
+  // takes the last node). Points 3 and 4 share cell 0 but not their nearest node.
+  EXPECT_TRUE(P.sort_by_cell(g, true));
+  const int expect[] = {4, 2, 3, 0, 1, 5};
+  for (std::size_t p = 0; p < 6; ++p) EXPECT_EQ(P.x[p], at[expect[p]]) << p;
+  EXPECT_FALSE(P.sort_by_cell(g, true));  // sorted already
+  EXPECT_TRUE(P.sort_by_cell(g));         // by cell (0, 2, 0, ...) they are not
+}
+
 TEST(Lifecycle, SerialiseRoundTripsEveryFieldAndRejectsAMismatch) {
   for (bool with_ref : {true, false}) {
     Particles<2> P = stamped(4);

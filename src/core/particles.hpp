@@ -218,22 +218,28 @@ struct Particles {
 
   // Sorts the points by the grid cell that holds them (stable; key = flat cell index with axis
   // 0 fastest, like the grid's node layout), so that points of a cell, which scatter to the
-  // same nodes, are neighbours in memory. Counting sort over the cells; the scratch arrays are
-  // kept, so a sort allocates only when the number of points or cells grows. Returns false
-  // (and changes nothing) when the points were in order already.
-  bool sort_by_cell(const GridGeometry<D>& grid) {
+  // same nodes, are neighbours in memory. With `nearest_node`, the key is the node nearest the
+  // point instead (the cell of the grid shifted by half a cell): GIMP's block of 3^D nodes
+  // starts one node before it, so the points of one key scatter to the very same nodes.
+  // Counting sort over the keys; the scratch arrays are kept, so a sort allocates only when the
+  // number of points or cells grows. Returns false (and changes nothing) when the points were
+  // in order already.
+  bool sort_by_cell(const GridGeometry<D>& grid, bool nearest_node = false) {
     const std::size_t n = size();
+    const int extra = nearest_node ? 1 : 0;  // keys per axis: cells, or nodes
+    const double shift = nearest_node ? 0.5 : 0.0;
     std::size_t cells = 1;
-    for (int d = 0; d < D; ++d) cells *= static_cast<std::size_t>(grid.cells[d]);
+    for (int d = 0; d < D; ++d) cells *= static_cast<std::size_t>(grid.cells[d] + extra);
     sort_key_.resize(n);
     bool sorted = true;
     for (std::size_t p = 0; p < n; ++p) {
       std::size_t key = 0, stride = 1;
       for (int d = 0; d < D; ++d) {
-        const double r = std::floor((x[p][d] - grid.origin[d]) / grid.h);
-        const int c = r < 0.0 ? 0 : r >= grid.cells[d] ? grid.cells[d] - 1 : static_cast<int>(r);
+        const int last = grid.cells[d] + extra - 1;
+        const double r = std::floor((x[p][d] - grid.origin[d]) / grid.h + shift);
+        const int c = r < 0.0 ? 0 : r > last ? last : static_cast<int>(r);
         key += static_cast<std::size_t>(c) * stride;
-        stride *= static_cast<std::size_t>(grid.cells[d]);
+        stride *= static_cast<std::size_t>(last + 1);
       }
       sort_key_[p] = static_cast<std::uint32_t>(key);
       if (p > 0 && key < sort_key_[p - 1]) sorted = false;

@@ -37,7 +37,9 @@ namespace {
 // `every` (the rule of run_simulation, docs/method.md "Point order").
 template <int D>
 StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
-  if (every > 0 && solver.steps() % every == 0 && P.sort_by_cell(solver.grid())) solver.particles_changed();
+  if (every > 0 && solver.steps() % every == 0 &&
+      P.sort_by_cell(solver.grid(), solver.sort_by_nearest_node()))
+    solver.particles_changed();
   return solver.step();
 }
 

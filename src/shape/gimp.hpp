@@ -41,17 +41,22 @@ SKRED_INLINE void gimp_1d(double r, double L, double l, double& w, double& g) {
 // Eq. 3.14 at the three nodes nearest a point, in cell units: e = x_p/L - n in [-1/2, 1/2]
 // is the offset from the nearest node n, lam = l/L in (0, 1/2] the half-length and inv = 1/lam.
 // Nodes n - 1, n, n + 1 get w[0..2]; g[] are d/dx in cell units. Same regions as gimp_1d,
-// without branches.
-SKRED_INLINE void gimp_3nodes(double e, double lam, double inv, double* w, double* g) {
-  const double sl = std::max(lam - e, 0.0), sr = std::max(lam + e, 0.0);  // overlaps of the tails
-  const bool left = e <= -lam, right = e >= lam;  // the point's domain lies within one cell
+// without branches. T is double, or a vector of the three axes' values side by side (GCC/Clang
+// vector extensions: the comparisons give lane masks, and ?: selects lane by lane).
+template <class T>
+SKRED_INLINE void gimp_3nodes(T e, T lam, T inv, T* w, T* g) {
+  const T zero{}, one = zero + 1.0;
+  const T tl = lam - e, tr = lam + e;
+  const T sl = tl < zero ? zero : tl, sr = tr < zero ? zero : tr;  // overlaps of the tails
+  const auto left = e <= -lam, right = e >= lam;                   // the point's domain lies within one cell
   w[0] = left ? -e : 0.25 * sl * sl * inv;
-  g[0] = left ? -1.0 : -0.5 * sl * inv;
+  g[0] = left ? -one : -0.5 * sl * inv;
   w[2] = right ? e : 0.25 * sr * sr * inv;
-  g[2] = right ? 1.0 : 0.5 * sr * inv;
-  const bool linear = left || right;
-  w[1] = linear ? 1.0 - std::abs(e) : 1.0 - 0.5 * (e * e + lam * lam) * inv;
-  g[1] = linear ? (e > 0.0 ? -1.0 : 1.0) : -e * inv;
+  g[2] = right ? one : 0.5 * sr * inv;
+  const auto linear = left | right;
+  const T abs_e = e < zero ? -e : e;
+  w[1] = linear ? one - abs_e : one - 0.5 * (e * e + lam * lam) * inv;
+  g[1] = linear ? (e > zero ? -one : one) : -e * inv;
 }
 
 // det(F)^(-1/3) for the 3D half-lengths (eq. 3.23) and their inverses, for J = det(F) in
@@ -145,12 +150,32 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Size& size, Shape& sh) const {
     const double inv_h = 1.0 / g.h;
     std::array<int, D> start{};
+    double e[D];  // offsets from the nearest nodes, in cell units
     for (int d = 0; d < D; ++d) {
       const double xi = (x[d] - g.origin[d]) * inv_h;
       const double n = std::floor(xi + 0.5);  // nearest node
       start[d] = static_cast<int>(n) - 1 + GridGeometry<D>::pad;
-      gimp_3nodes(xi - n, size.lam[d], size.inv[d], sh.w[d], sh.g[d]);
-      for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
+      e[d] = xi - n;
+    }
+    if constexpr (D == 3) {
+      // the three axes side by side, in lanes 0-2 of 4-wide vectors (lane 3: a point at a
+      // node, half-length 1/2)
+      using V4 = double __attribute__((vector_size(32)));
+      const V4 ev = {e[0], e[1], e[2], 0.0};
+      const V4 lam = {size.lam[0], size.lam[1], size.lam[2], 0.5};
+      const V4 inv = {size.inv[0], size.inv[1], size.inv[2], 2.0};
+      V4 w[S], gr[S];
+      gimp_3nodes(ev, lam, inv, w, gr);
+      for (int d = 0; d < D; ++d)
+        for (int a = 0; a < S; ++a) {
+          sh.w[d][a] = w[a][d];
+          sh.g[d][a] = gr[a][d] * inv_h;
+        }
+    } else {
+      for (int d = 0; d < D; ++d) {
+        gimp_3nodes(e[d], size.lam[d], size.inv[d], sh.w[d], sh.g[d]);
+        for (int a = 0; a < S; ++a) sh.g[d][a] *= inv_h;
+      }
     }
     return block_base<D, S>(g, start, sh.base);
   }

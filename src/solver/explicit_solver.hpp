@@ -129,6 +129,11 @@ class ExplicitSolver {
   // also detected by itself.
   StepStatus step();
   void particles_changed() { grid_mapped_ = false; }
+  // The key of the periodic point sort (Particles::sort_by_cell; docs/method.md, "Point
+  // order"): the node nearest each point for 3D GIMP, whose points of one key then update the
+  // same rows of nodes one after another, so each row's read is served from the previous
+  // point's write; the cell elsewhere.
+  bool sort_by_nearest_node() const { return D == 3 && settings_.interpolation == Interpolation::Gimp; }
   // Maps the current points' mass and momentum (and, with body_fields, each body's) to the
   // grid as a step starts (eq. 2.53-2.54); step() does this itself when needed.
   StepStatus map_grid();
