@@ -40,6 +40,8 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
     const int n = g.nodes(d);
     nodes_per_axis_[d] = static_cast<std::size_t>(n);
     inv_nodes_[d] = 1.0 / n;
+    stride_[d] = g.stride(d);
+    inv_stride_[d] = 1.0 / static_cast<double>(stride_[d]);
     low_layers_[d].assign(static_cast<std::size_t>(n), 0);
     high_layers_[d].assign(static_cast<std::size_t>(n), 0);
     for (int j = 0; j < n; ++j)

@@ -66,25 +66,19 @@ class Boundaries {
   WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
 
   // Which layers of a point's block of S nodes per axis from flat node `base` lie on (or beyond)
-  // a side flagged in `stopping` (WallEnergy::stopping): per axis a bitmask of its S layers;
-  // false when none does. Table lookups and a division by multiplication: it runs per point.
+  // a side in `sides` (bit 2 axis + 0 low / 1 high; near_stopping_sides): per axis a bitmask of
+  // its S layers, zero on an axis without such a side; false when none does. Table lookups,
+  // and the base's index along each axis concerned only: it runs per point.
   template <int S>
-  bool block_layers(std::size_t base, const std::array<bool, 2 * D>& stopping,
-                    std::array<unsigned, D>& layers) const {
+  bool block_layers(std::size_t base, unsigned sides, std::array<unsigned, D>& layers) const {
     static_assert(S <= kLayers);
-    std::size_t rest = base;
     unsigned any = 0;
     for (int d = 0; d < D; ++d) {
-      std::size_t j = rest;
-      if (d < D - 1) {
-        std::size_t q = static_cast<std::size_t>(static_cast<double>(rest) * inv_nodes_[d]);
-        while (q * nodes_per_axis_[d] > rest) --q;  // (the product is exact to within one)
-        while ((q + 1) * nodes_per_axis_[d] <= rest) ++q;
-        j = rest - q * nodes_per_axis_[d];
-        rest = q;
-      }
-      const unsigned m =
-          (stopping[2 * d] ? low_layers_[d][j] : 0u) | (stopping[2 * d + 1] ? high_layers_[d][j] : 0u);
+      layers[d] = 0;
+      const bool lo = (sides >> (2 * d)) & 1u, hi = (sides >> (2 * d + 1)) & 1u;
+      if (!lo && !hi) continue;
+      const std::size_t j = axis_index(base, d);
+      const unsigned m = (lo ? low_layers_[d][j] : 0u) | (hi ? high_layers_[d][j] : 0u);
       layers[d] = m & ((1u << S) - 1u);
       any |= layers[d];
     }
@@ -106,8 +100,21 @@ class Boundaries {
   // lies on or beyond the low (high) wall
   static constexpr int kLayers = 4;
   std::array<std::vector<std::uint8_t>, D> low_layers_, high_layers_;
-  std::array<std::size_t, D> nodes_per_axis_{};
-  std::array<double, D> inv_nodes_{};
+  std::array<std::size_t, D> nodes_per_axis_{}, stride_{};  // nodes along axis d; flat-index stride of d
+  std::array<double, D> inv_nodes_{}, inv_stride_{};
+  // floor(a / b) for b with inv_b = 1 / b: by multiplication, corrected (exact to within one)
+  static std::size_t quotient(std::size_t a, std::size_t b, double inv_b) {
+    std::size_t q = static_cast<std::size_t>(static_cast<double>(a) * inv_b);
+    while (q * b > a) --q;
+    while ((q + 1) * b <= a) ++q;
+    return q;
+  }
+  // the index along axis d of flat node i
+  std::size_t axis_index(std::size_t i, int d) const {
+    if (d > 0) i = quotient(i, stride_[d], inv_stride_[d]);
+    if (d < D - 1) i -= quotient(i, nodes_per_axis_[d], inv_nodes_[d]) * nodes_per_axis_[d];
+    return i;
+  }
 };
 
 }  // namespace skred

@@ -461,9 +461,9 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           const Vec<D> vp = particle_velocity<K>(sh, g, strides, x[p], v[p], dt, acc_p, vnext, alpha,
                                                  affine ? affine + p : nullptr, pmass[p], 0.5, lost);
           if (std::array<unsigned, D> layers;
-              near_stopping_wall<K::S>(g.h, walls_, stopping, x[p]) &&
-              boundaries_.template block_layers<K::S>(sh.base, stopping, layers))
-            lost += wall_update_loss(sh, strides, stopped, layers, dt, pmass[p], from_flip, acc_p, vp);
+              const unsigned near = near_stopping_sides<K::S>(g.h, walls_, stopping, x[p]))
+            if (boundaries_.template block_layers<K::S>(sh.base, near, layers))
+              lost += wall_update_loss(sh, strides, stopped, layers, dt, pmass[p], from_flip, acc_p, vp);
           v[p] = vp;
           mdx += pmass[p] * dt * vmove;
           if (!move_point<D>(g, walls_, x[p], Vec<D>(dt * vmove), vp) ||

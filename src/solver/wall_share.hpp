@@ -37,15 +37,17 @@ SKRED_INLINE double wall_update_loss(const Shape& sh, const NodeStrides<D>& stri
   return -0.5 * dt * m * s.dot(from_flip ? Vec<D>(dt * (2.0 * acc_p - s)) : v_new);
 }
 
-// Whether a point at x is within S h of a wall flagged in `stopping` (WallEnergy::stopping), so
-// that its block of S nodes per axis may hold a node on it (Boundaries::block_layers tells).
+// The sides flagged in `stopping` (WallEnergy::stopping) that a point at x is within S h of,
+// so that its block of S nodes per axis may hold a node on them (bit 2 axis + 0 low / 1 high;
+// Boundaries::block_layers tells).
 template <int S, int D>
-SKRED_INLINE bool near_stopping_wall(double h, const WallBox<D>& walls,
-                                     const std::array<bool, 2 * D>& stopping, const Vec<D>& x) {
-  bool near = false;
-  for (int d = 0; d < D; ++d)
-    near |= (stopping[2 * d] && x[d] - walls.lo[d] < S * h) ||
-            (stopping[2 * d + 1] && walls.hi[d] - x[d] < S * h);
+SKRED_INLINE unsigned near_stopping_sides(double h, const WallBox<D>& walls,
+                                          const std::array<bool, 2 * D>& stopping, const Vec<D>& x) {
+  unsigned near = 0;
+  for (int d = 0; d < D; ++d) {
+    if (stopping[2 * d] && x[d] - walls.lo[d] < S * h) near |= 1u << (2 * d);
+    if (stopping[2 * d + 1] && walls.hi[d] - x[d] < S * h) near |= 2u << (2 * d);
+  }
   return near;
 }
 
