@@ -34,6 +34,21 @@ struct PointBlocks {
   long last(long b) const { return std::min(n, first(b) + kPointBlock); }
 };
 
+// Asks for the cache lines of F, Fe and stress of the block of points from q on, which the stress
+// update reads and writes, two blocks ahead of their update (docs/method.md, "Prefetches").
+template <class A>
+SKRED_INLINE void prefetch_block(const A& S, long q, long n) {
+  if (q + kPointBlock > n) return;
+  const char* f = reinterpret_cast<const char*>(S.F + q);
+  const char* fe = reinterpret_cast<const char*>(S.Fe + q);
+  const char* st = reinterpret_cast<const char*>(S.stress + q);
+  for (std::size_t o = 0; o < kPointBlock * sizeof(*S.F); o += 64) {
+    __builtin_prefetch(f + o, 1);
+    __builtin_prefetch(fe + o, 1);
+  }
+  for (std::size_t o = 0; o < kPointBlock * sizeof(*S.stress); o += 64) __builtin_prefetch(st + o, 1);
+}
+
 // The per-point arrays the stress update reads and writes (Thesis eq. 4.1-4.4, Post 72-73),
 // for the phases that update stresses.
 template <int D>

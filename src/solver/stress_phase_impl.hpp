@@ -59,6 +59,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
 #pragma omp for schedule(static) nowait
         for (long b = 0; b < blocks.count(); ++b) {
           const long p0 = blocks.first(b), p1 = blocks.last(b);
+          if constexpr (D == 3) prefetch_block(S, p0 + 2 * kPointBlock, n);
           typename K::Shape sh[kPointBlock];
           Mat<D> m[kPointBlock];
           [[maybe_unused]] typename K::Shape centre[centre_shear ? kPointBlock : 1];

@@ -43,6 +43,9 @@ struct SizeAhead {
         first_ = p;
         count_ = static_cast<int>(std::min<long>(K::kSizeLanes, n - p));
         kernel.sizes(g, half0 + p, F + p, count_, block_);
+        // and asks for the cache lines of the F of the block after next (docs/method.md, "Prefetches")
+        for (long q = p + 2 * K::kSizeLanes; q < std::min(n, p + 3 * K::kSizeLanes); ++q)
+          __builtin_prefetch(F + q);
       }
       return block_[p - first_];
     } else {
