@@ -271,21 +271,32 @@ inline Principal principal_decomposition(const Sym3& s) {
 // Principal values only, ascending.
 inline Vec3 principal_values(const Sym3& s) { return principal_decomposition(s).values; }
 
-// Inverse: sum_i values[i] v_i v_i^T in Voigt storage (tensor shear components). Exact zeros
-// are preserved for plane-strain directions (v_z = 0 in-plane, e_z out of plane).
-SKRED_INLINE Sym3 from_principal(const Vec3& values, const Mat3& V) {
-  Sym3 s = Sym3::Zero();
+// Inverse: sum_i l[i] v_i v_i^T in Voigt storage (tensor shear components), with v_i = (x[i],
+// y[i], z[i]). T is a double, or a vector of eight points' values side by side
+// (mohr_coulomb/lanes.hpp). Exact zeros are preserved for plane-strain directions (v_z = 0
+// in-plane, e_z out of plane).
+template <class T>
+SKRED_INLINE void from_principal(const T (&l)[3], const T (&x)[3], const T (&y)[3], const T (&z)[3],
+                                 T (&s)[6]) {
+  for (int k = 0; k < 6; ++k) s[k] = T{};
   for (int i = 0; i < 3; ++i) {
-    const double l = values[i];
-    const double x = V(0, i), y = V(1, i), z = V(2, i);
-    s[0] += l * x * x;
-    s[1] += l * y * y;
-    s[2] += l * z * z;
-    s[3] += l * x * y;
-    s[4] += l * y * z;
-    s[5] += l * x * z;
+    s[0] += l[i] * x[i] * x[i];
+    s[1] += l[i] * y[i] * y[i];
+    s[2] += l[i] * z[i] * z[i];
+    s[3] += l[i] * x[i] * y[i];
+    s[4] += l[i] * y[i] * z[i];
+    s[5] += l[i] * x[i] * z[i];
   }
-  return s;
+}
+SKRED_INLINE Sym3 from_principal(const Vec3& values, const Mat3& V) {
+  const double l[3] = {values[0], values[1], values[2]};
+  const double x[3] = {V(0, 0), V(0, 1), V(0, 2)}, y[3] = {V(1, 0), V(1, 1), V(1, 2)},
+               z[3] = {V(2, 0), V(2, 1), V(2, 2)};
+  double s[6];
+  from_principal(l, x, y, z, s);
+  Sym3 out;
+  out << s[0], s[1], s[2], s[3], s[4], s[5];
+  return out;
 }
 
 }  // namespace skred

@@ -24,23 +24,35 @@ SKRED_INLINE Sym3 strain_increment(const double (&g)[3][3]) {
   return e;
 }
 
-// sigma = dF S dF^T / det dF (Thesis eq. 4.4) in place on the Voigt components.
-SKRED_INLINE void push_forward(const double (&g)[3][3], Sym3& s) {
-  double a[3][3];
+// sigma = dF S dF^T / det dF (Thesis eq. 4.4) on the Voigt components s, in place. T is a
+// double, or a vector of eight points' values side by side (solver/stress_lanes_3d.hpp).
+template <class T>
+SKRED_INLINE void push_forward(const T (&g)[3][3], T (&s)[6]) {
+  T a[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a[i][j] = g[i][j] + (i == j ? 1.0 : 0.0);
-  const double m[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
-  double b[3][3];  // dF S
+    for (int j = 0; j < 3; ++j) a[i][j] = i == j ? g[i][j] + 1.0 : g[i][j];
+  const T m[3][3] = {{s[0], s[3], s[5]}, {s[3], s[1], s[4]}, {s[5], s[4], s[2]}};
+  T b[3][3];  // dF S
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) b[i][j] = a[i][0] * m[0][j] + a[i][1] * m[1][j] + a[i][2] * m[2][j];
-  const double det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                     a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                     a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  const double inv_j = 1.0 / det;
+  const T det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+                a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+                a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  const T inv_j = 1.0 / det;
   auto c = [&](int i, int j) { return (b[i][0] * a[j][0] + b[i][1] * a[j][1] + b[i][2] * a[j][2]) * inv_j; };
   // (dF S dF^T is symmetric up to round-off; the symmetric part, as to_voigt takes it.)
-  s << c(0, 0), c(1, 1), c(2, 2), 0.5 * (c(0, 1) + c(1, 0)), 0.5 * (c(1, 2) + c(2, 1)),
-      0.5 * (c(0, 2) + c(2, 0));
+  const T out[6] = {c(0, 0),
+                    c(1, 1),
+                    c(2, 2),
+                    0.5 * (c(0, 1) + c(1, 0)),
+                    0.5 * (c(1, 2) + c(2, 1)),
+                    0.5 * (c(0, 2) + c(2, 0))};
+  for (int k = 0; k < 6; ++k) s[k] = out[k];
+}
+SKRED_INLINE void push_forward(const double (&g)[3][3], Sym3& s) {
+  double v[6] = {s[0], s[1], s[2], s[3], s[4], s[5]};
+  push_forward(g, v);
+  s << v[0], v[1], v[2], v[3], v[4], v[5];
 }
 
 // F <- dF F (eq. 3.2), Fe <- (I + d_eps - d_eps_p) Fe (Post eq. 72-73), V = det F V0 and the

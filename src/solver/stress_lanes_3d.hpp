@@ -14,6 +14,7 @@
 #include "core/lanes.hpp"
 #include "material/material.hpp"
 #include "material/mohr_coulomb/lanes.hpp"
+#include "solver/kinematics_3d.hpp"
 #include "solver/stress_arrays.hpp"
 
 namespace skred::lanes3d {
@@ -126,24 +127,9 @@ SKRED_INLINE unsigned update_block(const StressArrays<3>& S, long p0, const Sel&
   }
 
   // sigma = dF S dF^T / det dF (eq. 4.4), dF = I + g
-  V8 a[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) a[i][j] = i == j ? g[i][j] + 1.0 : g[i][j];
-  const V8 sm[3][3] = {{sv[0], sv[3], sv[5]}, {sv[3], sv[1], sv[4]}, {sv[5], sv[4], sv[2]}};
-  V8 b[3][3];
-  for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) b[i][j] = a[i][0] * sm[0][j] + a[i][1] * sm[1][j] + a[i][2] * sm[2][j];
-  const V8 det = a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
-                 a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
-                 a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
-  const V8 inv_j = 1.0 / det;
-  auto c = [&](int i, int j) { return (b[i][0] * a[j][0] + b[i][1] * a[j][1] + b[i][2] * a[j][2]) * inv_j; };
-  const V8 s[6] = {c(0, 0),
-                   c(1, 1),
-                   c(2, 2),
-                   0.5 * (c(0, 1) + c(1, 0)),
-                   0.5 * (c(1, 2) + c(2, 1)),
-                   0.5 * (c(0, 2) + c(2, 0))};
+  V8 s[6];
+  for (int k = 0; k < 6; ++k) s[k] = sv[k];
+  kinematics3::push_forward(g, s);
 
   // F <- dF F, Fe <- (I + d_eps - d_eps_p) Fe, V = det F V0
   double* const fd = S.F[p0].data();

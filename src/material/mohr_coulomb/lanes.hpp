@@ -126,16 +126,8 @@ SKRED_INLINE Principal8 principal_decomposition8(const V8 (&s)[6]) {
 
 // sum_i values[i] v_i v_i^T in Voigt storage (from_principal).
 SKRED_INLINE void from_principal8(const V8 (&values)[3], const V3 (&v)[3], V8 (&s)[6]) {
-  for (int k = 0; k < 6; ++k) s[k] = splat(0.0);
-  for (int i = 0; i < 3; ++i) {
-    const V8 l = values[i], x = v[i].x, y = v[i].y, z = v[i].z;
-    s[0] += l * x * x;
-    s[1] += l * y * y;
-    s[2] += l * z * z;
-    s[3] += l * x * y;
-    s[4] += l * y * z;
-    s[5] += l * x * z;
-  }
+  const V8 x[3] = {v[0].x, v[1].x, v[2].x}, y[3] = {v[0].y, v[1].y, v[2].y}, z[3] = {v[0].z, v[1].z, v[2].z};
+  from_principal(values, x, y, z, s);
 }
 
 // Step 1 of mohr_coulomb_return without a tension cut-off, on the ascending principal trial
