@@ -7,6 +7,7 @@
 
 #include <cstdlib>
 
+#include "solver/boundary.hpp"
 #include "solver/coulomb_friction.hpp"
 #include "support.hpp"
 
@@ -144,4 +145,68 @@ TEST(FrictionalBlock, FlipChattersAtTheWall) {
   EXPECT_GT(r.stop_time, 1.02 * t_stop);
   EXPECT_LT(r.gravity, 100 * x.gravity);  // lifted: negative work of gravity
   EXPECT_NEAR(r.ke_end + r.friction + r.stored + r.transfer - r.gravity, r.ke0, 0.01 * r.ke0);
+}
+
+// The walks over the boundary nodes visit only those inside the box of nodes the points reach
+// (Boundaries::constrain_velocity, constrain_end_of_step): inside it they do what the walk over
+// the whole grid does, outside it they leave every node as it was.
+TEST(Boundaries, WalksInsideTheBoxDoWhatTheWholeGridWalkDoesThere) {
+  GridGeometry<3> g;
+  g.h = 0.5;
+  g.cells = {7, 5, 4};
+  std::array<BoundarySide, 6> sides{};
+  sides[0] = {BoundaryKind::Fixed, 0.0};
+  sides[1] = {BoundaryKind::Roller, 0.0};
+  sides[2] = {BoundaryKind::Friction, 0.5};
+  sides[4] = {BoundaryKind::Roller, 0.0};
+  sides[5] = {BoundaryKind::Friction, 0.3};
+  const Boundaries<3> walls(g, sides);
+  NodeBox<3> all, box;
+  for (int d = 0; d < 3; ++d) all.hi[d] = g.nodes(d) - 1;
+  box.lo = {1, 1, 2};
+  box.hi = {4, 6, 6};
+  const auto inside = [&](std::size_t i) {
+    const auto ij = g.unflatten(i);
+    for (int d = 0; d < 3; ++d)
+      if (ij[d] < box.lo[d] || ij[d] > box.hi[d]) return false;
+    return true;
+  };
+  std::srand(7);
+  const auto random = [] { return 2.0 * std::rand() / RAND_MAX - 1.0; };
+  const std::size_t n = g.node_count();
+  GridArray<Vec<3>> v(n);
+  for (auto& vi : v) vi = Vec<3>(random(), random(), random());
+  GridArray<Vec<3>> in_box = v, whole = v;
+  walls.constrain_velocity(in_box, box);
+  walls.constrain_velocity(whole, all);
+  int constrained = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(in_box[i], inside(i) ? whole[i] : v[i]) << "node " << i;
+    constrained += inside(i) && whole[i] != v[i];
+  }
+  EXPECT_GT(constrained, 20);  // the box holds nodes of every kind of wall
+
+  // The end of the step, with mass only inside the box (as the points put it there).
+  GridFields<3> f;
+  f.resize(n, false, false);
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!inside(i)) continue;
+    f.mass[i] = 1.0 + random();
+    f.momentum[i] = f.mass[i] * Vec<3>(random(), random(), random());
+    f.velocity[i] = f.momentum[i] / f.mass[i];
+    f.acceleration[i] = Vec<3>(random(), random(), random());
+  }
+  walls.constrain_velocity(f.velocity, all);
+  GridFields<3> f_box = f;
+  const WallEnergy e_all = walls.constrain_end_of_step(f, 0.01, all);
+  const WallEnergy e_box = walls.constrain_end_of_step(f_box, 0.01, box);
+  EXPECT_GT(e_all.work, 0.0);
+  EXPECT_EQ(e_box.work, e_all.work);
+  EXPECT_EQ(e_box.update_loss_end, e_all.update_loss_end);
+  EXPECT_EQ(e_box.update_loss_change, e_all.update_loss_change);
+  EXPECT_EQ(e_box.stopping, e_all.stopping);
+  for (std::size_t i = 0; i < n; ++i) {
+    EXPECT_EQ(f_box.acceleration[i], f.acceleration[i]) << "node " << i;
+    EXPECT_EQ(f_box.velocity_move[i], f.velocity_move[i]) << "node " << i;
+  }
 }

@@ -66,85 +66,111 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
     }
     if (b.count > 0) nodes_.push_back(b);
   }
+  row_start_.assign(g.node_count() / stride_[1] + 1, 0);
+  for (const BoundaryNode& b : nodes_) ++row_start_[b.node / stride_[1] + 1];
+  for (std::size_t r = 1; r < row_start_.size(); ++r) row_start_[r] += row_start_[r - 1];
 }
 
 template <int D>
-void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity) const {
-  const long count = static_cast<long>(nodes_.size());
+std::pair<std::size_t, std::size_t> Boundaries<D>::span_in(const BoxRows& rows, long r) const {
+  std::size_t row = 0;  // the row's index (flat index / stride of axis 1)
+  for (int d = 1; d < D; ++d) {
+    const long n = rows.box.hi[d] - rows.box.lo[d] + 1;
+    row += static_cast<std::size_t>(rows.box.lo[d] + r % n) * (stride_[d] / stride_[1]);
+    r /= n;
+  }
+  const auto by_node = [](const BoundaryNode& b, std::size_t i) { return b.node < i; };
+  const auto first = nodes_.begin() + static_cast<long>(row_start_[row]);
+  const auto end = nodes_.begin() + static_cast<long>(row_start_[row + 1]);
+  const std::size_t row0 = row * stride_[1];
+  const auto lo = std::lower_bound(first, end, row0 + static_cast<std::size_t>(rows.box.lo[0]), by_node);
+  const auto hi = std::lower_bound(lo, end, row0 + static_cast<std::size_t>(rows.box.hi[0]) + 1, by_node);
+  return {static_cast<std::size_t>(lo - nodes_.begin()), static_cast<std::size_t>(hi - nodes_.begin())};
+}
+
+template <int D>
+void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity, const NodeBox<D>& box) const {
+  const BoxRows rows = rows_in(box);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (parallel())
-  for (long k = 0; k < count; ++k) {
-    const BoundaryNode& b = nodes_[static_cast<std::size_t>(k)];
-    Vec<D>& v = velocity[b.node];
-    for (int w = 0; w < b.count; ++w) {
-      const Wall& wall = walls_[b.walls[w]];
-      switch (wall.side.kind) {
-        case BoundaryKind::Fixed: v.setZero(); break;
-        case BoundaryKind::Roller: v[wall.axis] = 0.0; break;
-        case BoundaryKind::Friction:
-          if (v[wall.axis] * wall.sign > 0.0) v[wall.axis] = 0.0;
-          break;
-        case BoundaryKind::Free: break;
+  for (long r = 0; r < rows.count; ++r) {
+    const auto [k0, k1] = span_in(rows, r);
+    for (std::size_t k = k0; k < k1; ++k) {
+      const BoundaryNode& b = nodes_[k];
+      Vec<D>& v = velocity[b.node];
+      for (int w = 0; w < b.count; ++w) {
+        const Wall& wall = walls_[b.walls[w]];
+        switch (wall.side.kind) {
+          case BoundaryKind::Fixed: v.setZero(); break;
+          case BoundaryKind::Roller: v[wall.axis] = 0.0; break;
+          case BoundaryKind::Friction:
+            if (v[wall.axis] * wall.sign > 0.0) v[wall.axis] = 0.0;
+            break;
+          case BoundaryKind::Free: break;
+        }
       }
     }
   }
 }
 
 template <int D>
-WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt) const {
+WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const {
   double work = 0.0, loss_end = 0.0, loss_change = 0.0;
   double stopped_energy[2 * D] = {}, energy[2 * D] = {};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
-  const long count = static_cast<long>(nodes_.size());
+  const BoxRows rows = rows_in(box);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (parallel()) \
     reduction(+ : work, loss_end, loss_change, stopped_energy[:2 * D], energy[:2 * D])
-  for (long k = 0; k < count; ++k) {
-    const BoundaryNode& b = nodes_[static_cast<std::size_t>(k)];
-    const std::size_t i = b.node;
-    const double m = grid.mass[i];
-    if (m <= 0.0) {
-      grid.stopped_acceleration[i].setZero();
-      continue;
+  for (long r = 0; r < rows.count; ++r) {
+    const auto [k0, k1] = span_in(rows, r);
+    for (std::size_t k = k0; k < k1; ++k) {
+      const BoundaryNode& b = nodes_[k];
+      const std::size_t i = b.node;
+      const double m = grid.mass[i];
+      if (m <= 0.0) {
+        grid.stopped_acceleration[i].setZero();
+        continue;
+      }
+      const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
+      const Vec<D>& v_k = grid.velocity[i];        // v^k: no motion into the walls
+      const Vec<D> a = grid.acceleration[i];       // (f^int + f^ext) / m
+      // The trial end-of-step velocity (eq. 5.9) from the node's momentum: the normal impulse
+      // that stops it at the wall, m (trial . n), is the normal force f_n dt of eq. 5.8 plus
+      // the impulse that stops the points' motion into the wall.
+      const Vec<D> trial = v_free + dt * a;
+      Vec<D> vnew = trial;
+      for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(walls_[b.walls[w]], vnew);
+      // Each wall rule only stops motion (coulomb_friction.hpp).
+      assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
+      // Energy the walls took: the node's kinetic energy change less the work of the forces
+      // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
+      // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
+      // the motion into the wall stopped; its tangential part the friction impulse over the
+      // mean slip velocity. It can be negative at a node where the forces alone would have
+      // reversed its slip within the step (the mean velocity overstates the motion of a node
+      // that sticks): summed over the nodes, and a step whose sum is negative takes nothing
+      // (clipping each node's instead booked 0.9 % of the soil column's gravity work too much).
+      const double taken =
+          0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) + 0.5 * dt * m * a.dot(v_k + vnew);
+      work += taken;
+      grid.acceleration[i] = (vnew - v_free) / dt;
+      // s_i, the stopped motion's acceleration (GridFields::stopped_acceleration)
+      Vec<D> stopped = Vec<D>::Zero();
+      for (int w = 0; w < b.count; ++w) {
+        const Wall& wall = walls_[b.walls[w]];
+        if (wall.side.kind == BoundaryKind::Fixed)
+          stopped = grid.acceleration[i];
+        else
+          stopped[wall.axis] = grid.acceleration[i][wall.axis];
+        if (wall.side.kind == BoundaryKind::Fixed) break;
+      }
+      grid.stopped_acceleration[i] = stopped;
+      for (int w = 0; w < b.count; ++w) {
+        stopped_energy[b.walls[w]] += m * dt * dt * stopped.squaredNorm();
+        energy[b.walls[w]] += m * v_free.squaredNorm();
+      }
+      loss_end += 0.5 * dt * m * stopped.dot(vnew);
+      loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
+      grid.velocity_move[i] = 0.5 * (v_k + vnew);
     }
-    const Vec<D> v_free = grid.momentum[i] / m;  // unconstrained start-of-step velocity
-    const Vec<D>& v_k = grid.velocity[i];        // v^k: no motion into the walls
-    const Vec<D> a = grid.acceleration[i];       // (f^int + f^ext) / m
-    // The trial end-of-step velocity (eq. 5.9) from the node's momentum: the normal impulse
-    // that stops it at the wall, m (trial . n), is the normal force f_n dt of eq. 5.8 plus
-    // the impulse that stops the points' motion into the wall.
-    const Vec<D> trial = v_free + dt * a;
-    Vec<D> vnew = trial;
-    for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(walls_[b.walls[w]], vnew);
-    // Each wall rule only stops motion (coulomb_friction.hpp).
-    assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
-    // Energy the walls took: the node's kinetic energy change less the work of the forces
-    // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
-    // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
-    // the motion into the wall stopped; its tangential part the friction impulse over the
-    // mean slip velocity. It can be negative at a node where the forces alone would have
-    // reversed its slip within the step (the mean velocity overstates the motion of a node
-    // that sticks): summed over the nodes, and a step whose sum is negative takes nothing
-    // (clipping each node's instead booked 0.9 % of the soil column's gravity work too much).
-    const double taken =
-        0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) + 0.5 * dt * m * a.dot(v_k + vnew);
-    work += taken;
-    grid.acceleration[i] = (vnew - v_free) / dt;
-    // s_i, the stopped motion's acceleration (GridFields::stopped_acceleration)
-    Vec<D> stopped = Vec<D>::Zero();
-    for (int w = 0; w < b.count; ++w) {
-      const Wall& wall = walls_[b.walls[w]];
-      if (wall.side.kind == BoundaryKind::Fixed)
-        stopped = grid.acceleration[i];
-      else
-        stopped[wall.axis] = grid.acceleration[i][wall.axis];
-      if (wall.side.kind == BoundaryKind::Fixed) break;
-    }
-    grid.stopped_acceleration[i] = stopped;
-    for (int w = 0; w < b.count; ++w) {
-      stopped_energy[b.walls[w]] += m * dt * dt * stopped.squaredNorm();
-      energy[b.walls[w]] += m * v_free.squaredNorm();
-    }
-    loss_end += 0.5 * dt * m * stopped.dot(vnew);
-    loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
-    grid.velocity_move[i] = 0.5 * (v_k + vnew);
   }
   WallEnergy e;
   e.work = std::max(work, 0.0);

@@ -4,11 +4,13 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/grid_fields.hpp"
+#include "transfer/node_box.hpp"
 
 namespace skred {
 
@@ -53,9 +55,13 @@ class Boundaries {
   // boundary nodes run on `threads` OpenMP threads once there are enough of them.
   Boundaries(const GridGeometry<D>& g, const std::array<BoundarySide, 2 * D>& sides, int threads = 1);
 
+  // Both walks visit the boundary nodes inside `box`, the nodes the points reach: outside it
+  // the grid fields are zero and never read (node_box.hpp). A slab's z walls span the whole
+  // grid plane, most of it far from the material.
+
   // Velocity conditions: fixed -> v = 0, roller -> v_n = 0, friction -> no motion into
   // the wall (separation allowed).
-  void constrain_velocity(GridArray<Vec<D>>& velocity) const;
+  void constrain_velocity(GridArray<Vec<D>>& velocity, const NodeBox<D>& box) const;
 
   // End-of-step conditions on the boundary nodes. With v^k the constrained start-of-step
   // velocity, v* = (m v)/m the unconstrained one and accel = (f + m g)/m on entry, sets
@@ -63,7 +69,7 @@ class Boundaries {
   // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
   // velocity_move = (v^k + v^{k+1}) / 2 and stopped_acceleration = the change of accel. Returns
   // the energy the walls took (WallEnergy).
-  WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt) const;
+  WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const;
 
   // Which layers of a point's block of S nodes per axis from flat node `base` lie on (or beyond)
   // a side in `sides` (bit 2 axis + 0 low / 1 high; near_stopping_sides): per axis a bitmask of
@@ -96,6 +102,20 @@ class Boundaries {
   // fork would cost more than the walk).
   static constexpr std::size_t kParallelNodes = 8192;
   bool parallel() const { return threads_ > 1 && nodes_.size() >= kParallelNodes; }
+  // nodes_ (in flat-index order) of the row of nodes r (the flat index divided by the first
+  // axis's stride): [row_start_[r], row_start_[r + 1])
+  std::vector<std::size_t> row_start_;
+  // The rows of a box (rows_in) and, for its row r, the range of nodes_ inside the box (span_in).
+  struct BoxRows {
+    NodeBox<D> box;
+    long count = 0;
+  };
+  static BoxRows rows_in(const NodeBox<D>& box) {
+    BoxRows r{box, box.empty() ? 0 : 1};
+    for (int d = 1; d < D; ++d) r.count *= box.hi[d] - box.lo[d] + 1;
+    return r;
+  }
+  std::pair<std::size_t, std::size_t> span_in(const BoxRows& rows, long r) const;
   // block_layers' tables: per axis and node index j, the bits k < kLayers for which node j + k
   // lies on or beyond the low (high) wall
   static constexpr int kLayers = 4;

@@ -87,7 +87,7 @@ void ExplicitSolver<D>::body_nodal_velocity() {
       f.velocity[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum[i] / m);
       f.velocity_shift[i].setZero();
     });
-    if (!rigid) boundaries_.constrain_velocity(f.velocity);
+    if (!rigid) boundaries_.constrain_velocity(f.velocity, transfer_.box());
   }
   couple_start([](BodyFields<D>& f) -> GridArray<Vec<D>>& { return f.velocity; }, true);
 }
@@ -146,7 +146,7 @@ void ExplicitSolver<D>::body_remap_velocity() {
       const double m = f.mass[i];
       f.velocity_remap[i] = !(m > 0.0) ? Vec<D>::Zero() : rigid ? vr : Vec<D>(f.momentum_remap[i] / m);
     });
-    if (!rigid) boundaries_.constrain_velocity(f.velocity_remap);
+    if (!rigid) boundaries_.constrain_velocity(f.velocity_remap, transfer_.box());
   }
   couple_start([](BodyFields<D>& f) -> GridArray<Vec<D>>& { return f.velocity_remap; }, false);
   for (BodyFields<D>& f : bodies_)

@@ -518,7 +518,7 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
                   fields_.xpic_work.data(), sel);
     const Vec<D>* __restrict acc = f.acceleration.data();
     transfer_.for_box([&](std::size_t i) { star[i] += dt * acc[i]; });
-    boundaries_.constrain_velocity(f.velocity_next);
+    boundaries_.constrain_velocity(f.velocity_next, transfer_.box());
   });
 }
 

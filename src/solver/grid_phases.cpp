@@ -22,7 +22,7 @@ void ExplicitSolver<D>::nodal_velocity() {
       const double m = mass[i];
       vel[i] = m > 0.0 ? Vec<D>(mom[i] / m) : Vec<D>::Zero();
     });
-    boundaries_.constrain_velocity(fields_.velocity);
+    boundaries_.constrain_velocity(fields_.velocity, transfer_.box());
   });
 }
 
@@ -44,7 +44,7 @@ void ExplicitSolver<D>::remap_velocity() {
       mom[i].setZero();
       remap[i].setZero();
     });
-    boundaries_.constrain_velocity(fields_.velocity_remap);
+    boundaries_.constrain_velocity(fields_.velocity_remap, transfer_.box());
   });
 }
 
@@ -85,7 +85,7 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
       f.acceleration[i] = a;
       f.velocity_move[i] = f.velocity[i] + half_dt * a;
     });
-  const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt);
+  const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt, transfer_.box());
   assert(walls.work >= 0.0);  // friction never creates energy
   energy_.friction_work += walls.work;
   // USF: the walls' share of the lumped mass's loss, its nodal half (the points': wall_update_loss)
