@@ -129,6 +129,11 @@ TEST(Lifecycle, ReorderPermutesEveryField) {
   const std::vector<std::uint32_t> order = {4, 0, 5, 1, 3, 2};  // cycles (0 4 3 1)(2 5)
   P.reorder(order);
   for (std::size_t p = 0; p < 6; ++p) EXPECT_TRUE(holds_stamp(P, p, static_cast<int>(order[p]))) << p;
+  // with points that stay, and the fields shared among two threads
+  Particles<2> Q = stamped(7);
+  const std::vector<std::uint32_t> order2 = {2, 1, 6, 3, 0, 5, 4};  // cycles (0 2 6 4), 1, 3, 5 stay
+  Q.reorder(order2, 2);
+  for (std::size_t p = 0; p < 7; ++p) EXPECT_TRUE(holds_stamp(Q, p, static_cast<int>(order2[p]))) << p;
 }
 
 TEST(Lifecycle, SortByCellOrdersByFlatCellIndexStably) {

@@ -3,6 +3,8 @@
 // duplicate, reorder, sort by cell, serialise) is written once over that list, so a field
 // added to the list is carried by all of them.
 #pragma once
+#include <omp.h>
+
 #include <cassert>
 #include <cstddef>
 #include <cstdint>
@@ -194,26 +196,35 @@ struct Particles {
   }
 
   // Reorders the points: the point at new index i is the one at old index order[i]; order is
-  // a permutation of 0..size()-1. In place, one cycle at a time (scratch kept for reuse).
-  void reorder(const std::vector<std::uint32_t>& order) {
+  // a permutation of 0..size()-1. In place, one cycle at a time: the cycles are found once,
+  // and the fields, shared among `threads` OpenMP threads, follow them (scratch kept for reuse).
+  void reorder(const std::vector<std::uint32_t>& order, int threads = 1) {
     assert(order.size() == size());
     const std::size_t n = size();
-    for_each_present_field([&](const auto&, auto& a) {
-      visited_.assign(n, 0);
-      for (std::size_t start = 0; start < n; ++start) {
-        if (visited_[start]) continue;
-        auto carried = a[start];
-        std::size_t i = start;
-        for (;;) {
-          visited_[i] = 1;
-          const std::size_t from = order[i];
-          if (from == start) break;
-          a[i] = a[from];
-          i = from;
+    visited_.assign(n, 0);
+    cycle_starts_.clear();  // the first index of every cycle of two or more points
+    for (std::size_t start = 0; start < n; ++start) {
+      if (visited_[start] || order[start] == start) continue;
+      cycle_starts_.push_back(static_cast<std::uint32_t>(start));
+      for (std::size_t i = start; !visited_[i]; i = order[i]) visited_[i] = 1;
+    }
+#pragma omp parallel num_threads(threads) if (threads > 1)
+    {
+      const int t = omp_get_thread_num(), nt = omp_get_num_threads();
+      int field = 0;
+      for_each_present_field([&](const auto&, auto& a) {
+        if (field++ % nt != t) return;
+        for (const std::uint32_t start : cycle_starts_) {
+          auto carried = a[start];
+          std::size_t i = start;
+          for (std::size_t from = order[i]; from != start; from = order[i]) {
+            a[i] = a[from];
+            i = from;
+          }
+          a[i] = carried;
         }
-        a[i] = carried;
-      }
-    });
+      });
+    }
   }
 
   // Sorts the points by the grid cell that holds them (stable; key = flat cell index with axis
@@ -224,7 +235,7 @@ struct Particles {
   // Counting sort over the keys; the scratch arrays are kept, so a sort allocates only when the
   // number of points or cells grows. Returns false (and changes nothing) when the points were
   // in order already.
-  bool sort_by_cell(const GridGeometry<D>& grid, bool nearest_node = false) {
+  bool sort_by_cell(const GridGeometry<D>& grid, bool nearest_node = false, int threads = 1) {
     const std::size_t n = size();
     const int extra = nearest_node ? 1 : 0;  // keys per axis: cells, or nodes
     const double shift = nearest_node ? 0.5 : 0.0;
@@ -251,7 +262,7 @@ struct Particles {
     sort_order_.resize(n);
     for (std::size_t p = 0; p < n; ++p)
       sort_order_[sort_count_[sort_key_[p]]++] = static_cast<std::uint32_t>(p);
-    reorder(sort_order_);
+    reorder(sort_order_, threads);
     return true;
   }
 
@@ -310,7 +321,7 @@ struct Particles {
  private:
   // Scratch of reorder() and sort_by_cell(), kept between calls (not per-point fields).
   std::vector<std::uint8_t> visited_;
-  std::vector<std::uint32_t> sort_key_, sort_order_;
+  std::vector<std::uint32_t> sort_key_, sort_order_, cycle_starts_;
   std::vector<std::size_t> sort_count_;
 };
 

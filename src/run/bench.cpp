@@ -38,7 +38,7 @@ namespace {
 template <int D>
 StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
   if (every > 0 && solver.steps() % every == 0 &&
-      P.sort_by_cell(solver.grid(), solver.sort_by_nearest_node()))
+      P.sort_by_cell(solver.grid(), solver.sort_by_nearest_node(), solver.threads()))
     solver.particles_changed();
   return solver.step();
 }

@@ -286,7 +286,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     while (unstable.ok && solver.steps() - first_step < stage_steps) {
       // Point order and point changes between steps (docs/method.md, "Point order").
       if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 &&
-          particles.sort_by_cell(solver.grid(), solver.sort_by_nearest_node()))
+          particles.sort_by_cell(solver.grid(), solver.sort_by_nearest_node(), solver.threads()))
         solver.particles_changed();
       if constexpr (D == 2)  // the test hook that adds and removes points (2D runs)
         if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
