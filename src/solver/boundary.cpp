@@ -72,28 +72,23 @@ Boundaries<D>::Boundaries(const GridGeometry<D>& g, const std::array<BoundarySid
 }
 
 template <int D>
-std::pair<std::size_t, std::size_t> Boundaries<D>::span_in(const BoxRows& rows, long r) const {
-  std::size_t row = 0;  // the row's index (flat index / stride of axis 1)
-  for (int d = 1; d < D; ++d) {
-    const long n = rows.box.hi[d] - rows.box.lo[d] + 1;
-    row += static_cast<std::size_t>(rows.box.lo[d] + r % n) * (stride_[d] / stride_[1]);
-    r /= n;
-  }
+std::pair<std::size_t, std::size_t> Boundaries<D>::span_in(const NodeBox<D>& box, long r) const {
+  const std::size_t first = box_row_start(box, stride_, r), row = first / stride_[1];
   const auto by_node = [](const BoundaryNode& b, std::size_t i) { return b.node < i; };
-  const auto first = nodes_.begin() + static_cast<long>(row_start_[row]);
+  const auto begin = nodes_.begin() + static_cast<long>(row_start_[row]);
   const auto end = nodes_.begin() + static_cast<long>(row_start_[row + 1]);
-  const std::size_t row0 = row * stride_[1];
-  const auto lo = std::lower_bound(first, end, row0 + static_cast<std::size_t>(rows.box.lo[0]), by_node);
-  const auto hi = std::lower_bound(lo, end, row0 + static_cast<std::size_t>(rows.box.hi[0]) + 1, by_node);
+  const auto lo = std::lower_bound(begin, end, first, by_node);
+  const auto hi =
+      std::lower_bound(lo, end, first + static_cast<std::size_t>(box.hi[0] - box.lo[0]) + 1, by_node);
   return {static_cast<std::size_t>(lo - nodes_.begin()), static_cast<std::size_t>(hi - nodes_.begin())};
 }
 
 template <int D>
 void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity, const NodeBox<D>& box) const {
-  const BoxRows rows = rows_in(box);
+  const long rows = box_rows(box);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (parallel())
-  for (long r = 0; r < rows.count; ++r) {
-    const auto [k0, k1] = span_in(rows, r);
+  for (long r = 0; r < rows; ++r) {
+    const auto [k0, k1] = span_in(box, r);
     for (std::size_t k = k0; k < k1; ++k) {
       const BoundaryNode& b = nodes_[k];
       Vec<D>& v = velocity[b.node];
@@ -116,11 +111,11 @@ template <int D>
 WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const {
   double work = 0.0, loss_end = 0.0, loss_change = 0.0;
   double stopped_energy[2 * D] = {}, energy[2 * D] = {};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
-  const BoxRows rows = rows_in(box);
+  const long rows = box_rows(box);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (parallel()) \
     reduction(+ : work, loss_end, loss_change, stopped_energy[:2 * D], energy[:2 * D])
-  for (long r = 0; r < rows.count; ++r) {
-    const auto [k0, k1] = span_in(rows, r);
+  for (long r = 0; r < rows; ++r) {
+    const auto [k0, k1] = span_in(box, r);
     for (std::size_t k = k0; k < k1; ++k) {
       const BoundaryNode& b = nodes_[k];
       const std::size_t i = b.node;

@@ -105,22 +105,15 @@ class Boundaries {
   // nodes_ (in flat-index order) of the row of nodes r (the flat index divided by the first
   // axis's stride): [row_start_[r], row_start_[r + 1])
   std::vector<std::size_t> row_start_;
-  // The rows of a box (rows_in) and, for its row r, the range of nodes_ inside the box (span_in).
-  struct BoxRows {
-    NodeBox<D> box;
-    long count = 0;
-  };
-  static BoxRows rows_in(const NodeBox<D>& box) {
-    BoxRows r{box, box.empty() ? 0 : 1};
-    for (int d = 1; d < D; ++d) r.count *= box.hi[d] - box.lo[d] + 1;
-    return r;
-  }
-  std::pair<std::size_t, std::size_t> span_in(const BoxRows& rows, long r) const;
+  // The range of nodes_ inside `box` in its row r (box_rows): the row's boundary nodes
+  // between the box's first and last index along axis 0.
+  std::pair<std::size_t, std::size_t> span_in(const NodeBox<D>& box, long r) const;
   // block_layers' tables: per axis and node index j, the bits k < kLayers for which node j + k
   // lies on or beyond the low (high) wall
   static constexpr int kLayers = 4;
   std::array<std::vector<std::uint8_t>, D> low_layers_, high_layers_;
-  std::array<std::size_t, D> nodes_per_axis_{}, stride_{};  // nodes along axis d; flat-index stride of d
+  std::array<std::size_t, D> nodes_per_axis_{};  // nodes along axis d
+  std::size_t stride_[D]{};                      // flat-index stride of axis d
   std::array<double, D> inv_nodes_{}, inv_stride_{};
   // floor(a / b) for b with inv_b = 1 / b: by multiplication, corrected (exact to within one)
   static std::size_t quotient(std::size_t a, std::size_t b, double inv_b) {

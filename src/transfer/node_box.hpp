@@ -87,6 +87,26 @@ NodeBox<D> reach_of(const GridGeometry<D>& g, const Extent<D>& e) {
   return box;
 }
 
+// The rows of a box: its lines of nodes along axis 0, numbered with axis 1 fastest.
+template <int D>
+long box_rows(const NodeBox<D>& b) {
+  if (b.hi[0] < b.lo[0]) return 0;
+  long rows = 1;
+  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
+  return rows;
+}
+// The flat index of the first node of row r of box b (stride: the grid's, per axis).
+template <int D>
+std::size_t box_row_start(const NodeBox<D>& b, const std::size_t (&stride)[D], long r) {
+  std::size_t row = static_cast<std::size_t>(b.lo[0]);
+  for (int d = 1; d < D; ++d) {
+    const long n = b.hi[d] - b.lo[d] + 1;
+    row += static_cast<std::size_t>(b.lo[d] + r % n) * stride[d];
+    r /= n;
+  }
+  return row;
+}
+
 // fn(i) for every node i of `box` (or of its part with last-axis index in [last_lo,
 // last_hi]), in parallel over its rows.
 template <int D, class Fn>
@@ -95,20 +115,12 @@ void for_box(const GridGeometry<D>& g, NodeBox<D> b, int threads, Fn&& fn, int l
   b.lo[D - 1] = std::max(b.lo[D - 1], last_lo);
   b.hi[D - 1] = std::min(b.hi[D - 1], last_hi);
   const long width = b.hi[0] - b.lo[0] + 1;
-  long rows = 1;
-  for (int d = 1; d < D; ++d) rows *= std::max(0, b.hi[d] - b.lo[d] + 1);
-  if (width <= 0) return;
+  const long rows = box_rows(b);
   std::size_t stride[D];
   for (int d = 0; d < D; ++d) stride[d] = g.stride(d);
 #pragma omp parallel for num_threads(threads) schedule(static)
   for (long r = 0; r < rows; ++r) {
-    std::size_t row = static_cast<std::size_t>(b.lo[0]);
-    long rest = r;
-    for (int d = 1; d < D; ++d) {
-      const long n = b.hi[d] - b.lo[d] + 1;
-      row += static_cast<std::size_t>(b.lo[d] + rest % n) * stride[d];
-      rest /= n;
-    }
+    const std::size_t row = box_row_start(b, stride, r);
     for (long i = 0; i < width; ++i) fn(row + static_cast<std::size_t>(i));
   }
 }
