@@ -8,7 +8,9 @@
 // nothing would pass the comparison.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <cstring>
 #include <numbers>
 #include <random>
 
@@ -106,11 +108,21 @@ TEST(StressLanes, BlockUpdateEqualsThePointUpdateOnRandomStates) {
         ref.m[p] = -r.volume * sym_block<3>(SR.stress[p]);
       }
       // the stress phase's way: the lanes, then the scalar update of the rest
-      const StressArrays<3> SL(lan.P, mats);
+      StressArrays<3> SL(lan.P, mats);
+      double det_f[8];
+      std::fill(det_f, det_f + 8, -7.0);
+      SL.det_f = det_f;
       double work_l = 0, diss_l = 0;
       long bad_l = LONG_MAX;
       const unsigned done = lanes3d::update_block(SL, 0, sel, lan.m, dt, work_l, diss_l, bad_l);
       EXPECT_EQ(done & ~selected, 0u) << c.name << " block " << k;
+      // the lanes' det F, for the move phase's GIMP sizes, is Eigen's of the new F to the bit;
+      // the lanes they leave to the scalar update are not written
+      for (int l = 0; l < 8; ++l) {
+        const double want = (done >> l) & 1u ? lan.P.F[l].determinant() : -7.0;
+        EXPECT_EQ(std::memcmp(&det_f[l], &want, sizeof(double)), 0)
+            << c.name << " block " << k << " lane " << l;
+      }
       for (long p = 0; p < 8; ++p) {
         if (!sel(p) || ((done >> p) & 1u)) continue;
         const auto r = SL.update_booked(p, lan.m[p], dt, work_l, diss_l, bad_l);

@@ -93,7 +93,10 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
     double lam[D], inv[D];
   };
   SKRED_INLINE Size size(const GridGeometry<D>& g, const Vec<D>& half0, const Mat<D>& F) const {
-    const double J = F.determinant();
+    return size_at(g, half0, F.determinant());
+  }
+  // size() from J = det(F).
+  SKRED_INLINE Size size_at(const GridGeometry<D>& g, const Vec<D>& half0, double J) const {
     const double inv_h = 1.0 / g.h;
     Size s;
     if constexpr (D == 3) {
@@ -133,11 +136,21 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
   SKRED_INLINE void sizes(const GridGeometry<D>& g, const Vec<D>* __restrict half0,
                           const Mat<D>* __restrict F, int count, Size* __restrict out) const
       requires(D == 3) {
+    // (a loop over all lanes: over `count` alone, the compiler pairs the determinants'
+    // products into other multiply-adds, and J changes at round-off)
+    alignas(64) double J[kSizeLanes];
+    for (int l = 0; l < kSizeLanes; ++l) J[l] = l < count ? F[l].determinant() : 1.0;
+    sizes_at(g, half0, J, count, out);
+  }
+  // sizes() from the points' J = det(F).
+  SKRED_INLINE void sizes_at(const GridGeometry<D>& g, const Vec<D>* __restrict half0,
+                             const double* __restrict det_f, int count, Size* __restrict out) const
+      requires(D == 3) {
     constexpr int L = kSizeLanes;
     alignas(64) double J[L], y[L], h[L][3];
     for (int l = 0; l < L; ++l) {
       const bool real = l < count;
-      J[l] = real ? F[l].determinant() : 1.0;
+      J[l] = real ? det_f[l] : 1.0;
       for (int d = 0; d < 3; ++d) h[l][d] = real ? half0[l][d] : 1.0;
     }
     for (int l = 0; l < L; ++l) y[l] = gimp_cube_root_guess(J[l]);
@@ -145,7 +158,8 @@ struct GimpKernel : SeparableKernel<GimpKernel<D>, D, 3, 1> {
       for (int l = 0; l < L; ++l) y[l] = gimp_cube_root_step(J[l], y[l]);
     Size lanes[L];
     for (int l = 0; l < L; ++l) from_root(g, J[l], y[l], h[l], lanes[l].lam, lanes[l].inv);
-    for (int l = 0; l < count; ++l) out[l] = root_in_range(J[l], h[l]) ? lanes[l] : size(g, half0[l], F[l]);
+    for (int l = 0; l < count; ++l)
+      out[l] = root_in_range(J[l], h[l]) ? lanes[l] : size_at(g, half0[l], J[l]);
   }
   SKRED_INLINE bool shape(const GridGeometry<D>& g, const Vec<D>& x, const Size& size, Shape& sh) const {
     const double inv_h = 1.0 / g.h;

@@ -323,6 +323,11 @@ class ExplicitSolver {
   std::vector<double> node_mass_;      // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;      // nodal stresses for smoothing (eq. 4.18)
   std::vector<Vec<D>> node_velocity_;  // nodal velocities mapped with the smoothing
+  // det F_p^{k+1} of every point, written by the stress phase (3D GIMP) for the move phase of the
+  // same step, which then need not read F (docs/method.md, "det F from the stress phase"); fresh
+  // only from that phase to the end of the move phase.
+  std::vector<double> det_f_;
+  bool det_f_fresh_ = false;
   double time_ = 0.0;
   double ramp_start_ = 0.0;  // time at which the gravity ramp starts
   long steps_ = 0;

@@ -147,6 +147,7 @@ StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
   filter_step_ = filters_at(time_);
   status_ = StepStatus{};
+  det_f_fresh_ = false;  // (written by this step's stress phase, if at all)
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
   if (settings_.velocity_transfer == VelocityTransfer::Apic && particles_.affine.size() != particles_.size())
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
@@ -452,10 +453,11 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
         Vec<D>* __restrict mom = buffers.vec_target(t, f.momentum.data());
         BaseSpan span;
         SizeAhead<D, K> ahead;  // F is not changed here: the next point's size is formed ahead
+        const double* const det_f = det_f_fresh_ ? det_f_.data() : nullptr;
 #pragma omp for schedule(static) nowait
         for (long p = 0; p < n; ++p) {
           if (!sel(p)) continue;
-          const auto size = ahead.take(kernel, g, half0, F, p, n);
+          const auto size = ahead.take(kernel, g, half0, F, det_f, p, n);
           if constexpr (D == 3)  // the cache lines of a point 16 ahead (docs/method.md, "Prefetches")
             if (p + kMoveAhead < n) {
               const char* w = reinterpret_cast<const char*>(shape + p + kMoveAhead);
@@ -493,6 +495,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       all.merge(extent);
     });
     energy_.transfer_dissipation += lost;
+    det_f_fresh_ = false;
     if (contact_on()) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));

@@ -60,7 +60,8 @@ struct StressArrays {
   PointStress<D>* __restrict stress;
   PointState* __restrict state;
   const Material* mats;
-  bool single;  // one material: the ids need not be read
+  bool single;              // one material: the ids need not be read
+  double* det_f = nullptr;  // if set, receives each updated point's det F (3D GIMP's move phase reads it)
 
   StressArrays(Particles<D>& P, const std::vector<Material>& materials)
       : volume0(P.volume0.data()),

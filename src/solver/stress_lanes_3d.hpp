@@ -163,6 +163,7 @@ SKRED_INLINE unsigned update_block(const StressArrays<3>& S, long p0, const Sel&
   V8 v0;
   std::memcpy(&v0, S.volume0 + p0, sizeof(V8));
   const V8 volume = v0 * detf;
+  if (S.det_f) store<1>(S.det_f + p0, 0, detf, done);
 
   // the work (eq. 4.16), the stress, the check of the point, and -V sigma for the scatter
   V8 mid[6];

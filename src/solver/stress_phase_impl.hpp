@@ -14,6 +14,7 @@
 #include "solver/selective_shear.hpp"
 #include "solver/stress_arrays.hpp"
 #include "solver/stress_lanes_3d.hpp"
+#include "transfer/size_ahead.hpp"
 #include "transfer/transfers.hpp"
 
 namespace skred {
@@ -25,6 +26,7 @@ namespace skred {
 template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
+  det_f_fresh_ = false;
   if (settings_.volumetric_averaging) return stress_update_cell_volumetric(kernel, dt_stress);
   if (settings_.centre_shear) return stress_phase(kernel, dt_stress, std::true_type{});
   return stress_phase(kernel, dt_stress, std::false_type{});
@@ -41,10 +43,13 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
     const long n = static_cast<long>(P.size());
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
+    if constexpr (kSizeAhead<D, K>)
+      det_f_.resize(P.size());  // (the move phase's; its size changes with n only)
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-      const StressArrays<D> S(P, materials_);
+      StressArrays<D> S(P, materials_);
+      if constexpr (kSizeAhead<D, K>) S.det_f = det_f_.data();
       Vec<D>* const forces = f.internal_force.data();
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       const Vec<D>* __restrict vel = f.velocity.data();
@@ -80,6 +85,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
             if (!sel(p) || ((in_lanes >> (p - p0)) & 1u)) continue;
             const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
             m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
+            if constexpr (kSizeAhead<D, K>) S.det_f[p] = S.F[p].determinant();
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
@@ -100,6 +106,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
       energy_.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);
     });
+    det_f_fresh_ = kSizeAhead<D, K>;
     return phase_ok(first_bad, "material point became unstable (inverted or non-finite stress)");
   });
 }

@@ -34,18 +34,24 @@ struct SizeOf<K, true> {
 
 template <int D, class K>
 struct SizeAhead {
-  // What map_point takes as the point's size: K::Size, or half0 itself.
+  // What map_point takes as the point's size: K::Size, or half0 itself. From the points' det F
+  // if `det_f` is given (the stress phase of the step wrote it: docs/method.md, "det F from
+  // the stress phase"), else from F.
   SKRED_INLINE auto take(const K& kernel, const GridGeometry<D>& g, const Vec<D>* __restrict half0,
-                         const Mat<D>* __restrict F, long p, long n) {
+                         const Mat<D>* __restrict F, const double* __restrict det_f, long p, long n) {
     if constexpr (kSizeAhead<D, K>) {
       static_assert(K::kSizeLanes <= kBlock);
       if (p < first_ || p >= first_ + count_) {
         first_ = p;
         count_ = static_cast<int>(std::min<long>(K::kSizeLanes, n - p));
-        kernel.sizes(g, half0 + p, F + p, count_, block_);
-        // and asks for the cache lines of the F of the block after next (docs/method.md, "Prefetches")
-        for (long q = p + 2 * K::kSizeLanes; q < std::min(n, p + 3 * K::kSizeLanes); ++q)
-          __builtin_prefetch(F + q);
+        if (det_f) {
+          kernel.sizes_at(g, half0 + p, det_f + p, count_, block_);
+        } else {
+          kernel.sizes(g, half0 + p, F + p, count_, block_);
+          // and asks for the cache lines of the F of the block after next (docs/method.md, "Prefetches")
+          for (long q = p + 2 * K::kSizeLanes; q < std::min(n, p + 3 * K::kSizeLanes); ++q)
+            __builtin_prefetch(F + q);
+        }
       }
       return block_[p - first_];
     } else {
