@@ -3,6 +3,7 @@
 // an earlier run unless --overwrite, a killed run, an unstable time step, and the OpenMP wait
 // policy skred sets unless the user set one.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <sys/wait.h>
 
 #include <array>
@@ -231,6 +232,31 @@ TEST(CliRun, ShortSpinWaitByDefaultTheUsersOwnSettingOtherwise) {
   const Outcome active = sh(base + "OMP_WAIT_POLICY=active " + kSkred + " --version");
   EXPECT_NE(active.output.find("OMP_WAIT_POLICY = 'ACTIVE'"), std::string::npos) << active.output;
   EXPECT_NE(last_spin(active.output), "1000") << active.output;
+}
+
+// With binding asked for (OMP_PROC_BIND), the re-execution that sets the short spin keeps it:
+// libgomp (OMP_DISPLAY_AFFINITY) binds the two threads of a run to two different CPUs, as it
+// does without the re-execution, where before they both landed on the CPU libgomp had bound
+// the first image's initial thread to.
+TEST(CliRun, ThreadBindingSurvivesTheShortSpinReexecution) {
+  cpu_set_t mine;
+  ASSERT_EQ(sched_getaffinity(0, sizeof mine, &mine), 0);
+  if (CPU_COUNT(&mine) < 2) GTEST_SKIP() << "one CPU: two threads cannot be bound apart";
+  const std::string run =
+      kSkred + " bench --problem block --particles 1000 --steps 1 --repeats 1 --threads 2";
+  for (const char* bind : {"close", "spread"}) {
+    const Outcome r =
+        sh(std::string("env -u OMP_WAIT_POLICY -u GOMP_SPINCOUNT -u OMP_PLACES OMP_PROC_BIND=") + bind +
+           " OMP_DISPLAY_ENV=verbose OMP_DISPLAY_AFFINITY=true " + run);
+    ASSERT_EQ(r.code, 0) << r.output;
+    EXPECT_NE(r.output.find("GOMP_SPINCOUNT = '1000'"), std::string::npos) << r.output;  // re-executed
+    std::vector<std::string> cpus;
+    const std::regex aff_re(R"(level 1 thread \S+ affinity (\S+))");
+    for (std::sregex_iterator m(r.output.begin(), r.output.end(), aff_re), e; m != e; ++m)
+      cpus.push_back((*m)[1].str());
+    ASSERT_EQ(cpus.size(), 2u) << r.output;
+    EXPECT_NE(cpus[0], cpus[1]) << bind << ": both threads bound to CPU " << cpus[0] << "\n" << r.output;
+  }
 }
 
 // `skred sweep` over a 2 x 2 grid (repeated --set): one row per run with both keys' values,

@@ -13,8 +13,9 @@ inline constexpr const char* kDefaultSpinCount = "1000";
 // libgomp reads its environment once, when it is loaded, before main: so when neither
 // variable is set this sets GOMP_SPINCOUNT and re-executes the program (/proc/self/exe) with
 // the same arguments. Returns (without changing anything the user set) if a variable is
-// already set or the re-execution fails. Call first thing in main. (Setting either variable,
-// e.g. under a debugger, avoids the re-execution.)
+// already set or the re-execution fails. Thread binding the user asked for is kept (the
+// process gets back the CPUs of every place before it re-executes). Call first thing in
+// main. (Setting either variable, e.g. under a debugger, avoids the re-execution.)
 void apply_default_omp_wait_policy(char** argv);
 
 }  // namespace skred
