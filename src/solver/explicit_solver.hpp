@@ -325,7 +325,7 @@ class ExplicitSolver {
   std::vector<Vec<D>> node_velocity_;  // nodal velocities mapped with the smoothing
   // det F_p^{k+1} of every point, written by the stress phase (3D GIMP) for the move phase of the
   // same step, which then need not read F (docs/method.md, "det F from the stress phase"); fresh
-  // only from that phase to the end of the move phase.
+  // from that phase to the end of the step (the move is the step's last phase).
   std::vector<double> det_f_;
   bool det_f_fresh_ = false;
   double time_ = 0.0;

@@ -495,7 +495,6 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       all.merge(extent);
     });
     energy_.transfer_dissipation += lost;
-    det_f_fresh_ = false;
     if (contact_on()) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));

@@ -61,7 +61,7 @@ struct StressArrays {
   PointState* __restrict state;
   const Material* mats;
   bool single;              // one material: the ids need not be read
-  double* det_f = nullptr;  // if set, receives each updated point's det F (3D GIMP's move phase reads it)
+  double* det_f = nullptr;  // if set, update_booked and the 3D lanes write each updated point's det F
 
   StressArrays(Particles<D>& P, const std::vector<Material>& materials)
       : volume0(P.volume0.data()),
@@ -82,6 +82,7 @@ struct StressArrays {
   SKRED_INLINE StressUpdateResult update_booked(long p, const Mat<D>& grad_v, double dt, double& work,
                                                 double& dissipation, long& bad) const {
     const StressUpdateResult r = update(p, grad_v, dt);
+    if (det_f) det_f[p] = F[p].determinant();
     work += r.strain_energy;
     dissipation += r.dissipation;
     if (!sound_point(r, stress[p])) bad = std::min(bad, p);

@@ -26,7 +26,6 @@ namespace skred {
 template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_and_internal_force(const K& kernel, double dt_stress) {
-  det_f_fresh_ = false;
   if (settings_.volumetric_averaging) return stress_update_cell_volumetric(kernel, dt_stress);
   if (settings_.centre_shear) return stress_phase(kernel, dt_stress, std::true_type{});
   return stress_phase(kernel, dt_stress, std::false_type{});
@@ -85,7 +84,6 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
             if (!sel(p) || ((in_lanes >> (p - p0)) & 1u)) continue;
             const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
             m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
-            if constexpr (kSizeAhead<D, K>) S.det_f[p] = S.F[p].determinant();
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
