@@ -247,6 +247,7 @@ int main(int argc, char** argv) {
                  r.median / 1e6 / bo.threads);
       fmt::print("peak memory: {:.1f} MB, {:.0f} bytes per particle\n", r.peak_rss_bytes / 1e6,
                  r.peak_rss_bytes / r.particles);
+      if (bo.threads > 1) fmt::print("OpenMP wait: {}\n", skred::omp_wait_description());
       double total = 0.0;
       for (const auto& [name, s] : r.phase_seconds) total += s;
       fmt::print("time per phase (all repeats):\n");
