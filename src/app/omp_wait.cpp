@@ -113,7 +113,9 @@ void apply_default_omp_wait_policy(char** argv) {
   unbind_initial_thread();  // first: the CPUs counted below are the places' CPUs
   const int cpus = usable_cpus();
   const int threads = requested_threads(argv, std::getenv("OMP_NUM_THREADS"), cpus);
-  const bool idle = threads > 1 && cpus > 1 && machine_idle_for(other_runnable_tasks(15), cpus, threads);
+  // The load is read (28 ms) only where it can decide: more than one thread, on enough CPUs.
+  const bool idle =
+      threads > 1 && threads <= cpus && machine_idle_for(other_runnable_tasks(15), cpus, threads);
   const char* spin = idle ? kLongSpinCount : kShortSpinCount;
   if (setenv("GOMP_SPINCOUNT", spin, 1) != 0) return;
   setenv(kWaitChoiceVariable, (std::string(idle ? "idle " : "busy ") + spin).c_str(), 1);
@@ -133,7 +135,8 @@ std::string omp_wait_description() {
   if (marker == std::string("idle ") + spin)
     return std::string("spin ") + spin + " (the machine was idle as the run started)";
   if (marker == std::string("busy ") + spin)
-    return std::string("spin ") + spin + " (other processes held CPUs as the run started, or one thread)";
+    return std::string("spin ") + spin +
+           " (other processes held CPUs as the run started, or one thread, or more threads than CPUs)";
   return std::string("spin ") + spin + " (GOMP_SPINCOUNT set by the user)";
 }
 
