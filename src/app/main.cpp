@@ -174,8 +174,8 @@ int main(int argc, char** argv) {
       ->check(CLI::IsMember({1, 2}));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")
       ->check(CLI::IsMember({"usf", "usl", "averaged"}));
-  bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic")
-      ->check(CLI::IsMember({"flip", "xpic", "apic"}));
+  bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic | aflip")
+      ->check(CLI::IsMember({"flip", "xpic", "apic", "aflip"}));
   std::string volumetric = "point";
   bench
       ->add_option("--volumetric-strain", volumetric,
@@ -228,9 +228,10 @@ int main(int argc, char** argv) {
       bo.scheme = scheme == "usf"   ? skred::StressScheme::USF
                   : scheme == "usl" ? skred::StressScheme::USL
                                     : skred::StressScheme::Averaged;
-      bo.velocity_transfer = transfer == "xpic"   ? skred::VelocityTransfer::Xpic
-                             : transfer == "apic" ? skred::VelocityTransfer::Apic
-                                                  : skred::VelocityTransfer::Flip;
+      bo.velocity_transfer = transfer == "xpic"    ? skred::VelocityTransfer::Xpic
+                             : transfer == "apic"  ? skred::VelocityTransfer::Apic
+                             : transfer == "aflip" ? skred::VelocityTransfer::Aflip
+                                                   : skred::VelocityTransfer::Flip;
       bo.volumetric_averaging = volumetric == "cell-average";
       const auto r = skred::run_bench(bo);
       fmt::print(

@@ -115,10 +115,14 @@ void add_run_sections(std::vector<Section>& s) {
            {.name = "velocity_transfer",
             .type = Type::Choice,
             .def = derived("\"auto\""),
-            .choices = "auto|flip|xpic|apic",
+            .choices = "auto|flip|xpic|apic|aflip",
             .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
-                   "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017) or APIC (Jiang et "
-                   "al. 2015); all three work with [[contact]] and rigid bodies. \"auto\": \"xpic\" with "
+                   "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017), APIC (Jiang et "
+                   "al. 2015) or the affine FLIP (Fei et al. 2021: FLIP's update with APIC's map; its "
+                   "points keep FLIP's grid-invisible velocities, so a deposit whose motion has stopped "
+                   "may not reach a rest speed). FLIP, XPIC and APIC work with [[contact]] and rigid bodies; "
+                   "the affine FLIP is refused with [[contact]] (it gains energy there). \"auto\": \"xpic\" "
+                   "with "
                    "`xpic_period` 2 when a deformable body's material can yield (a slide comes to rest and "
                    "its runout does not follow the time step), else \"flip\" (keeps the energy of elastic "
                    "dynamics); `pic_fraction` alone picks \"flip\", `xpic_order` or `xpic_period` alone "

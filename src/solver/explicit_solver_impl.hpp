@@ -50,7 +50,8 @@ SKRED_INLINE bool move_point(const GridGeometry<D>& grid, const WallBox<D>& wall
 // N_ip a_i (acc_p = sum N_ip a_i, gathered by the caller), blended with a PIC share alpha of sum N_ip
 // v_i^{k+1}: v_p <- (1 - alpha) v_p^FLIP + alpha v_p^PIC. XPIC and APIC are alpha = 1 with their nodal
 // velocity in vnext; APIC also takes the affine velocity C_p = sum_i v_i^{k+1} (x) grad N_ip, the gradient
-// form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel). `lost` gains what the
+// form of Jiang et al. (2015)'s B_p D_p^-1 (equal to it for the linear kernel); the affine FLIP (Fei et
+// al. 2021) is FLIP (alpha = 0) with that C_p, and books only its affine part. `lost` gains what the
 // transfer took from the FLIP update. Under the PIC share and XPIC, whose change dv = v_p - v_p^FLIP
 // removes grid-scale motion that the time step's own energy error feeds, the energy it takes from the
 // scheme: (1/2) m_p (|v_p^FLIP|^2 - |v_p|^2) + w dt m_p dv . acc_p, with w = 1/2 for USF and USL (the
@@ -65,7 +66,10 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const GridGeometry<D>& g,
                                       double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
                                       double alpha, Mat<D>* affine, double m, double w, double& lost) {
   const Vec<D> flip = v + dt * acc_p;
-  if (alpha <= 0.0) return flip;
+  if (alpha <= 0.0) {  // FLIP; the affine FLIP (Fei et al. 2021) also takes APIC's C_p
+    if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);
+    return flip;
+  }
   Vec<D> vp;
   if (alpha >= 1.0) {
     if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);
@@ -105,8 +109,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   const VelocityTransfer vt = settings_.velocity_transfer;
   const bool pic = forms_velocity_next(), xpic = vt == VelocityTransfer::Xpic;
   fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, xpic);
-  // APIC's affine velocities start at zero; other transfers carry none.
-  if (vt == VelocityTransfer::Apic)
+  // APIC's and the affine FLIP's affine velocities start at zero; other transfers carry none.
+  if (carries_affine())
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   else
     particles_.affine.clear();
@@ -149,7 +153,7 @@ StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   status_ = StepStatus{};
   det_f_fresh_ = false;  // (written by this step's stress phase, if at all)
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
-  if (settings_.velocity_transfer == VelocityTransfer::Apic && particles_.affine.size() != particles_.size())
+  if (carries_affine() && particles_.affine.size() != particles_.size())
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   const bool fresh = !grid_mapped_;
   if (fresh && !map_mass_momentum(kernel)) return status_;
@@ -281,8 +285,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
-      Mat<D>* const affine =
-          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
       // One loop per transfer kind (APIC or not), so the FLIP loop carries no affine branch.
       const auto loop = [&](auto apic_tag) {
@@ -349,8 +352,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
-      const Mat<D>* const affine =
-          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      const Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
       const bool averaging = settings_.volumetric_averaging;  // cell-averaged volumetric strain
       if (averaging) cell_divergence(kernel, vnew, sel);
       const VolumetricAveraging<D>& A = volumetric_;
@@ -439,8 +441,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       const Vec<D>* __restrict stopped = f.stopped_acceleration.data();
       const bool from_flip = update_from_flip();
       const std::array<bool, 2 * D> stopping = stopping_walls_;
-      Mat<D>* const affine =
-          settings_.velocity_transfer == VelocityTransfer::Apic ? P.affine.data() : nullptr;
+      Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
       double affine_ke = 0.0;  // the new C_p's share of the kinetic energy (particle_velocity)

@@ -43,7 +43,7 @@ ParticleTotals<D> ExplicitSolver<D>::totals() const {
 template <int D>
 double ExplicitSolver<D>::affine_kinetic_energy() const {
   const auto& P = particles_;
-  if (settings_.velocity_transfer != VelocityTransfer::Apic || P.affine.size() != P.size()) return 0.0;
+  if (!carries_affine() || P.affine.size() != P.size()) return 0.0;
   return with_kernel<D>(settings_.interpolation, settings_.quadrature_points, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
     const GridGeometry<D>& g = grid();
