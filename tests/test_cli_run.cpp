@@ -82,7 +82,8 @@ TEST(CliRun, VersionNamesTheReleaseAndTheCommit) {
 
 TEST(CliRun, UsageErrorsExitWithCode4) {
   for (const char* args :
-       {"", " run", " frobnicate", " run x.toml", " bench --threads 0", " bench --problem block --dim 3"}) {
+       {"", " run", " frobnicate", " run x.toml", " bench --threads 0", " bench --problem block --dim 3",
+        " bench --problem column --bodies 2 --velocity-transfer aflip"}) {
     SCOPED_TRACE(args);
     const Outcome r = sh(kSkred + args);
     EXPECT_EQ(r.signal, 0);

@@ -216,6 +216,10 @@ int main(int argc, char** argv) {
         fmt::print(stderr, "skred: --bodies 2 is available for --problem column only\n");
         return code::kUsage;
       }
+      if (bo.bodies == 2 && transfer == "aflip") {  // as scenarios refuse it with [[contact]]
+        fmt::print(stderr, "skred: --velocity-transfer aflip is not available with --bodies 2 (contact)\n");
+        return code::kUsage;
+      }
       if (bo.xpic_period > 0 && transfer != "xpic") {
         fmt::print(stderr, "skred: --xpic-period applies to --velocity-transfer xpic only\n");
         return code::kUsage;

@@ -116,17 +116,17 @@ void add_run_sections(std::vector<Section>& s) {
             .type = Type::Choice,
             .def = derived("\"auto\""),
             .choices = "auto|flip|xpic|apic|aflip",
-            .doc = "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
-                   "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017), APIC (Jiang et "
-                   "al. 2015) or the affine FLIP (Fei et al. 2021: FLIP's update with APIC's map; its "
-                   "points keep FLIP's grid-invisible velocities, so a deposit whose motion has stopped "
-                   "may not reach a rest speed). FLIP, XPIC and APIC work with [[contact]] and rigid bodies; "
-                   "the affine FLIP is refused with [[contact]] (it gains energy there). \"auto\": \"xpic\" "
-                   "with "
-                   "`xpic_period` 2 when a deformable body's material can yield (a slide comes to rest and "
-                   "its runout does not follow the time step), else \"flip\" (keeps the energy of elastic "
-                   "dynamics); `pic_fraction` alone picks \"flip\", `xpic_order` or `xpic_period` alone "
-                   "\"xpic\" (docs/method.md, \"The defaults\")"},
+            .doc =
+                "the particle velocity update (docs/method.md, \"Velocity transfers\"): FLIP (Thesis "
+                "eq. 2.56, with `pic_fraction`), XPIC(m) (Hammerquist & Nairn 2017), APIC (Jiang et "
+                "al. 2015) or the affine FLIP (Fei et al. 2021: FLIP's update with APIC's map; its "
+                "points keep FLIP's grid-invisible velocities, so a deposit whose motion has stopped "
+                "may not reach a rest speed). FLIP, XPIC and APIC work with [[contact]] and rigid bodies; "
+                "the affine FLIP is refused with [[contact]] (it gains energy there). \"auto\": \"xpic\" "
+                "with `xpic_period` 2 when a deformable body's material can yield (a slide comes to rest and "
+                "its runout does not follow the time step), else \"flip\" (keeps the energy of elastic "
+                "dynamics); `pic_fraction` alone picks \"flip\", `xpic_order` or `xpic_period` alone "
+                "\"xpic\" (docs/method.md, \"The defaults\")"},
            {.name = "xpic_order",
             .type = Type::Integer,
             .def = value(2),

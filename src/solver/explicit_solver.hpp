@@ -252,7 +252,7 @@ class ExplicitSolver {
   template <class K>
   void xpic_grid_velocity(const K& kernel);
   // The PIC share of the particle update: pic_fraction for FLIP, 1 for APIC and for XPIC on its
-  // filter steps, 0 on XPIC's other steps (xpic_period).
+  // filter steps, 0 on XPIC's other steps (xpic_period) and for the affine FLIP.
   double pic_share() const {
     if (settings_.velocity_transfer == VelocityTransfer::Xpic) return filter_step_ ? 1.0 : 0.0;
     if (settings_.velocity_transfer == VelocityTransfer::Aflip) return 0.0;
@@ -266,16 +266,16 @@ class ExplicitSolver {
     return T <= 0.0 || std::floor((t + dt) / T) > std::floor(t / T);
   }
   // Whether the grid update forms v_i^{k+1} = p_i / m_i + dt a_i (velocity_next): for a PIC share
-  // of FLIP and for APIC (XPIC forms its own, xpic_grid_velocity).
+  // of FLIP and for the C_p of APIC and the affine FLIP (XPIC forms its own, xpic_grid_velocity).
   bool forms_velocity_next() const { return settings_.pic_fraction > 0.0 || carries_affine(); }
   // Whether the points carry an affine velocity C_p that the maps scatter (APIC, the affine FLIP).
   bool carries_affine() const {
     return settings_.velocity_transfer == VelocityTransfer::Apic ||
            settings_.velocity_transfer == VelocityTransfer::Aflip;
   }
-  // Whether the transfer's booked loss is taken from the FLIP update (FLIP without a PIC share, and
-  // APIC), or from the new velocity (the PIC share, XPIC): which form of the walls' share of the
-  // lumped mass's loss pairs with it (wall_update_loss in explicit_solver_impl.hpp).
+  // Whether the transfer's booked loss is taken from the FLIP update (FLIP without a PIC share,
+  // APIC and the affine FLIP), or from the new velocity (the PIC share, XPIC): which form of the walls' share
+  // of the lumped mass's loss pairs with it (wall_update_loss in explicit_solver_impl.hpp).
   bool update_from_flip() const {
     return carries_affine() ||
            (settings_.velocity_transfer == VelocityTransfer::Flip && settings_.pic_fraction <= 0.0) ||
