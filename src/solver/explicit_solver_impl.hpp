@@ -66,13 +66,10 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const GridGeometry<D>& g,
                                       double dt, const Vec<D>& acc_p, const Vec<D>* __restrict vnext,
                                       double alpha, Mat<D>* affine, double m, double w, double& lost) {
   const Vec<D> flip = v + dt * acc_p;
-  if (alpha <= 0.0) {  // FLIP; the affine FLIP (Fei et al. 2021) also takes APIC's C_p
-    if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);
-    return flip;
-  }
+  if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);  // APIC and the affine FLIP
+  if (alpha <= 0.0) return flip;
   Vec<D> vp;
   if (alpha >= 1.0) {
-    if (affine) *affine = apic_affine_velocity<K>(sh, g, strides, x, vnext);
     vp = gather(sh, strides, vnext);
   } else {
     vp = (1.0 - alpha) * flip + alpha * gather(sh, strides, vnext);
@@ -287,7 +284,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       const Vec<D>* __restrict vnext = f.velocity_next.data();
       Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
-      // One loop per transfer kind (APIC or not), so the FLIP loop carries no affine branch.
+      // One loop per transfer kind (an affine velocity or not), so the FLIP loop carries no affine branch.
       const auto loop = [&](auto apic_tag) {
         constexpr bool apic = decltype(apic_tag)::value;
 #pragma omp parallel num_threads(threads()) reduction(+ : lost)
