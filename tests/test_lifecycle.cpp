@@ -280,7 +280,7 @@ TEST(Lifecycle, PointsSplitAndRemovedMidRun) {
     std::vector<std::string> c;
     std::stringstream ls(line);
     for (std::string cell; std::getline(ls, cell, ',');) c.push_back(cell);
-    ASSERT_EQ(c.size(), 17u);
+    ASSERT_EQ(c.size(), 18u);  // (the last, material_speed: a FLIP stage's stop time reads it)
     m = Vec<2>(std::stod(c[11]), std::stod(c[12]));
     worst = std::max(worst, (std::stol(c[0]) <= 200 ? m : Vec<2>(m + mom_removed)).norm());
     counts.insert(std::stol(c[13]));

@@ -63,7 +63,8 @@ def plot_series(outdir, width=8.0, height=8.0, dpi=100):
     axes[0].set_title("energies and gravity work, from the start of each stage (series.csv)",
                       fontsize="medium")
     axes[0].legend(fontsize="small")
-    for key, label in (("mean_speed", "mean speed (mass-weighted)"), ("max_speed", "max speed")):
+    for key, label in (("mean_speed", "mean speed (mass-weighted)"), ("max_speed", "max speed"),
+                       ("material_speed", "the material's mean speed (rest test)")):
         if key in s:
             axes[1].plot(t, s[key], label=label)
     axes[1].set_ylabel("speed [m/s]")

@@ -20,9 +20,8 @@ const char* SeriesWriter::header() {
          "mean_speed,max_speed,momentum_x,momentum_y,num_particles,stage,runout,yielding_points\n";
 }
 
-SeriesWriter::SeriesWriter(const std::filesystem::path& file, bool momentum_z, bool contact_work,
-                           bool damping_work)
-    : file_(file), momentum_z_(momentum_z), contact_work_(contact_work), damping_work_(damping_work) {
+SeriesWriter::SeriesWriter(const std::filesystem::path& file, SeriesColumns extra)
+    : file_(file), extra_(extra) {
   rows_.reserve(4096);
   text_.reserve(4096 * 160);
 }
@@ -49,9 +48,10 @@ void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
                  r.time, r.kinetic_energy, r.strain_energy, r.gravity_work, r.plastic_dissipation,
                  r.friction_work, r.transfer_dissipation, total, r.mean_speed, r.max_speed, r.momentum_x,
                  r.momentum_y, r.num_particles, r.stage, r.runout, r.yielding_points);
-  if (momentum_z_) fmt::format_to(std::back_inserter(out), ",{}", r.momentum_z);
-  if (contact_work_) fmt::format_to(std::back_inserter(out), ",{}", r.contact_work);
-  if (damping_work_) fmt::format_to(std::back_inserter(out), ",{}", r.damping_work);
+  if (extra_.momentum_z) fmt::format_to(std::back_inserter(out), ",{}", r.momentum_z);
+  if (extra_.contact_work) fmt::format_to(std::back_inserter(out), ",{}", r.contact_work);
+  if (extra_.damping_work) fmt::format_to(std::back_inserter(out), ",{}", r.damping_work);
+  if (extra_.material_speed) fmt::format_to(std::back_inserter(out), ",{}", r.material_speed);
   out += '\n';
 }
 
@@ -96,8 +96,9 @@ void SeriesWriter::flush() {
   }
   write_file_atomically(file_, [&](std::ostream& os) {
     const std::string h = header();
-    os << h.substr(0, h.size() - 1) << (momentum_z_ ? ",momentum_z" : "")
-       << (contact_work_ ? ",contact_work" : "") << (damping_work_ ? ",damping_work" : "") << '\n';
+    os << h.substr(0, h.size() - 1) << (extra_.momentum_z ? ",momentum_z" : "")
+       << (extra_.contact_work ? ",contact_work" : "") << (extra_.damping_work ? ",damping_work" : "")
+       << (extra_.material_speed ? ",material_speed" : "") << '\n';
     os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   });
   started_ = true;

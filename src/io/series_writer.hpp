@@ -20,12 +20,21 @@ struct SeriesRow {
   double momentum_x;
   double momentum_y;
   long num_particles;
-  int stage;                  // zero-based stage index
-  double runout;              // front advance since the stage start [m] (StageTracker::runout)
-  long yielding_points;       // points whose last stress update was plastic
-  double momentum_z = 0.0;    // 3D runs only
-  double contact_work = 0.0;  // runs with contact only (Paper III §C.2.7)
-  double damping_work = 0.0;  // runs with local damping only (last column)
+  int stage;                    // zero-based stage index
+  double runout;                // front advance since the stage start [m] (StageTracker::runout)
+  long yielding_points;         // points whose last stress update was plastic
+  double momentum_z = 0.0;      // 3D runs only
+  double contact_work = 0.0;    // runs with contact only (Paper III §C.2.7)
+  double damping_work = 0.0;    // runs with local damping only
+  double material_speed = 0.0;  // runs with a stage that rests on it only (Stage::rest_measure)
+};
+
+// The columns only some runs have, in their order after yielding_points.
+struct SeriesColumns {
+  bool momentum_z = false;      // 3D runs
+  bool contact_work = false;    // runs with contact
+  bool damping_work = false;    // runs with a locally damped stage
+  bool material_speed = false;  // runs with a stage whose rest test reads the material's speed
 };
 
 // Collects rows in memory (for checkpoints). The first flush() writes the file atomically;
@@ -40,16 +49,15 @@ struct SeriesRow {
 // constant up to the time integration's error). 3D runs add a column momentum_z, runs with
 // contact a column contact_work (the energy the contact phase took out: friction between
 // bodies and the inelastic stop of approaching bodies), runs with a locally damped stage a
-// last column damping_work (the work of that damping). Gravity work, strain energy
+// column damping_work (the work of that damping), runs with a stage whose rest test reads
+// the material's speed a last column material_speed (ExplicitSolver::material_mean_speed).
+// Gravity work, strain energy
 // (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is
 // written as the shortest decimal that reads back to the identical double.
 class SeriesWriter {
  public:
-  // Nothing is written until the first flush().
-  // With momentum_z (3D runs) the rows end with a momentum_z column, then with contact_work
-  // (runs with contact) a contact_work column.
-  explicit SeriesWriter(const std::filesystem::path& file, bool momentum_z = false, bool contact_work = false,
-                        bool damping_work = false);
+  // Nothing is written until the first flush(). The rows end with the `extra` columns asked for.
+  explicit SeriesWriter(const std::filesystem::path& file, SeriesColumns extra = {});
   // Flushes rows added since the last flush(); errors are swallowed here (call flush()
   // yourself to see them), so a run that ends by an exception still leaves its series.
   ~SeriesWriter();
@@ -69,9 +77,7 @@ class SeriesWriter {
  private:
   std::filesystem::path file_;
   std::vector<SeriesRow> rows_;
-  bool momentum_z_ = false;
-  bool contact_work_ = false;
-  bool damping_work_ = false;
+  SeriesColumns extra_;
   std::string text_;  // the formatted rows not yet written
   bool dirty_ = false;
   bool started_ = false;  // the file was written once: later flushes append

@@ -90,7 +90,7 @@ std::string stages_json(const std::vector<StageMeasures>& stages) {
         "\"ended_by\": {},\n     \"runout\": {}, \"runout_x_min\": {}, \"runout_x_max\": {}, "
         "\"max_displacement\": {}, "
         "\"height_start\": {}, \"height_end\": {},\n     \"peak_mean_speed\": {}, "
-        "\"peak_time\": {}, \"final_mean_speed\": {}, \"stop_time\": {},\n     "
+        "\"peak_time\": {}, \"final_mean_speed\": {}, \"stop_time\": {}, \"rest_measure\": {},\n     "
         "\"gravity_work\": {}, \"kinetic_energy_change\": {}, \"strain_energy\": {}, "
         "\"plastic_dissipation\": {},\n     \"plastic_volume\": {}, \"plastic_points\": {},\n     "
         "\"dilated_points\": {}, \"dilated_first_time\": {}, \"dilated_last_time\": {}}}",
@@ -98,8 +98,8 @@ std::string stages_json(const std::vector<StageMeasures>& stages) {
         json_string(m.ended_by), num(m.runout), num(m.runout_x_min), num(m.runout_x_max) + z_runout(m),
         num(m.max_displacement), num(m.height_start), num(m.height_end), num(m.peak_mean_speed),
         num(m.peak_time), num(m.final_mean_speed), m.stop_time ? num(*m.stop_time) : std::string("null"),
-        num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy), num(m.plastic_dissipation),
-        num(m.plastic_volume), m.plastic_points, m.dilated_points,
+        json_string(m.rest_measure), num(m.gravity_work), num(m.kinetic_energy_change), num(m.strain_energy),
+        num(m.plastic_dissipation), num(m.plastic_volume), m.plastic_points, m.dilated_points,
         m.dilated_first_time ? num(*m.dilated_first_time) : std::string("null"),
         m.dilated_last_time ? num(*m.dilated_last_time) : std::string("null"));
   }

@@ -47,6 +47,7 @@ void archive_row(A& a, SeriesRow& r) {
   a(r.momentum_z);
   a(r.contact_work);
   a(r.damping_work);
+  a(r.material_speed);
 }
 
 // The run's state besides the particles, in payload order.

@@ -175,9 +175,13 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   std::vector<Sym3> stress_from_Fe;
   const bool damped =
       std::any_of(s.stages.begin(), s.stages.end(), [](const Stage& st) { return st.local_damping > 0.0; });
-  SeriesWriter series(outdir / "series.csv", D == 3,  // 3D: with momentum_z
-                      solver.contact_on(),            // contact: with contact_work
-                      damped);                        // local damping: with damping_work
+  // Stage::rest_measure: a stage whose rest test reads the material's speed
+  const bool material_speed = std::any_of(s.stages.begin(), s.stages.end(),
+                                          [&](const Stage& st) { return rests_on_material(s, st); });
+  SeriesWriter series(outdir / "series.csv", {.momentum_z = D == 3,
+                                              .contact_work = solver.contact_on(),
+                                              .damping_work = damped,
+                                              .material_speed = material_speed});
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
@@ -265,8 +269,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     watch.begin_stage(tracker.kinetic_start());
     auto sample = [&]() {
       const ParticleTotals<D> t = solver.totals();
-      series.add(series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
-                            tracker.runout(particles)));
+      SeriesRow row = series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
+                                 tracker.runout(particles));
+      if (material_speed) row.material_speed = solver.material_mean_speed();
+      series.add(row);
       if (std::string why = watch.check(t, solver.energy()); !why.empty())
         stop_unstable(std::move(why), offending_point(particles));
       else if (watch.observe_dilation(particles))  // once, when the limit is first passed
@@ -274,7 +280,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                    watch.dilation_note());
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
                            solver.time() - stage_start < density.ramp_end();
-      return tracker.observe(solver.time(), t.mean_speed) && !ramping;
+      return tracker.observe(solver.time(), t.mean_speed,
+                             rests_on_material(s, st) ? row.material_speed : t.mean_speed) &&
+             !ramping;
     };
     if (begins) sample();
     if (begins && k == 0 && unstable.ok) {
@@ -354,6 +362,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     at.finished.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
                                          t.kinetic_energy, e.gravity_work, e.strain_energy,
                                          e.plastic_dissipation, ended_by));
+    at.finished.back().rest_measure = rests_on_material(s, st) ? "material" : "points";
     at.in_stage = false;
     at.stage = k + 1;
   }

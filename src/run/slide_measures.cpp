@@ -63,15 +63,15 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
 }
 
 template <int D>
-bool StageTracker<D>::observe(double time, double mean_speed) {
+bool StageTracker<D>::observe(double time, double mean_speed, double rest_measure_speed) {
   if (mean_speed > m_.peak_mean_speed) {
     m_.peak_mean_speed = mean_speed;
     m_.peak_time = time - m_.start_time;
   }
   m_.final_mean_speed = mean_speed;
-  samples_.emplace_back(time, mean_speed);
+  samples_.emplace_back(time, rest_measure_speed);
   if (rest_speed_ <= 0.0) return false;
-  if (mean_speed >= rest_speed_) {
+  if (rest_measure_speed >= rest_speed_) {
     quiet_since_.reset();
     return false;
   }

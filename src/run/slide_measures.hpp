@@ -78,6 +78,7 @@ void archive_measures(A& a, StageMeasures& m) {
   a(m.plastic_volume);
   a(m.plastic_points);
   a(m.stop_time);
+  a(m.rest_measure);
   a(m.dilated_points);
   a(m.dilated_first_time);
   a(m.dilated_last_time);
@@ -100,8 +101,10 @@ class StageTracker {
   StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy, double rest_speed,
                double rest_time, double x0, double width, double length, double thickness = 0.0,
                double z0 = 0.0, double z_length = 0.0);
-  // Records a sample of the mean speed at `time`; true once the rest criterion is met.
-  bool observe(double time, double mean_speed);
+  // Records a sample of the mean speed at `time` (eq. 5.12: peak and final speed) and of the
+  // speed the rest test reads (`rest_measure_speed`: the same, or the material's, as
+  // Stage::rest_measure says; also the stop time's); true once the rest criterion is met.
+  bool observe(double time, double mean_speed, double rest_measure_speed);
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
                        double gravity_work, double strain_energy, double plastic_dissipation,
                        const std::string& ended_by) const;

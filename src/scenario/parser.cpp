@@ -255,6 +255,11 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
       t.fail_at("rest_time", "only allowed together with rest_speed > 0");
     st.rest_time = t.number_or("rest_time", 0.0);
     if (st.rest_speed > 0.0 && !t.has("rest_time")) t.fail_missing("rest_time");
+    st.rest_measure = t.choice<Stage::RestMeasure>("rest_measure",
+                                                   {{"auto", Stage::RestMeasure::Auto},
+                                                    {"points", Stage::RestMeasure::Points},
+                                                    {"material", Stage::RestMeasure::Material}},
+                                                   Stage::RestMeasure::Auto);
     st.local_damping = t.number("local_damping");
     st.runout_thickness = t.number_or("runout_thickness", 0.0);
     s.end_time += st.duration;

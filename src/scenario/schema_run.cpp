@@ -205,6 +205,14 @@ void add_run_sections(std::vector<Section>& s) {
             .def = derived("required with rest_speed"),
             .range = Range::positive(kMaxTime),
             .doc = "see `rest_speed`"},
+           {.name = "rest_measure",
+            .type = Type::Choice,
+            .def = derived("\"auto\""),
+            .choices = "auto|points|material",
+            .doc = "the speed `rest_speed` is compared with: the points' own (\"points\", eq. 5.12) or "
+                   "the material's, sum_i N_ip v_i at each point (\"material\", eq. 2.55: what moves "
+                   "it); \"auto\" takes the material's with pure FLIP and the affine FLIP, whose points "
+                   "keep velocities the grid cannot see (docs/method.md, \"The rest test\")"},
            {.name = "runout_thickness",
             .unit = "m",
             .def = derived("half a cell"),

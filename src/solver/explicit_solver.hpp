@@ -143,6 +143,13 @@ class ExplicitSolver {
   double dt() const { return settings_.dt; }
   const EnergyTotals& energy() const { return energy_; }
   ParticleTotals<D> totals() const;
+  // The mean speed the material moves with: sum_p m_p |sum_i N_ip v_i| / sum_p m_p, v_i = p_i / m_i
+  // under the velocity conditions (eq. 2.23), from the map the next step starts from (made here
+  // if the points changed since the last step; with contact each body's own fields). Eq. 5.12
+  // takes |v_p| instead; a FLIP point's
+  // v_p also carries velocities the grid cannot see, while it moves with sum_i N_ip v_i
+  // (eq. 2.55). Infinite if the map fails (the next step then reports the point).
+  double material_mean_speed();
   double affine_kinetic_energy() const;  // APIC's share of the kinetic energy
   const GridGeometry<D>& grid() const { return transfer_.grid(); }
   const GridFields<D>& fields() const { return fields_; }
@@ -322,11 +329,12 @@ class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
-  bool filter_step_ = true;            // this step filters the velocity (XPIC; filters_at)
-  std::size_t mapped_points_ = 0;      // the number of points the map was made for
-  std::vector<double> node_mass_;      // nodal mass of the smoothing (eq. 4.18)
-  std::vector<Sym3> node_stress_;      // nodal stresses for smoothing (eq. 4.18)
-  std::vector<Vec<D>> node_velocity_;  // nodal velocities mapped with the smoothing
+  bool filter_step_ = true;              // this step filters the velocity (XPIC; filters_at)
+  std::size_t mapped_points_ = 0;        // the number of points the map was made for
+  std::vector<double> node_mass_;        // nodal mass of the smoothing (eq. 4.18)
+  std::vector<Sym3> node_stress_;        // nodal stresses for smoothing (eq. 4.18)
+  std::vector<Vec<D>> node_velocity_;    // nodal velocities mapped with the smoothing
+  GridArray<Vec<D>> material_velocity_;  // v_i of material_mean_speed(), over the box
   // det F_p^{k+1} of every point, written by the stress phase (3D GIMP) for the move phase of the
   // same step, which then need not read F (docs/method.md, "det F from the stress phase"); fresh
   // from that phase to the end of the step (the move is the step's last phase).

@@ -61,6 +61,43 @@ double ExplicitSolver<D>::affine_kinetic_energy() const {
 }
 
 template <int D>
+double ExplicitSolver<D>::material_mean_speed() {
+  const auto& P = particles_;
+  if (P.size() == 0) return 0.0;
+  if (mapped_points_ != P.size()) grid_mapped_ = false;
+  if (!grid_mapped_ && !map_grid().ok) return INFINITY;
+  material_velocity_.resize(fields_.size());  // zero pages, once
+  return dispatch([&](const auto& kernel) {
+    using K = std::decay_t<decltype(kernel)>;
+    const long n = static_cast<long>(P.size());
+    const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+    double m = 0.0, speed_mass = 0.0;
+    // sum_p m_p |sum_i N_ip v_i| over the points of `body` (-1: every point) from the fields m_i, p_i.
+    const auto add = [&](const GridFields<D>& f, int body) {
+      const double* __restrict mass = f.mass.data();
+      const Vec<D>* __restrict mom = f.momentum.data();
+      Vec<D>* __restrict vel = material_velocity_.data();
+      transfer_.for_box(
+          [&](std::size_t i) { vel[i] = mass[i] > 0.0 ? Vec<D>(mom[i] / mass[i]) : Vec<D>::Zero(); });
+      boundaries_.constrain_velocity(material_velocity_, transfer_.box());
+#pragma omp parallel for num_threads(threads()) schedule(static) reduction(+ : m, speed_mass)
+      for (long q = 0; q < n; ++q) {
+        if (body >= 0 && P.body[q] != body) continue;
+        typename K::Shape sh;
+        kernel.load(shape[q], transfer_.grid(), P.x[q], P.half0[q], sh);
+        m += P.mass[q];
+        speed_mass += P.mass[q] * gather(sh, transfer_.strides(), vel).norm();
+      }
+    };
+    if (!contact_on())
+      add(fields_, -1);
+    else  // each body moves with its own fields (Paper III §C.2.7)
+      for (std::size_t b = 0; b < bodies_.size(); ++b) add(bodies_[b], static_cast<int>(b));
+    return m > 0.0 ? speed_mass / m : 0.0;
+  });
+}
+
+template <int D>
 void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>& out) {
   dispatch([&](const auto& kernel) { smoothed_stress_with(kernel, out); });
 }
@@ -127,6 +164,7 @@ void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double grav
 #define SKRED_RESULTS(D)                                                \
   template ParticleTotals<D> ExplicitSolver<D>::totals() const;         \
   template double ExplicitSolver<D>::affine_kinetic_energy() const;     \
+  template double ExplicitSolver<D>::material_mean_speed();             \
   template void ExplicitSolver<D>::smoothed_stress(std::vector<Sym3>&); \
   template void ExplicitSolver<D>::reset_reference();                   \
   template void ExplicitSolver<D>::begin_stage(std::vector<Material>, double);

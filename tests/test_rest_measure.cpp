@@ -1,0 +1,146 @@
+// The rest test on the speed the material moves with (Stage::rest_measure,
+// ExplicitSolver::material_mean_speed; docs/method.md, "The rest test"). A FLIP point's v_p
+// carries velocities the grid cannot see (FLIP's null space); the point moves with
+// sum_i N_ip v_i (Thesis eq. 2.55), so a deposit can stand still while eq. 5.12's mean speed of
+// the points does not fall.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "run/simulation.hpp"
+#include "scenario/scenario.hpp"
+#include "support.hpp"
+#include "temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace skred;
+using namespace skred::test;
+
+namespace {
+
+// Every row of a series.csv, as column name -> value.
+std::vector<std::map<std::string, double>> series_rows(const fs::path& file) {
+  std::ifstream in(file);
+  std::string header, line;
+  std::getline(in, header);
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::istringstream h(header), v(line);
+    std::string name, value;
+    auto& row = rows.emplace_back();
+    while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
+  }
+  return rows;
+}
+
+struct ColumnRun {
+  RunResult result;
+  std::vector<std::map<std::string, double>> series;
+};
+
+// examples/soil_column.toml (h = 0.5 m, 1800 points) under pure FLIP, its stage's rest test on
+// `measure` ("" leaves the key out: "auto").
+ColumnRun flip_column(const std::string& measure) {
+  std::string text =
+      with_transfer(read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml"),
+                    "velocity_transfer = \"flip\"");
+  const std::string rest = "rest_speed = 0.005\n";
+  const auto at = text.find(rest);
+  if (at == std::string::npos) throw std::runtime_error("the example's rest_speed line is not in it");
+  if (!measure.empty()) text.insert(at + rest.size(), "rest_measure = \"" + measure + "\"\n");
+  const fs::path out = fresh_temp_dir();
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  ColumnRun r{run_simulation(parse_scenario(text, "column.toml"), out, opt), {}};
+  r.series = series_rows(out / "series.csv");
+  fs::remove_all(out);
+  return r;
+}
+
+}  // namespace
+
+TEST(RestMeasure, MaterialSpeedOfAUniformTranslationIsItsSpeed) {
+  // p_i = sum N_ip m_p v0 = m_i v0 at every node the block reaches, and sum_i N_ip = 1: every
+  // kernel's material speed is |v0|, to round-off, as the points' own.
+  for (Interpolation k : {Interpolation::Linear, Interpolation::Gimp, Interpolation::Bspline}) {
+    Particles<2> P;
+    const Vec<2> v0(0.3, -0.4);
+    const Material m = elastic(1000.0, 1.0e4, 0.3);
+    fill_rectangle(P, m, 0.1, 2, 0.6, 0.6, 1.4, 1.4, v0);
+    SolverSettings<2> st;
+    st.interpolation = k;
+    st.dt = 1e-4;
+    ExplicitSolver<2> solver(grid2(0.1, 20, 20), P, {m}, st, 2);
+    EXPECT_NEAR(solver.material_mean_speed(), 0.5, 1e-14) << to_string(k);  // before any step
+    ASSERT_TRUE(solver.step().ok);
+    EXPECT_NEAR(solver.material_mean_speed(), 0.5, 1e-12) << to_string(k);
+    EXPECT_NEAR(solver.totals().mean_speed, 0.5, 1e-12) << to_string(k);
+  }
+}
+
+TEST(RestMeasure, FlipColumnRestsOnTheMaterialsSpeedWhereItsPointsNeverDo) {
+  // The Thesis §5.1 column of examples/soil_column.toml under pure FLIP. On the points' own speed
+  // (eq. 5.12) its stage runs its whole 6 s: the points keep a mean speed of about 0.05 m/s,
+  // ten times the rest speed of 0.005 m/s. On the material's ("auto" under FLIP) it ends at rest.
+  const ColumnRun points = flip_column("points");
+  const ColumnRun material = flip_column("");
+  ASSERT_TRUE(points.result.completed && material.result.completed);
+  const StageMeasures& p = points.result.stages.back();
+  const StageMeasures& m = material.result.stages.back();
+  EXPECT_EQ(p.rest_measure, "points");
+  EXPECT_EQ(m.rest_measure, "material");
+  EXPECT_EQ(p.ended_by, "duration");
+  EXPECT_EQ(m.ended_by, "rest");
+  EXPECT_GT(p.final_mean_speed, 5 * 0.005);  // the points still carry their null-space speed
+  ASSERT_FALSE(points.series.back().contains("material_speed"));  // a column only where it is read
+  const auto& last = material.series.back();
+  std::printf(
+      "FLIP column: on the points' speed %s at %.2f s, runout %.4f m, mean speed %.4f m/s; on the "
+      "material's %s at %.2f s, runout %.4f m, points' speed %.4f m/s, material's %.5f m/s\n",
+      p.ended_by.c_str(), p.end_time, p.runout, p.final_mean_speed, m.ended_by.c_str(), m.end_time, m.runout,
+      last.at("mean_speed"), last.at("material_speed"));
+  EXPECT_LT(last.at("material_speed"), 0.005);
+  EXPECT_GT(last.at("mean_speed"), 5 * 0.005);
+  // Computing the measure changes nothing: both runs' rows are the same to the bit up to the rest.
+  ASSERT_LE(material.series.size(), points.series.size());
+  for (std::size_t i = 0; i < material.series.size(); ++i)
+    for (const char* key : {"kinetic_energy", "gravity_work", "runout", "mean_speed"})
+      ASSERT_EQ(material.series[i].at(key), points.series[i].at(key)) << key << " at row " << i;
+  // The deposit had stopped: over the 3.4 s the points' run goes on, its front moves by less
+  // than material moving at the rest speed would, (6 s - the rest's end) x 0.005 m/s.
+  const double on = p.end_time - m.end_time;
+  EXPECT_GT(on, 2.0);
+  EXPECT_LT(std::abs(p.runout - m.runout), 0.005 * on);
+}
+
+TEST(RestMeasure, ScenarioKeyAndWhatAutoPicks) {
+  const std::string base = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  const auto with = [&](const std::string& transfer, const std::string& measure = "") {
+    std::string text = with_transfer(base, transfer);
+    if (!measure.empty()) text.replace(text.find("rest_speed = "), 0, "rest_measure = " + measure + "\n");
+    const Scenario s = parse_scenario(text, "column.toml");
+    return rests_on_material(s, s.stages.back());
+  };
+  EXPECT_TRUE(with("velocity_transfer = \"flip\""));
+  EXPECT_TRUE(with("velocity_transfer = \"aflip\""));
+  EXPECT_FALSE(with("velocity_transfer = \"flip\"\npic_fraction = 0.05"));  // a PIC share damps it
+  EXPECT_FALSE(with("velocity_transfer = \"xpic\""));
+  EXPECT_FALSE(with("velocity_transfer = \"apic\""));
+  EXPECT_FALSE(with(""));  // the slide's default, XPIC once per 2 h/c
+  EXPECT_TRUE(with("velocity_transfer = \"xpic\"", "\"material\""));
+  EXPECT_FALSE(with("velocity_transfer = \"flip\"", "\"points\""));
+  try {
+    (void)with("", "\"grid\"");
+    ADD_FAILURE() << "rest_measure = \"grid\" was accepted";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("rest_measure"), std::string::npos) << e.what();
+  }
+}
