@@ -45,9 +45,16 @@ struct ColumnRun {
   std::vector<std::map<std::string, double>> series;
 };
 
+std::string read(const fs::path& f) {
+  std::ifstream in(f, std::ios::binary);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
 // examples/soil_column.toml (h = 0.5 m, 1800 points) under pure FLIP, its stage's rest test on
 // `measure` ("" leaves the key out: "auto").
-ColumnRun flip_column(const std::string& measure) {
+std::string flip_column_text(const std::string& measure) {
   std::string text =
       with_transfer(read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml"),
                     "velocity_transfer = \"flip\"");
@@ -55,6 +62,11 @@ ColumnRun flip_column(const std::string& measure) {
   const auto at = text.find(rest);
   if (at == std::string::npos) throw std::runtime_error("the example's rest_speed line is not in it");
   if (!measure.empty()) text.insert(at + rest.size(), "rest_measure = \"" + measure + "\"\n");
+  return text;
+}
+
+ColumnRun flip_column(const std::string& measure) {
+  const std::string text = flip_column_text(measure);
   const fs::path out = fresh_temp_dir();
   RunOptions opt;
   opt.progress = false;
@@ -92,6 +104,7 @@ TEST(RestMeasure, FlipColumnRestsOnTheMaterialsSpeedWhereItsPointsNeverDo) {
   // ten times the rest speed of 0.005 m/s. On the material's ("auto" under FLIP) it ends at rest.
   const ColumnRun points = flip_column("points");
   const ColumnRun material = flip_column("");
+  const ColumnRun moved = flip_column("displacement");
   ASSERT_TRUE(points.result.completed && material.result.completed);
   const StageMeasures& p = points.result.stages.back();
   const StageMeasures& m = material.result.stages.back();
@@ -119,6 +132,20 @@ TEST(RestMeasure, FlipColumnRestsOnTheMaterialsSpeedWhereItsPointsNeverDo) {
   const double on = p.end_time - m.end_time;
   EXPECT_GT(on, 2.0);
   EXPECT_LT(std::abs(p.runout - m.runout), 0.005 * on);
+  // On the displacement over windows of rest_time (0.3 s) it rests too, at the end of the first
+  // window in which the points moved on average slower than the rest speed; the rows up to then
+  // are again the points' run's, and its front moves on as little.
+  ASSERT_TRUE(moved.result.completed);
+  const StageMeasures& d = moved.result.stages.back();
+  std::printf("on the displacement: %s at %.2f s, runout %.4f m, stop time %.2f s\n", d.ended_by.c_str(),
+              d.end_time, d.runout, d.stop_time.value_or(NAN));
+  EXPECT_EQ(d.rest_measure, "displacement");
+  EXPECT_EQ(d.ended_by, "rest");
+  ASSERT_TRUE(d.stop_time.has_value());
+  EXPECT_NEAR(d.end_time - (d.start_time + *d.stop_time), 0.3, 1e-6);  // the quiet window
+  for (std::size_t i = 0; i < moved.series.size(); ++i)
+    ASSERT_EQ(moved.series[i].at("runout"), points.series[i].at("runout")) << "row " << i;
+  EXPECT_LT(std::abs(p.runout - d.runout), 0.005 * (p.end_time - d.end_time));
 }
 
 TEST(RestMeasure, ScenarioKeyAndWhatAutoPicks) {
@@ -127,20 +154,50 @@ TEST(RestMeasure, ScenarioKeyAndWhatAutoPicks) {
     std::string text = with_transfer(base, transfer);
     if (!measure.empty()) text.replace(text.find("rest_speed = "), 0, "rest_measure = " + measure + "\n");
     const Scenario s = parse_scenario(text, "column.toml");
-    return rests_on_material(s, s.stages.back());
+    return std::string(to_string(rest_measure_of(s, s.stages.back())));
   };
-  EXPECT_TRUE(with("velocity_transfer = \"flip\""));
-  EXPECT_TRUE(with("velocity_transfer = \"aflip\""));
-  EXPECT_FALSE(with("velocity_transfer = \"flip\"\npic_fraction = 0.05"));  // a PIC share damps it
-  EXPECT_FALSE(with("velocity_transfer = \"xpic\""));
-  EXPECT_FALSE(with("velocity_transfer = \"apic\""));
-  EXPECT_FALSE(with(""));  // the slide's default, XPIC once per 2 h/c
-  EXPECT_TRUE(with("velocity_transfer = \"xpic\"", "\"material\""));
-  EXPECT_FALSE(with("velocity_transfer = \"flip\"", "\"points\""));
+  EXPECT_EQ(with("velocity_transfer = \"flip\""), "material");
+  EXPECT_EQ(with("velocity_transfer = \"aflip\""), "material");
+  EXPECT_EQ(with("velocity_transfer = \"flip\"\npic_fraction = 0.05"), "points");  // a PIC share damps it
+  EXPECT_EQ(with("velocity_transfer = \"xpic\""), "points");
+  EXPECT_EQ(with("velocity_transfer = \"apic\""), "points");
+  EXPECT_EQ(with(""), "points");  // the slide's default, XPIC once per 2 h/c
+  EXPECT_EQ(with("velocity_transfer = \"xpic\"", "\"material\""), "material");
+  EXPECT_EQ(with("velocity_transfer = \"flip\"", "\"points\""), "points");
+  EXPECT_EQ(with("velocity_transfer = \"apic\"", "\"displacement\""), "displacement");
   try {
     (void)with("", "\"grid\"");
     ADD_FAILURE() << "rest_measure = \"grid\" was accepted";
   } catch (const ScenarioError& e) {
     EXPECT_NE(std::string(e.what()).find("rest_measure"), std::string::npos) << e.what();
   }
+}
+
+TEST(RestMeasure, ARestartInsideADisplacementWindowEndsTheStageAsTheUninterruptedRun) {
+  // The window's start and the points' positions then (x_rest) are in the checkpoint: stopped at
+  // step 2500, inside the window of 2.4-2.7 s that ends the stage, the restarted run ends where
+  // the uninterrupted one does, with the same series to the bit.
+  const Scenario s = parse_scenario(flip_column_text("displacement"), "column.toml");
+  const fs::path dir = fresh_temp_dir();
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  opt.checkpoint_every = 1000000;  // only the final one
+  const RunResult a = run_simulation(s, dir / "a", opt);
+  ASSERT_TRUE(a.completed) << a.message;
+  RunOptions stop = opt;
+  stop.stop_at_step = 2500;
+  ASSERT_TRUE(run_simulation(s, dir / "b", stop).interrupted);
+  RunOptions again = opt;
+  again.restart = dir / "b" / "checkpoint.skc";
+  const RunResult c = run_simulation(s, dir / "b", again);
+  ASSERT_TRUE(c.completed) << c.message;
+  ASSERT_EQ(a.stages.back().ended_by, "rest");
+  EXPECT_GT(a.steps, 2500);
+  EXPECT_EQ(c.steps, a.steps);
+  EXPECT_EQ(c.stages.back().ended_by, "rest");
+  EXPECT_EQ(c.stages.back().stop_time, a.stages.back().stop_time);
+  EXPECT_EQ(c.stages.back().runout, a.stages.back().runout);
+  EXPECT_EQ(read(dir / "a" / "series.csv"), read(dir / "b" / "series.csv"));
+  fs::remove_all(dir);
 }

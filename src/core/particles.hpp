@@ -73,6 +73,9 @@ struct Particles {
   // Affine velocity C_p of the APIC transfer (Jiang et al. 2015), carried to the nodes by the
   // next map; stored only while that transfer is used (empty: zero).
   std::vector<Mat<D>> affine;
+  // Positions at the start of the rest test's window (Stage::rest_measure "displacement", set by
+  // the StageTracker); stored only while a stage uses it.
+  std::vector<Vec<D>> x_rest;
 
   // The field list: every per-point array, once, with the value of a new point.
   static constexpr auto fields() {
@@ -98,6 +101,7 @@ struct Particles {
                                   true},
         ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
         ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); }, true},
+        ParticleField<Pt, Vec<D>>{"x_rest", &Pt::x_rest, +[] { return Vec<D>(Vec<D>::Zero()); }, true},
     };
   }
 
@@ -170,6 +174,10 @@ struct Particles {
     x[q] += shift;
     x_ref[p] -= shift_ref;
     x_ref[q] += shift_ref;
+    if (!x_rest.empty()) {  // a split moves no material: the halves' window starts where they are
+      x_rest[p] -= shift;
+      x_rest[q] += shift;
+    }
     mass[p] *= 0.5;
     mass[q] = mass[p];
     volume0[p] *= 0.5;

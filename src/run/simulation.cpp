@@ -176,8 +176,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const bool damped =
       std::any_of(s.stages.begin(), s.stages.end(), [](const Stage& st) { return st.local_damping > 0.0; });
   // Stage::rest_measure: a stage whose rest test reads the material's speed
-  const bool material_speed = std::any_of(s.stages.begin(), s.stages.end(),
-                                          [&](const Stage& st) { return rests_on_material(s, st); });
+  const bool material_speed = std::any_of(s.stages.begin(), s.stages.end(), [&](const Stage& st) {
+    return rest_measure_of(s, st) == Stage::RestMeasure::Material;
+  });
   SeriesWriter series(outdir / "series.csv", {.momentum_z = D == 3,
                                               .contact_work = solver.contact_on(),
                                               .damping_work = damped,
@@ -250,6 +251,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     strength = material_strengths(stage_materials(s, as_plastic));
     const long stage_steps = stage_step_count(st.duration, dt);
     const bool begins = !at.in_stage;  // false for the stage a restart continues
+    const Stage::RestMeasure measure = rest_measure_of(s, st);
     solver.set_local_damping(st.local_damping);
     if (begins) {
       solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
@@ -261,6 +263,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
           StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy, st.rest_speed,
                           st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
                           st.runout_thickness, s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+      if (measure != Stage::RestMeasure::Displacement) particles.x_rest = {};  // (its first row starts one)
     }
     const long first_step = at.stage_first_step;
     const double stage_start = at.stage_start;
@@ -280,9 +283,12 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                    watch.dilation_note());
       const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
                            solver.time() - stage_start < density.ramp_end();
-      return tracker.observe(solver.time(), t.mean_speed,
-                             rests_on_material(s, st) ? row.material_speed : t.mean_speed) &&
-             !ramping;
+      const bool rest =
+          measure == Stage::RestMeasure::Displacement
+              ? tracker.observe_window(particles, solver.time(), t.mean_speed)
+              : tracker.observe(solver.time(), t.mean_speed,
+                                measure == Stage::RestMeasure::Material ? row.material_speed : t.mean_speed);
+      return rest && !ramping;
     };
     if (begins) sample();
     if (begins && k == 0 && unstable.ok) {
@@ -362,7 +368,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     at.finished.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
                                          t.kinetic_energy, e.gravity_work, e.strain_energy,
                                          e.plastic_dissipation, ended_by));
-    at.finished.back().rest_measure = rests_on_material(s, st) ? "material" : "points";
+    at.finished.back().rest_measure = to_string(measure);
     at.in_stage = false;
     at.stage = k + 1;
   }

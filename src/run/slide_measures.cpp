@@ -63,12 +63,44 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
 }
 
 template <int D>
-bool StageTracker<D>::observe(double time, double mean_speed, double rest_measure_speed) {
+void StageTracker<D>::record_speed(double time, double mean_speed) {
   if (mean_speed > m_.peak_mean_speed) {
     m_.peak_mean_speed = mean_speed;
     m_.peak_time = time - m_.start_time;
   }
   m_.final_mean_speed = mean_speed;
+}
+
+template <int D>
+void StageTracker<D>::start_window(Particles<D>& P, double time) {
+  P.x_rest = P.x;  // (its capacity is kept: no allocation after the first window)
+  window_start_ = time;
+}
+
+template <int D>
+bool StageTracker<D>::observe_window(Particles<D>& P, double time, double mean_speed) {
+  record_speed(time, mean_speed);
+  if (std::isnan(window_start_) || P.x_rest.size() != P.size()) {
+    start_window(P, time);
+    return false;
+  }
+  const double length = time - window_start_;
+  if (length < rest_time_ * (1.0 - 1e-9) || length <= 0.0) return false;
+  double moved = 0.0, mass = 0.0;
+  const long n = static_cast<long>(P.size());
+  for (long p = 0; p < n; ++p) {  // (once per window)
+    moved += P.mass[p] * (P.x[p] - P.x_rest[p]).norm();
+    mass += P.mass[p];
+  }
+  const double speed = mass > 0.0 ? moved / (mass * length) : 0.0;
+  samples_.emplace_back(window_start_, speed);
+  start_window(P, time);
+  return rest_speed_ > 0.0 && speed < rest_speed_;
+}
+
+template <int D>
+bool StageTracker<D>::observe(double time, double mean_speed, double rest_measure_speed) {
+  record_speed(time, mean_speed);
   samples_.emplace_back(time, rest_measure_speed);
   if (rest_speed_ <= 0.0) return false;
   if (rest_measure_speed >= rest_speed_) {

@@ -105,6 +105,13 @@ class StageTracker {
   // speed the rest test reads (`rest_measure_speed`: the same, or the material's, as
   // Stage::rest_measure says; also the stop time's); true once the rest criterion is met.
   bool observe(double time, double mean_speed, double rest_measure_speed);
+  // The rest test on displacement (Stage::rest_measure "displacement"): a window starts at
+  // `time` (P.x_rest = P.x). observe_window, at every series row, records the mean speed
+  // (eq. 5.12) as observe does; once the window has lasted rest_time it takes the window's mean
+  // speed of the material, sum_p m_p |x_p - x_rest_p| / (sum_p m_p (time - start)), as a sample
+  // at the window's start and starts the next window. True once that speed is below rest_speed.
+  void start_window(Particles<D>& P, double time);
+  bool observe_window(Particles<D>& P, double time, double mean_speed);
   StageMeasures finish(const Particles<D>& P, double time, long steps, double kinetic_energy,
                        double gravity_work, double strain_energy, double plastic_dissipation,
                        const std::string& ended_by) const;
@@ -145,6 +152,7 @@ class StageTracker {
     }
     a(quiet_since_);
     a(samples_);
+    a(window_start_);
   }
 
  private:
@@ -160,6 +168,8 @@ class StageTracker {
   int bins_z() const { return std::max(1, static_cast<int>(std::lround(z_length_ / width_))); }
   std::optional<double> quiet_since_;               // time the mean speed last fell below rest_speed
   std::vector<std::pair<double, double>> samples_;  // (time, mean speed)
+  double window_start_ = NAN;                       // the displacement window's start (NaN: none)
+  void record_speed(double time, double mean_speed);
 };
 
 }  // namespace skred

@@ -42,6 +42,16 @@ const char* to_string(BoundaryKind b) {
   return "?";
 }
 
+const char* to_string(Stage::RestMeasure r) {
+  switch (r) {
+    case Stage::RestMeasure::Auto: return "auto";
+    case Stage::RestMeasure::Points: return "points";
+    case Stage::RestMeasure::Material: return "material";
+    case Stage::RestMeasure::Displacement: return "displacement";
+  }
+  return "?";
+}
+
 namespace scenario_detail {
 
 // Index of the material called `name`, or a message listing the defined ones.
@@ -258,7 +268,8 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
     st.rest_measure = t.choice<Stage::RestMeasure>("rest_measure",
                                                    {{"auto", Stage::RestMeasure::Auto},
                                                     {"points", Stage::RestMeasure::Points},
-                                                    {"material", Stage::RestMeasure::Material}},
+                                                    {"material", Stage::RestMeasure::Material},
+                                                    {"displacement", Stage::RestMeasure::Displacement}},
                                                    Stage::RestMeasure::Auto);
     st.local_damping = t.number("local_damping");
     st.runout_thickness = t.number_or("runout_thickness", 0.0);

@@ -142,9 +142,11 @@ struct Stage {
   double rest_time = 0.0;
   // Which speed the rest test (and the stage's stop time) reads: the points' own velocities
   // (Points, eq. 5.12), the velocity the material moves with (Material,
-  // ExplicitSolver::material_mean_speed), or Auto: Material where the points carry velocities
-  // the grid cannot see (pure FLIP, the affine FLIP), Points otherwise (rests_on_material).
-  enum class RestMeasure { Auto, Points, Material } rest_measure = RestMeasure::Auto;
+  // ExplicitSolver::material_mean_speed), the points' mean displacement over windows of
+  // rest_time (Displacement, StageTracker::observe_window: a deposit ringing in place rests), or
+  // Auto: Material where the points carry velocities the grid cannot see (pure FLIP, the affine
+  // FLIP), Points otherwise (rest_measure_of).
+  enum class RestMeasure { Auto, Points, Material, Displacement } rest_measure = RestMeasure::Auto;
   // The runout's threshold: the deposit's front is the outermost column it has raised by more
   // than this [m] (slide_measures.hpp). 0: half a cell.
   double runout_thickness = 0.0;
@@ -266,13 +268,15 @@ std::string read_scenario_text(const std::string& path);
 // stage, else the material's.
 double density_at_stage_start(const ScenarioCommon& s, std::size_t k, int m);
 
-// Whether stage `st`'s rest test reads the material's speed (Stage::rest_measure; "auto": with
-// pure FLIP and the affine FLIP).
-inline bool rests_on_material(const ScenarioCommon& s, const Stage& st) {
-  if (st.rest_measure != Stage::RestMeasure::Auto) return st.rest_measure == Stage::RestMeasure::Material;
-  return s.velocity_transfer == VelocityTransfer::Aflip ||
-         (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction == 0.0);
+// What stage `st`'s rest test reads (Stage::rest_measure; "auto": the material's speed with
+// pure FLIP and the affine FLIP, the points' otherwise). Never Auto.
+inline Stage::RestMeasure rest_measure_of(const ScenarioCommon& s, const Stage& st) {
+  if (st.rest_measure != Stage::RestMeasure::Auto) return st.rest_measure;
+  const bool null_space = s.velocity_transfer == VelocityTransfer::Aflip ||
+                          (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction == 0.0);
+  return null_space ? Stage::RestMeasure::Material : Stage::RestMeasure::Points;
 }
+const char* to_string(Stage::RestMeasure);
 
 const char* to_string(BoundaryKind);
 const char* to_string(Model);

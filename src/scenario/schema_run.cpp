@@ -208,11 +208,13 @@ void add_run_sections(std::vector<Section>& s) {
            {.name = "rest_measure",
             .type = Type::Choice,
             .def = derived("\"auto\""),
-            .choices = "auto|points|material",
-            .doc = "the speed `rest_speed` is compared with: the points' own (\"points\", eq. 5.12) or "
-                   "the material's, sum_i N_ip v_i at each point (\"material\", eq. 2.55: what moves "
-                   "it); \"auto\" takes the material's with pure FLIP and the affine FLIP, whose points "
-                   "keep velocities the grid cannot see (docs/method.md, \"The rest test\")"},
+            .choices = "auto|points|material|displacement",
+            .doc = "the speed `rest_speed` is compared with: the points' own mean speed (\"points\", eq. "
+                   "5.12), the material's, sum_i N_ip v_i at each point (\"material\", eq. 2.55: what "
+                   "moves it), or the points' mean displacement over windows of `rest_time`, over "
+                   "`rest_time` (\"displacement\": a deposit ringing in place rests); \"auto\" takes the "
+                   "material's with pure FLIP and the affine FLIP, whose points keep velocities the grid "
+                   "cannot see, the points' otherwise (docs/method.md, \"The rest test\")"},
            {.name = "runout_thickness",
             .unit = "m",
             .def = derived("half a cell"),
