@@ -201,3 +201,75 @@ TEST(RestMeasure, ARestartInsideADisplacementWindowEndsTheStageAsTheUninterrupte
   EXPECT_EQ(read(dir / "a" / "series.csv"), read(dir / "b" / "series.csv"));
   fs::remove_all(dir);
 }
+
+TEST(RestMeasure, ThreeDimensionalSlabRestsOnTheMaterialsSpeedAndOnItsDisplacement) {
+  // The Mohr-Coulomb slab of Column3D (1152 points between roller z walls) under pure FLIP: its
+  // points keep a mean speed near 0.1 m/s to the stage's 5 s, twenty times the rest speed; on
+  // the material's speed and on the displacement the stage rests, and the front of the run that
+  // goes on moves less than material at the rest speed would.
+  const auto run = [](const std::string& measure) {
+    const std::string text = R"(
+[grid]
+size = [7.5, 3.5, 0.5]
+cell_size = 0.25
+[[material]]
+name = "soil"
+model = "mohr-coulomb"
+density = 1800.0
+young = 10e6
+poisson = 0.3
+friction = 30.0
+cohesion = 500.0
+[[body]]
+material = "soil"
+particles_per_cell = 2
+shape = "box"
+min = [0.0, 0.0, 0.0]
+max = [1.5, 3.0, 0.5]
+[initial_stress]
+k0 = "poisson"
+[gravity]
+acceleration = [0.0, -9.81, 0.0]
+[boundary]
+x_min = "roller"
+x_max = "roller"
+y_min = "fixed"
+z_min = "roller"
+z_max = "roller"
+[solver]
+scheme = "usf"
+cfl = 0.4
+velocity_transfer = "flip"
+[[stage]]
+name = "collapse"
+duration = 5.0
+rest_speed = 0.005
+rest_time = 0.3
+rest_measure = ")" + measure +
+                             R"("
+[output]
+interval = 5.0
+series_interval = 0.05
+)";
+    const fs::path out = fresh_temp_dir();
+    RunOptions opt;
+    opt.progress = false;
+    opt.threads = 2;
+    const RunResult r = run_simulation(std::get<Scenario3>(parse_any_scenario(text, "slab.toml")), out, opt);
+    fs::remove_all(out);
+    EXPECT_TRUE(r.completed) << measure << ": " << r.message;
+    return r.stages.back();
+  };
+  const StageMeasures p = run("points"), m = run("material"), d = run("displacement");
+  std::printf(
+      "FLIP slab (3D): on the points' speed %s at %.2f s, runout %.4f m, mean speed %.3f m/s; on the "
+      "material's %s at %.2f s, %.4f m; on the displacement %s at %.2f s, %.4f m\n",
+      p.ended_by.c_str(), p.end_time, p.runout, p.final_mean_speed, m.ended_by.c_str(), m.end_time, m.runout,
+      d.ended_by.c_str(), d.end_time, d.runout);
+  EXPECT_EQ(p.ended_by, "duration");
+  EXPECT_GT(p.final_mean_speed, 5 * 0.005);
+  for (const StageMeasures* s : {&m, &d}) {
+    EXPECT_EQ(s->ended_by, "rest") << s->rest_measure;
+    EXPECT_LT(std::abs(p.runout - s->runout), 0.005 * (p.end_time - s->end_time)) << s->rest_measure;
+  }
+}
