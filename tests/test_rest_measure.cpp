@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "run/simulation.hpp"
+#include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
 #include "support.hpp"
 #include "temp_dir.hpp"
@@ -165,6 +166,17 @@ TEST(RestMeasure, ScenarioKeyAndWhatAutoPicks) {
   EXPECT_EQ(with("velocity_transfer = \"xpic\"", "\"material\""), "material");
   EXPECT_EQ(with("velocity_transfer = \"flip\"", "\"points\""), "points");
   EXPECT_EQ(with("velocity_transfer = \"apic\"", "\"displacement\""), "displacement");
+  // skred check says which
+  const auto check = [&](const std::string& transfer, const std::string& measure = "") {
+    std::string text = with_transfer(base, transfer);
+    if (!measure.empty()) text.replace(text.find("rest_speed = "), 0, "rest_measure = " + measure + "\n");
+    return describe(parse_scenario(text, "column.toml"));
+  };
+  EXPECT_NE(check("velocity_transfer = \"flip\"").find("the material's mean speed stays below 0.005 m/s"),
+            std::string::npos);
+  EXPECT_NE(check("").find("the points' mean speed stays below 0.005 m/s"), std::string::npos);
+  EXPECT_NE(check("", "\"displacement\"").find("the points move on average slower than 0.005 m/s over 0.3 s"),
+            std::string::npos);
   try {
     (void)with("", "\"grid\"");
     ADD_FAILURE() << "rest_measure = \"grid\" was accepted";

@@ -44,12 +44,15 @@ std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
     if (o.dilation) t += fmt::format(" dilation {:.4g} deg", *o.dilation * 180.0 / M_PI);
     if (o.density) t += fmt::format(" density {} kg/m^3 (over {} s)", *o.density, o.density_ramp_time);
   }
-  if (st.rest_speed > 0)
-    t += rest_measure_of(s, st) == Stage::RestMeasure::Displacement
+  if (st.rest_speed > 0) {
+    const Stage::RestMeasure r = rest_measure_of(s, st);
+    t += r == Stage::RestMeasure::Displacement
              ? fmt::format(", ends when the points move on average slower than {} m/s over {} s",
                            st.rest_speed, st.rest_time)
              : fmt::format(", ends when the {} mean speed stays below {} m/s for {} s",
-                           to_string(rest_measure_of(s, st)), st.rest_speed, st.rest_time);
+                           r == Stage::RestMeasure::Material ? "material's" : "points'", st.rest_speed,
+                           st.rest_time);
+  }
   if (st.runout_thickness > 0)
     t += fmt::format(", runout where the deposit is {} m thick", st.runout_thickness);
   return t;
