@@ -22,6 +22,8 @@
 #   INTERPOLATION=bspline ...   (solver.interpolation; the examples use gimp)
 #   RUNOUT_THICKNESS=1.0 ...   (runout_thickness [m] of the stages with a rest criterion: the
 #                               runout where the deposit is that thick, not half a cell)
+#   REST_MEASURE=displacement ...   (rest_measure of the stages with a rest criterion: what the
+#                               rest test reads, docs/method.md "The rest test")
 #   XPIC_ORDER=4 ... xpic   (solver.xpic_order: the m of XPIC(m))
 #   PPC=2 ...   (particles_per_cell: n x n points per cell instead of the examples' 3 x 3)
 #   scripts/convergence.sh build/skred auto   (the engine's defaults: for these slides XPIC once
@@ -39,6 +41,7 @@ period=${XPIC_PERIOD:-}
 dtf=${DT_FACTOR:-1}
 interp=${INTERPOLATION:-}
 thick=${RUNOUT_THICKNESS:-}
+restm=${REST_MEASURE:-}
 ppc=${PPC:-}
 order=${XPIC_ORDER:-}
 tag=$volumetric
@@ -49,7 +52,7 @@ if [ "$split" = 1 ]; then
 fi
 tag=$tag${period:+_p$period}
 [ "$dtf" = 1 ] || tag=${tag}_dt$dtf
-tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}${order:+_m$order}
+tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}${order:+_m$order}${restm:+_r$restm}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -63,12 +66,13 @@ scenario() {
     ${3:+-e "s/^time_step = .*/time_step = $3/"} \
     ${interp:+-e "s/^interpolation = .*/interpolation = \"$interp\"/"} \
     ${thick:+-e "s/^rest_time = \(.*\)$/rest_time = \1\nrunout_thickness = $thick/"} \
+    ${restm:+-e "s/^rest_time = \(.*\)$/rest_time = \1\nrest_measure = \"$restm\"/"} \
     ${ppc:+-e "s/^particles_per_cell = .*/particles_per_cell = $ppc/"} \
     -e "$splitexpr" "$1"
 }
 
 fronts=
-echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')${period:+, xpic_period = $period}${interp:+, interpolation = \"$interp\"}${thick:+, runout_thickness = $thick}${ppc:+, particles_per_cell = $ppc}"
+echo "solver.volumetric_strain = \"$volumetric\"$([ "$split" = 1 ] && echo ', split = true')${period:+, xpic_period = $period}${interp:+, interpolation = \"$interp\"}${thick:+, runout_thickness = $thick}${restm:+, rest_measure = \"$restm\"}${ppc:+, particles_per_cell = $ppc}"
 printf '%-7s %-6s %6s %8s %9s %-9s %7s %7s\n' problem transf h points runout_m ended_by t_s wall_s
 for tr in $transfers; do
   for problem in $problems; do
