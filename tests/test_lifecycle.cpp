@@ -211,6 +211,24 @@ TEST(Lifecycle, SplitHalvesAPointConservingMassAndMomentum) {
   EXPECT_EQ(P.F[q], P.F[0]);
 }
 
+TEST(Lifecycle, ASplitMovesNoMaterialInTheRestTestsWindow) {
+  // x_rest (the displacement rest test's window start) moves with the halves: each keeps the
+  // parent's displacement since the window began, so a split is no motion to that test.
+  Particles<2> P;
+  P.add(Vec<2>(1.0, 1.0), Vec<2>::Zero(), 0.625, 0.01, Vec<2>(0.05, 0.05), 0, 0);
+  P.F[0] << 1.1, 0.2, 0.0, 0.9;
+  P.x_rest = {Vec<2>(0.97, 1.01)};
+  const Vec<2> moved = P.x[0] - P.x_rest[0];
+  const std::size_t q = P.split(0, 1);
+  ASSERT_EQ(P.x_rest.size(), 2u);
+  EXPECT_NEAR((P.x[0] - P.x_rest[0] - moved).norm(), 0.0, 1e-15);
+  EXPECT_NEAR((P.x[q] - P.x_rest[q] - moved).norm(), 0.0, 1e-15);
+  Particles<2> Q;  // without the field (no stage tests on displacement) it stays empty
+  Q.add(Vec<2>(1.0, 1.0), Vec<2>::Zero(), 0.625, 0.01, Vec<2>(0.05, 0.05), 0, 0);
+  (void)Q.split(0, 0);
+  EXPECT_TRUE(Q.x_rest.empty());
+}
+
 // The colliding discs of R3 (examples/colliding_discs.toml) with points split and removed
 // while they move: at step 100 every third point of the lower disc is split in two, at step
 // 200 every fifth point is removed. Splitting conserves mass exactly and momentum to the
