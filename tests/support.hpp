@@ -77,19 +77,27 @@ inline GridGeometry<2> grid2(double h, int nx, int ny) {
 
 inline BoundarySide side(BoundaryKind k, double mu = 0.0) { return BoundarySide{k, mu}; }
 
-// The last row of a run's series.csv as column name -> value (.at() on a missing name throws,
+// Every row of a run's series.csv as column name -> value (.at() on a missing name throws,
 // which fails the test).
-inline std::map<std::string, double> last_series_row(const std::filesystem::path& file) {
+inline std::vector<std::map<std::string, double>> series_rows(const std::filesystem::path& file) {
   std::ifstream in(file);
-  std::string header, line, last;
+  std::string header, line;
   std::getline(in, header);
-  while (std::getline(in, line))
-    if (!line.empty()) last = line;
-  std::map<std::string, double> row;
-  std::istringstream h(header), v(last);
-  std::string name, value;
-  while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
-  return row;
+  std::vector<std::map<std::string, double>> rows;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    std::istringstream h(header), v(line);
+    std::string name, value;
+    auto& row = rows.emplace_back();
+    while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
+  }
+  return rows;
+}
+
+// The last row of a run's series.csv (empty if it has none).
+inline std::map<std::string, double> last_series_row(const std::filesystem::path& file) {
+  auto rows = series_rows(file);
+  return rows.empty() ? std::map<std::string, double>{} : std::move(rows.back());
 }
 
 // Times of the downward zero crossings of a sampled signal (linear interpolation).

@@ -25,22 +25,6 @@ using namespace skred::test;
 
 namespace {
 
-// Every row of a series.csv, as column name -> value.
-std::vector<std::map<std::string, double>> series_rows(const fs::path& file) {
-  std::ifstream in(file);
-  std::string header, line;
-  std::getline(in, header);
-  std::vector<std::map<std::string, double>> rows;
-  while (std::getline(in, line)) {
-    if (line.empty()) continue;
-    std::istringstream h(header), v(line);
-    std::string name, value;
-    auto& row = rows.emplace_back();
-    while (std::getline(h, name, ',') && std::getline(v, value, ',')) row[name] = std::stod(value);
-  }
-  return rows;
-}
-
 struct ColumnRun {
   RunResult result;
   std::vector<std::map<std::string, double>> series;

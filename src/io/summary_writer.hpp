@@ -32,8 +32,8 @@ struct StageMeasures {
   // Stage time after which the mean speed stayed below the rest speed (or, without a rest
   // criterion, below 1 % of its peak); empty if the material was still moving at the end.
   std::optional<double> stop_time;
-  // The speed the rest test and the stop time read (Stage::rest_measure): "points" (eq. 5.12)
-  // or "material" (sum_i N_ip v_i at the points).
+  // The speed the rest test and the stop time read (Stage::rest_measure): "points" (eq. 5.12),
+  // "material" (sum_i N_ip v_i at the points) or "displacement" (over windows of rest_time).
   std::string rest_measure = "points";
   // Dilation cut-off as a new continuum (Paper III §C.3.2): the points that joined a dilated
   // continuum during the stage, and the stage times of the first and the last move.
