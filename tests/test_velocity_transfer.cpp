@@ -314,3 +314,22 @@ TEST(VelocityTransfer, AutoRunsAsTheSlideDefaultsNamed) {
   EXPECT_EQ(a.result.stages.back().runout, x.result.stages.back().runout);
   EXPECT_GT(a.result.stages.back().runout, 0.0);
 }
+
+// skred check tells a user who picks FLIP or the affine FLIP beside a frictional wall what that
+// wall does to them (docs/method.md, "How FLIP lifts the block"), and nobody else.
+TEST(VelocityTransfer, CheckNotesFlipAtAFrictionalWall) {
+  const std::string column = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
+  const auto noted = [](const std::string& text) {
+    return describe(parse_scenario(text, "column.toml")).find("a frictional wall turns part of") !=
+           std::string::npos;
+  };
+  EXPECT_TRUE(noted(with_transfer(column, "velocity_transfer = \"flip\"")));
+  EXPECT_TRUE(noted(with_transfer(column, "velocity_transfer = \"aflip\"")));
+  EXPECT_FALSE(noted(with_transfer(column, "velocity_transfer = \"flip\"\npic_fraction = 0.05")));
+  EXPECT_FALSE(noted(with_transfer(column, "velocity_transfer = \"apic\"")));
+  EXPECT_FALSE(noted(column));  // XPIC once per 2 h/c
+  std::string rough = with_transfer(column, "velocity_transfer = \"flip\"");
+  rough.replace(rough.find("y_min = { type = \"friction\", friction = 0.6 }"),
+                std::string("y_min = { type = \"friction\", friction = 0.6 }").size(), "y_min = \"fixed\"");
+  EXPECT_FALSE(noted(rough));  // no frictional side
+}

@@ -178,6 +178,17 @@ std::string describe(const ScenarioOf<D>& s) {
   line(fmt::format("velocity transfer: {}; volumetric strain: {}{}", transfer,
                    s.volumetric_averaging ? "cell-average" : "point",
                    s.centre_shear ? "; shear strain: cell-centre (Thesis §4.5)" : ""));
+  // FLIP and the affine FLIP at a frictional wall (docs/method.md, "How FLIP lifts the block")
+  const bool unfiltered = (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction <= 0.0) ||
+                          s.velocity_transfer == VelocityTransfer::Aflip;
+  bool rubs = false;
+  for (int k = 0; k < 2 * D; ++k)
+    rubs = rubs || s.boundaries[static_cast<std::size_t>(k)].kind == BoundaryKind::Friction;
+  if (unfiltered && rubs)
+    line(
+        "  note: this transfer keeps velocities the grid cannot see, and a frictional wall turns part of "
+        "them into lift: material sliding on it rises off the wall and loses less to friction than it "
+        "should (docs/method.md, \"How FLIP lifts the block\"); \"xpic\" and \"apic\" do not");
   line(fmt::format("output: particle frames every {} s, series rows every {} s", s.output_interval,
                    s.series_interval));
   return out;
