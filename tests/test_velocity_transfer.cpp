@@ -328,8 +328,8 @@ TEST(VelocityTransfer, CheckNotesFlipAtAFrictionalWall) {
   EXPECT_FALSE(noted(with_transfer(column, "velocity_transfer = \"flip\"\npic_fraction = 0.05")));
   EXPECT_FALSE(noted(with_transfer(column, "velocity_transfer = \"apic\"")));
   EXPECT_FALSE(noted(column));  // XPIC once per 2 h/c
-  std::string rough = with_transfer(column, "velocity_transfer = \"flip\"");
-  rough.replace(rough.find("y_min = { type = \"friction\", friction = 0.6 }"),
-                std::string("y_min = { type = \"friction\", friction = 0.6 }").size(), "y_min = \"fixed\"");
-  EXPECT_FALSE(noted(rough));  // no frictional side
+  const std::string base = "y_min = { type = \"friction\", friction = 0.6 }";
+  std::string fixed = with_transfer(column, "velocity_transfer = \"flip\"");
+  fixed.replace(fixed.find(base), base.size(), "y_min = \"fixed\"");
+  EXPECT_FALSE(noted(fixed));  // no frictional side
 }
