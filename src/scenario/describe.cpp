@@ -179,12 +179,10 @@ std::string describe(const ScenarioOf<D>& s) {
                    s.volumetric_averaging ? "cell-average" : "point",
                    s.centre_shear ? "; shear strain: cell-centre (Thesis §4.5)" : ""));
   // FLIP and the affine FLIP at a frictional wall (docs/method.md, "How FLIP lifts the block")
-  const bool unfiltered = (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction <= 0.0) ||
-                          s.velocity_transfer == VelocityTransfer::Aflip;
   bool rubs = false;
   for (int k = 0; k < 2 * D; ++k)
     rubs = rubs || s.boundaries[static_cast<std::size_t>(k)].kind == BoundaryKind::Friction;
-  if (unfiltered && rubs)
+  if (keeps_null_space(s) && rubs)
     line(
         "  note: this transfer keeps velocities the grid cannot see, and a frictional wall turns part of "
         "them into lift: material sliding on it rises off the wall and loses less to friction than it "

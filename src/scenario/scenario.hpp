@@ -268,13 +268,18 @@ std::string read_scenario_text(const std::string& path);
 // stage, else the material's.
 double density_at_stage_start(const ScenarioCommon& s, std::size_t k, int m);
 
+// Whether the points keep velocities the grid cannot see (FLIP's null space): pure FLIP and the
+// affine FLIP, which no filter or PIC share clears.
+inline bool keeps_null_space(const ScenarioCommon& s) {
+  return s.velocity_transfer == VelocityTransfer::Aflip ||
+         (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction == 0.0);
+}
+
 // What stage `st`'s rest test reads (Stage::rest_measure; "auto": the material's speed with
 // pure FLIP and the affine FLIP, the points' otherwise). Never Auto.
 inline Stage::RestMeasure rest_measure_of(const ScenarioCommon& s, const Stage& st) {
   if (st.rest_measure != Stage::RestMeasure::Auto) return st.rest_measure;
-  const bool null_space = s.velocity_transfer == VelocityTransfer::Aflip ||
-                          (s.velocity_transfer == VelocityTransfer::Flip && s.pic_fraction == 0.0);
-  return null_space ? Stage::RestMeasure::Material : Stage::RestMeasure::Points;
+  return keeps_null_space(s) ? Stage::RestMeasure::Material : Stage::RestMeasure::Points;
 }
 const char* to_string(Stage::RestMeasure);
 
