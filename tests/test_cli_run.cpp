@@ -148,6 +148,27 @@ TEST(CliRun, ASweepFolderIsRefusedUnlessOverwrite) {
   EXPECT_FALSE(fs::exists(d / "out" / "run_001"));  // the earlier sweep's second run is gone
 }
 
+// `skred refine`: the scenario at h and h/2 per transfer, the verdict on stdout and refine.csv;
+// its folder is refused on a second study unless --overwrite; bad levels are a usage error.
+TEST(CliRun, ARefinementStudyTellsHowFarTheRunoutMoved) {
+  TempDir d;
+  write(d / "discs.toml", discs("end_time = 3.0", "end_time = 0.02"));
+  const std::string refine =
+      kSkred + " refine " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1";
+  const Outcome r = sh(refine + " --levels 2 --transfers flip,apic");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("flip: the last halving (h = "), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("the transfers' runouts"), std::string::npos) << r.output;
+  EXPECT_EQ(read(d / "out" / "refine.csv").rfind("transfer,level,cell_size,", 0), 0u);
+  EXPECT_TRUE(fs::exists(d / "out" / "run_003" / "summary.json"));
+  EXPECT_EQ(sh(refine + " --levels 2").code, 1);
+  EXPECT_EQ(sh(refine + " --levels 2 --overwrite").code, 0);
+  EXPECT_FALSE(fs::exists(d / "out" / "run_002"));  // the earlier study's apic runs are gone
+  const Outcome bad = sh(refine + " --levels 1 --overwrite");
+  EXPECT_EQ(bad.code, 4) << bad.output;
+  EXPECT_NE(bad.output.find("--levels must be 2 to 5"), std::string::npos) << bad.output;
+}
+
 TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   TempDir d;
   std::string text = discs("cell_size = 0.05", "cell_size = 0.02");  // 30,000 steps: several seconds

@@ -18,6 +18,7 @@
 #include "run/bench.hpp"
 #include "run/checkpointing.hpp"
 #include "run/output_folder.hpp"
+#include "run/refine.hpp"
 #include "run/simulation.hpp"
 #include "run/sweep.hpp"
 #include "run/version.hpp"
@@ -90,6 +91,25 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::vec
   return code::kSuccess;
 }
 
+// The scenario at h, h/2, ... per velocity transfer (run/refine.hpp); refine.csv and the
+// verdict on the terminal. Exits: usage for bad options, unstable if a run was.
+int cmd_refine(const std::string& file, const std::string& outdir, skred::RefineOptions o, int threads,
+               bool overwrite) {
+  try {
+    skred::check_refine_options(o);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("refine", e.what());
+  }
+  skred::prepare_output_folder(outdir, overwrite, file);
+  o.threads = threads > 0 ? threads : omp_get_max_threads();
+  const auto rows = skred::run_refine(file, outdir, o);
+  fmt::print("{}table: {}\n", skred::refine_verdict(rows),
+             (std::filesystem::path(outdir) / "refine.csv").string());
+  for (const auto& r : rows)
+    if (r.status != "completed") return code::kUnstable;
+  return code::kSuccess;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -149,6 +169,19 @@ int main(int argc, char** argv) {
   sweep->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   sweep->add_flag("--overwrite", overwrite, "Replace an earlier sweep in OUTDIR (removes its files first)");
 
+  skred::RefineOptions rfo;
+  auto* refine = app.add_subcommand(
+      "refine", "Run a scenario at its cell size and at halves of it, and tell how far the runout moves");
+  refine->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
+  refine->add_option("-o,--output", outdir, "Output folder (one sub-folder per run, refine.csv)")->required();
+  refine->add_option("--levels", rfo.levels, "Cell sizes h, h/2, ...: 2 to 5 (default 3)");
+  refine
+      ->add_option("--transfers", rfo.transfers,
+                   "solver.velocity_transfer per series, e.g. auto,apic (default: the scenario's)")
+      ->delimiter(',');
+  refine->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  refine->add_flag("--overwrite", overwrite, "Replace an earlier study in OUTDIR (removes its files first)");
+
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged", transfer = "flip";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
@@ -207,6 +240,7 @@ int main(int argc, char** argv) {
     }
     if (scenario_commands.chosen()) return scenario_commands.run();
     if (*sweep) return cmd_sweep(scenario, outdir, sets, threads, overwrite);
+    if (*refine) return cmd_refine(scenario, outdir, rfo, threads, overwrite);
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column") {
         fmt::print(stderr, "skred: --dim 3 is available for --problem column only\n");

@@ -10,7 +10,8 @@ namespace skred {
 // skred's files in `dir` (not recursive): particles_NNNNNN.vtu, grid_NNNNNN.vtr,
 // particles.pvd, grid.pvd, series.csv, summary.json, scenario.toml, checkpoint.skc,
 // report.html, the pictures/ that `skred render` wrote (PNG and GIF), a sweep's sweep.csv
-// and run_NNN/ folders, and the NAME.tmp of any of these left by a crash. Sorted.
+// (a refinement study's refine.csv) and run_NNN/ folders, and the NAME.tmp of any of these left by a crash.
+// Sorted.
 std::vector<std::filesystem::path> run_files(const std::filesystem::path& dir);
 
 // Makes `dir` ready for a new run: creates it if missing. If it holds an earlier run's

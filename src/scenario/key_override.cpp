@@ -6,9 +6,15 @@
 
 namespace skred::scenario_detail {
 
-// Sets the value at a key path such as "material[0].friction" or "material[sand].friction"
-// (an array element chosen by its name key) or "stage[1].material[0].cohesion".
-void set_key(toml::table& doc, const std::string& path, double value, const std::string& source) {
+namespace {
+
+// Walks a key path such as "material[0].friction" or "material[sand].friction" (an array
+// element chosen by its name key) or "stage[1].material[0].cohesion" and hands the table that
+// holds its last component, and that component, to `assign`. With `create`, a missing table
+// on the way (not an array element) is added, e.g. [solver] for "solver.velocity_transfer".
+template <class Assign>
+void at_key(toml::table& doc, const std::string& path, const std::string& source, bool create,
+            Assign&& assign) {
   const auto bad = [&](const std::string& why) {
     throw ScenarioError(fmt::format("{}: key '{}': {}", source, path, why));
   };
@@ -26,14 +32,12 @@ void set_key(toml::table& doc, const std::string& path, double value, const std:
     if (part.empty()) bad("empty component in the key path");
     if (dot == std::string::npos) {
       if (!index.empty()) bad("the last component must name a value, not an array element");
-      const toml::node* old = table->get(part);
-      if (old && old->is_integer() && value == std::floor(value))
-        table->insert_or_assign(part, static_cast<std::int64_t>(value));
-      else
-        table->insert_or_assign(part, value);
+      assign(*table, part);
       return;
     }
     toml::node* next = table->get(part);
+    if (!next && create && index.empty())
+      next = table->insert_or_assign(part, toml::table{}).first->second.as_table();
     if (!next) bad(fmt::format("'{}' is not in the scenario", part));
     if (!index.empty()) {
       toml::array* arr = next->as_array();
@@ -55,6 +59,28 @@ void set_key(toml::table& doc, const std::string& path, double value, const std:
     if (!table) bad(fmt::format("'{}' is not a table", part));
     pos = dot + 1;
   }
+}
+
+}  // namespace
+
+void set_key(toml::table& doc, const std::string& path, double value, const std::string& source) {
+  at_key(doc, path, source, false, [&](toml::table& table, const std::string& key) {
+    const toml::node* old = table.get(key);
+    if (old && old->is_integer() && value == std::floor(value))
+      table.insert_or_assign(key, static_cast<std::int64_t>(value));
+    else
+      table.insert_or_assign(key, value);
+  });
+}
+
+void set_key(toml::table& doc, const std::string& path, const std::string& value, const std::string& source) {
+  at_key(doc, path, source, true,
+         [&](toml::table& table, const std::string& key) { table.insert_or_assign(key, value); });
+  // A transfer set from outside comes with its own defaults: the keys of another transfer
+  // (parse_transfer.cpp) would refuse it, and those of the same one would not be what was asked.
+  if (path == "solver.velocity_transfer")
+    if (toml::table* solver = doc["solver"].as_table())
+      for (const char* key : {"pic_fraction", "xpic_order", "xpic_period"}) solver->erase(key);
 }
 
 }  // namespace skred::scenario_detail

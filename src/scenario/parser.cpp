@@ -525,9 +525,11 @@ Scenario parse_scenario(const std::string& text, const std::string& source,
 }
 
 AnyScenario parse_any_scenario(const std::string& text, const std::string& source,
-                               const std::vector<std::pair<std::string, double>>& overrides) {
+                               const std::vector<std::pair<std::string, double>>& overrides,
+                               const std::vector<std::pair<std::string, std::string>>& text_overrides) {
   toml::table doc = parse_toml(text, source);
   for (const auto& [key, value] : overrides) scenario_detail::set_key(doc, key, value, source);
+  for (const auto& [key, value] : text_overrides) scenario_detail::set_key(doc, key, value, source);
   return parse_any_document(doc, source);
 }
 

@@ -91,5 +91,8 @@ Polygon parse_vertices(const TableReader& b, const Vec<2>& lo, const Vec<2>& hi,
 // Sets the value at a key path such as "material[0].friction" or "material[sand].friction"
 // (an array element chosen by its name key) or "stage[1].material[0].cohesion".
 void set_key(toml::table& doc, const std::string& path, double value, const std::string& source);
+// The same with a text value. "solver.velocity_transfer" also removes the keys of one transfer
+// (pic_fraction, xpic_order, xpic_period): the transfer set comes with its own defaults.
+void set_key(toml::table& doc, const std::string& path, const std::string& value, const std::string& source);
 
 }  // namespace skred::scenario_detail

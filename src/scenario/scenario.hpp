@@ -259,8 +259,10 @@ Scenario parse_scenario(const std::string& text, const std::string& source,
                         const std::vector<std::pair<std::string, double>>& overrides);
 // A scenario file of either dimension (2D, or 3D when [grid] size has three components).
 AnyScenario load_any_scenario(const std::string& path);
+// `text_overrides` replace text values the same way (e.g. "solver.velocity_transfer").
 AnyScenario parse_any_scenario(const std::string& text, const std::string& source,
-                               const std::vector<std::pair<std::string, double>>& overrides = {});
+                               const std::vector<std::pair<std::string, double>>& overrides = {},
+                               const std::vector<std::pair<std::string, std::string>>& text_overrides = {});
 // The text of a scenario file. Throws ScenarioError if it cannot be read.
 std::string read_scenario_text(const std::string& path);
 

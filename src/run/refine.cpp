@@ -1,0 +1,156 @@
+#include "run/refine.hpp"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <iterator>
+#include <set>
+#include <stdexcept>
+#include <variant>
+
+#include "io/atomic_file.hpp"
+#include "run/simulation.hpp"
+#include "scenario/scenario.hpp"
+
+namespace skred {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// Issue 12's bound on the runout's change per halving of the cell, and between transfers.
+constexpr double kConverged = 0.05;
+
+std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.12g}", v) : std::string("nan"); }
+
+std::string label(const std::string& transfer) {
+  return transfer.empty() ? std::string("scenario") : transfer;
+}
+
+// The change of the runout from the row before of the same transfer (NaN at its first level).
+double change_at(const std::vector<RefineRow>& rows, std::size_t k) {
+  if (k == 0 || rows[k].level == 0 || rows[k - 1].transfer != rows[k].transfer) return NAN;
+  return relative_change(rows[k - 1].last.runout, rows[k].last.runout);
+}
+
+}  // namespace
+
+void check_refine_options(const RefineOptions& opt) {
+  if (opt.levels < 2 || opt.levels > 5)
+    throw std::invalid_argument(fmt::format("--levels must be 2 to 5 (h to h/16), got {}", opt.levels));
+  std::set<std::string> seen;
+  for (const std::string& t : opt.transfers)
+    if (!seen.insert(t).second) throw std::invalid_argument("transfer '" + t + "' is given twice");
+}
+
+double relative_change(double a, double b) { return a > 0.0 ? (b - a) / a : NAN; }
+
+std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::path& outdir,
+                                  const RefineOptions& opt) {
+  check_refine_options(opt);
+  const std::string text = read_scenario_text(scenario_file);
+  const AnyScenario base = parse_any_scenario(text, scenario_file);
+  const auto common = [](const AnyScenario& s) -> const ScenarioCommon& {
+    return std::visit([](const auto& x) -> const ScenarioCommon& { return x; }, s);
+  };
+  const double h = common(base).cell_size, dt = common(base).time_step;
+  const std::vector<std::string> transfers =
+      opt.transfers.empty() ? std::vector<std::string>{""} : opt.transfers;
+  std::vector<RefineRow> rows;
+  std::vector<AnyScenario> scenarios;  // every run validated before the first starts
+  for (const std::string& t : transfers)
+    for (int k = 0; k < opt.levels; ++k) {
+      const double f = std::ldexp(1.0, -k);  // 2^-k: exact, so the halved grids stay whole
+      std::vector<std::pair<std::string, double>> set{{"grid.cell_size", h * f}};
+      if (dt > 0.0) set.emplace_back("solver.time_step", dt * f);  // c dt / h stays
+      std::vector<std::pair<std::string, std::string>> text_set;
+      if (!t.empty()) text_set.emplace_back("solver.velocity_transfer", t);
+      scenarios.push_back(parse_any_scenario(text, scenario_file, set, text_set));
+      RefineRow r;
+      r.transfer = t;
+      r.level = k;
+      r.cell_size = h * f;
+      r.time_step = dt * f;
+      r.folder = fmt::format("run_{:03}", rows.size());  // as a sweep's (run/output_folder.hpp)
+      rows.push_back(r);
+    }
+  fs::create_directories(outdir);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    RefineRow& r = rows[i];
+    if (opt.progress)
+      fmt::print(stderr, "refine {}/{}: {}, cell size {} m\n", i + 1, rows.size(), label(r.transfer),
+                 num(r.cell_size));
+    RunOptions ro;
+    ro.threads = opt.threads;
+    ro.progress = opt.progress;
+    const RunResult res = run_simulation(scenarios[i], outdir / r.folder, ro);
+    r.status = res.completed ? "completed" : res.left_grid ? "left_grid" : "unstable";
+    r.particles = res.particles;
+    r.wall_seconds = res.wall_seconds;
+    if (!res.stages.empty()) r.last = res.stages.back();
+    const std::vector<RefineRow> done(rows.begin(), rows.begin() + static_cast<long>(i) + 1);
+    write_file_atomically(outdir / "refine.csv", [&](std::ostream& os) { os << refine_table(done); });
+  }
+  return rows;
+}
+
+std::string refine_table(const std::vector<RefineRow>& rows) {
+  std::string text =
+      "transfer,level,cell_size,time_step,particles,status,folder,wall_seconds,stage,ended_by,runout,"
+      "runout_change,max_displacement,height_end,gravity_work,plastic_dissipation,final_mean_speed\n";
+  auto out = std::back_inserter(text);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const RefineRow& r = rows[k];
+    const StageMeasures& m = r.last;
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", label(r.transfer), r.level,
+                   num(r.cell_size), num(r.time_step), r.particles, r.status, r.folder, num(r.wall_seconds),
+                   m.name, m.ended_by, num(m.runout), num(change_at(rows, k)), num(m.max_displacement),
+                   num(m.height_end), num(m.gravity_work), num(m.plastic_dissipation),
+                   num(m.final_mean_speed));
+  }
+  return text;
+}
+
+std::string refine_verdict(const std::vector<RefineRow>& rows) {
+  std::string text = fmt::format("{:>10} {:>10} {:>11} {:>9} {:>14} {:>10}\n", "transfer", "h [m]",
+                                 "runout [m]", "change", "gravity work", "ended by");
+  auto out = std::back_inserter(text);
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const RefineRow& r = rows[k];
+    const double c = change_at(rows, k);
+    fmt::format_to(out, "{:>10} {:>10.4g} {:>11.4f} {:>9} {:>14.6g} {:>10}\n", label(r.transfer), r.cell_size,
+                   r.last.runout, std::isfinite(c) ? fmt::format("{:+.1f} %", 100.0 * c) : std::string("-"),
+                   r.last.gravity_work, r.status == "completed" ? r.last.ended_by : r.status);
+  }
+  std::vector<const RefineRow*> finest;  // the last level of each transfer
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    if (k + 1 < rows.size() && rows[k + 1].transfer == rows[k].transfer) continue;
+    finest.push_back(&rows[k]);
+    const double c = change_at(rows, k);
+    if (!std::isfinite(c)) {
+      fmt::format_to(out, "{}: no runout to compare at h = {} m\n", label(rows[k].transfer),
+                     num(rows[k - 1].cell_size));
+      continue;
+    }
+    fmt::format_to(
+        out, "{}: the last halving (h = {} to {} m) moved the runout by {:+.1f} %: {}\n",
+        label(rows[k].transfer), num(rows[k - 1].cell_size), num(rows[k].cell_size), 100.0 * c,
+        std::abs(c) < kConverged ? "within 5 %" : "NOT within 5 %; refine further before relying on it");
+  }
+  if (finest.size() > 1) {
+    double lo = INFINITY, hi = -INFINITY;
+    for (const RefineRow* r : finest) lo = std::min(lo, r->last.runout), hi = std::max(hi, r->last.runout);
+    const double spread = relative_change(lo, hi);
+    if (!std::isfinite(spread))
+      fmt::format_to(out, "at h = {} m a transfer gives no runout to compare\n",
+                     num(finest.front()->cell_size));
+    else
+      fmt::format_to(
+          out, "at h = {} m the transfers' runouts lie within {:.1f} % of each other: {}\n",
+          num(finest.front()->cell_size), 100.0 * spread,
+          spread < kConverged ? "within 5 %" : "NOT within 5 %: the runout depends on the velocity transfer");
+  }
+  return text;
+}
+
+}  // namespace skred

@@ -1,0 +1,56 @@
+// A refinement study of the user's own scenario (issue 12; Thesis fig. 5.18): the scenario at
+// its cell size h and at h/2, h/4, ... with the same points per cell, a fixed time step halved
+// with the cell (so c dt / h stays), once per velocity transfer asked for; one table row per
+// run with the last stage's slide measures, and how much each halving moved the runout.
+#pragma once
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "io/summary_writer.hpp"
+
+namespace skred {
+
+struct RefineOptions {
+  int levels = 3;                      // h, h/2, ..., h / 2^(levels - 1); 2 to 5
+  std::vector<std::string> transfers;  // solver.velocity_transfer per series; empty: the scenario's
+  int threads = 1;
+  bool progress = true;
+};
+
+struct RefineRow {
+  std::string transfer;  // as asked ("" for the scenario's own)
+  int level = 0;         // 0 for h
+  double cell_size = 0.0;
+  double time_step = 0.0;  // the fixed step of the run; 0 when it comes from the CFL number
+  long particles = 0;      // at the end of the run (splitting adds points)
+  std::string status;      // "completed", "unstable" or "left_grid"
+  std::string folder;      // run folder, relative to the study's folder
+  double wall_seconds = 0.0;
+  StageMeasures last;  // the last stage's slide measures
+};
+
+// Throws std::invalid_argument unless 2 <= levels <= 5 and the transfers are distinct.
+void check_refine_options(const RefineOptions& opt);
+
+// Runs every level of every transfer into OUTDIR/run_NNN/ (in the table's order) and writes
+// OUTDIR/refine.csv (rewritten atomically after every run). Every run's scenario is validated
+// before the first starts; a bad value throws ScenarioError naming the file and key.
+std::vector<RefineRow> run_refine(const std::string& scenario_file, const std::filesystem::path& outdir,
+                                  const RefineOptions& opt);
+
+// The text of refine.csv: transfer, level, cell_size, time_step, particles, status, folder,
+// wall_seconds, stage, ended_by, runout, runout_change (the relative change from the level
+// before, of the same transfer; nan at level 0), max_displacement, height_end, gravity_work,
+// plastic_dissipation, final_mean_speed.
+std::string refine_table(const std::vector<RefineRow>& rows);
+
+// (b - a) / a, or NaN when a is not positive (a runout of zero cannot be refined relative to).
+double relative_change(double a, double b);
+
+// What the study shows, as lines for the terminal: per transfer the runout per level and the
+// change per halving, the last halving against the 5 % of issue 12, and, with several
+// transfers, how far apart they are at the finest level.
+std::string refine_verdict(const std::vector<RefineRow>& rows);
+
+}  // namespace skred
