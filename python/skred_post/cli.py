@@ -20,6 +20,15 @@ def cmd_sweep(a):
     return 0
 
 
+def cmd_refine(a):
+    from .render import save
+    from .refine import plot_refine
+    out = a.output or os.path.join(a.outdir, "pictures", "refine.png")
+    save(plot_refine(a.outdir, dpi=a.dpi), out)
+    print(f"wrote {out}")
+    return 0
+
+
 def cmd_render(a):
     from .render import Style, bounds, check_style, draw_frame, save
     from .scenario_info import body_names_of
@@ -107,6 +116,11 @@ def parser():
     sw.add_argument("-o", "--output", help="PNG file (default OUTDIR/pictures/sweep.png)")
     sw.add_argument("--dpi", type=int, default=100)
     sw.set_defaults(run=cmd_sweep)
+    rf = sub.add_parser("refine", help="picture of a refinement study's refine.csv (run by `skred refine`)")
+    rf.add_argument("outdir")
+    rf.add_argument("-o", "--output", help="PNG file (default OUTDIR/pictures/refine.png)")
+    rf.add_argument("--dpi", type=int, default=100)
+    rf.set_defaults(run=cmd_refine)
     return p
 
 
@@ -123,7 +137,7 @@ def main(argv):
 
 
 def entry():
-    """The `skred-post` command of the installed package: skred-post render|report|sweep ..."""
+    """The `skred-post` command of the installed package: skred-post render|report|sweep|refine ..."""
     from .deps import require_modules
     require_modules()
     sys.exit(main(sys.argv[1:]))

@@ -91,8 +91,9 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::vec
   return code::kSuccess;
 }
 
-// The scenario at h, h/2, ... per velocity transfer (run/refine.hpp); refine.csv and the
-// verdict on the terminal. Exits: usage for bad options, unstable if a run was.
+// The scenario at h, h/2, ... per velocity transfer (run/refine.hpp); refine.csv, the verdict
+// on the terminal and pictures/refine.png. Exits: usage for bad options, missing Python if the
+// picture could not be drawn, unstable if a run was.
 int cmd_refine(const std::string& file, const std::string& outdir, skred::RefineOptions o, int threads,
                bool overwrite) {
   try {
@@ -103,8 +104,12 @@ int cmd_refine(const std::string& file, const std::string& outdir, skred::Refine
   skred::prepare_output_folder(outdir, overwrite, file);
   o.threads = threads > 0 ? threads : omp_get_max_threads();
   const auto rows = skred::run_refine(file, outdir, o);
-  fmt::print("{}table: {}\n", skred::refine_verdict(rows),
-             (std::filesystem::path(outdir) / "refine.csv").string());
+  const std::filesystem::path table = std::filesystem::path(outdir) / "refine.csv";
+  fmt::print("{}table: {}\n", skred::refine_verdict(rows), table.string());
+  if (const int drawn = skred::run_post({"refine", outdir}); drawn != code::kSuccess) {
+    fmt::print(stderr, "skred: the study's picture was not drawn; {} is complete\n", table.string());
+    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
+  }
   for (const auto& r : rows)
     if (r.status != "completed") return code::kUnstable;
   return code::kSuccess;
