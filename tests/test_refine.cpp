@@ -173,3 +173,31 @@ TEST(Refine, ATransferFromOutsideReplacesTheScenariosTransferKeys) {
   ASSERT_EQ(bare.find("[solver]"), std::string::npos);
   EXPECT_EQ(transfer(bare, "apic").velocity_transfer, VelocityTransfer::Apic);
 }
+
+// A splitting cap given in the scenario grows with the points (4 x per halving in 2D; without
+// one the cap is 10 x each run's own initial points), and every level's scenario passes the
+// check (`skred refine`: the memory estimate) before the first run starts.
+TEST(Refine, ASplittingCapGrowsWithThePointsAndEveryLevelIsCheckedFirst) {
+  const fs::path dir = test::fresh_temp_dir("refine_cap");
+  fs::create_directories(dir);
+  std::string text = block_text();
+  text.insert(text.find("shape = \"rectangle\""), "split = true\n");
+  text += "[splitting]\nmax_points = 1000\n";
+  const fs::path file = dir / "block.toml";
+  std::ofstream(file) << text;
+  RefineOptions o;
+  o.levels = 3;
+  o.progress = false;
+  std::vector<long> caps;
+  std::vector<double> cells;
+  o.check = [&](const AnyScenario& s) {
+    caps.push_back(std::get<Scenario>(s).splitting.max_points);
+    cells.push_back(std::get<Scenario>(s).cell_size);
+    if (caps.size() == 3) throw std::runtime_error("refused");
+  };
+  EXPECT_THROW(run_refine(file.string(), dir / "out", o), std::runtime_error);
+  EXPECT_EQ(caps, (std::vector<long>{1000, 4000, 16000}));
+  EXPECT_EQ(cells, (std::vector<double>{0.01, 0.005, 0.0025}));
+  EXPECT_FALSE(fs::exists(dir / "out" / "run_000"));
+  fs::remove_all(dir);
+}

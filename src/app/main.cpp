@@ -186,6 +186,7 @@ int main(int argc, char** argv) {
       ->delimiter(',');
   refine->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
   refine->add_flag("--overwrite", overwrite, "Replace an earlier study in OUTDIR (removes its files first)");
+  refine->add_flag("--force", force, "Run levels that need more memory than the machine has");
 
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged", transfer = "flip";
@@ -245,7 +246,10 @@ int main(int argc, char** argv) {
     }
     if (scenario_commands.chosen()) return scenario_commands.run();
     if (*sweep) return cmd_sweep(scenario, outdir, sets, threads, overwrite);
-    if (*refine) return cmd_refine(scenario, outdir, rfo, threads, overwrite);
+    if (*refine) {
+      if (!force) rfo.check = [](const skred::AnyScenario& s) { skred::require_fits_machine(s); };
+      return cmd_refine(scenario, outdir, rfo, threads, overwrite);
+    }
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column") {
         fmt::print(stderr, "skred: --dim 3 is available for --problem column only\n");

@@ -69,8 +69,10 @@ int update_docs(const std::string& path) {
 
 }  // namespace
 
-void require_fits_machine(const std::string& file) {
-  std::visit([](const auto& s) { refuse_if_too_big(s, estimate_size(s)); }, load_any_scenario(file));
+void require_fits_machine(const std::string& file) { require_fits_machine(load_any_scenario(file)); }
+
+void require_fits_machine(const AnyScenario& s) {
+  std::visit([](const auto& x) { refuse_if_too_big(x, estimate_size(x)); }, s);
 }
 
 ScenarioCommands::ScenarioCommands(CLI::App& app) {

@@ -6,6 +6,8 @@
 #include <CLI/CLI.hpp>
 #include <string>
 
+#include "scenario/scenario.hpp"
+
 namespace skred {
 
 class ScenarioCommands {
@@ -25,5 +27,6 @@ class ScenarioCommands {
 // Throws ScenarioError with the figures when the scenario's estimated memory exceeds what
 // this machine offers (`skred run` and `check` without --force).
 void require_fits_machine(const std::string& file);
+void require_fits_machine(const AnyScenario& s);
 
 }  // namespace skred

@@ -1,13 +1,16 @@
 // A refinement study of the user's own scenario (issue 12; Thesis fig. 5.18): the scenario at
 // its cell size h and at h/2, h/4, ... with the same points per cell, a fixed time step halved
-// with the cell (so c dt / h stays), once per velocity transfer asked for; one table row per
+// with the cell (so c dt / h stays) and a splitting cap given in the scenario raised with the
+// points, once per velocity transfer asked for; one table row per
 // run with the last stage's slide measures, and how much each halving moved the runout.
 #pragma once
 #include <filesystem>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "io/summary_writer.hpp"
+#include "scenario/scenario.hpp"
 
 namespace skred {
 
@@ -16,6 +19,9 @@ struct RefineOptions {
   std::vector<std::string> transfers;  // solver.velocity_transfer per series; empty: the scenario's
   int threads = 1;
   bool progress = true;
+  // Called on every run's scenario before the first run starts (`skred refine`: whether it fits
+  // the machine's memory); it throws to refuse.
+  std::function<void(const AnyScenario&)> check;
 };
 
 struct RefineRow {

@@ -431,8 +431,9 @@ void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
   sp.min_volume = std::pow(r.number("min_size") * s.cell_size, D);
   double points = 0;
   for (const auto& b : s.bodies) points += static_cast<double>(count_points(s, b));
+  s.max_points_given = r.has("max_points");
   sp.max_points =
-      r.has("max_points") ? static_cast<long>(r.integer("max_points")) : static_cast<long>(10 * points);
+      s.max_points_given ? static_cast<long>(r.integer("max_points")) : static_cast<long>(10 * points);
   for (const auto& b : s.bodies) sp.body_splits.push_back(b.split ? 1 : 0);
 }
 

@@ -191,6 +191,7 @@ struct ScenarioCommon {
   // Material-point splitting (Thesis §3.4; [splitting] and the bodies' `split` key);
   // splitting.body_splits is empty when no body splits.
   SplitSettings splitting;
+  bool max_points_given = false;  // [splitting] max_points set (not 10 x the initial points)
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
 
