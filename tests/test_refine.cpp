@@ -146,6 +146,17 @@ TEST(Refine, BadOptionsAndTransfersAreRefusedBeforeAnyRun) {
     EXPECT_NE(std::string(e.what()).find("velocity_transfer"), std::string::npos) << e.what();
   }
   EXPECT_FALSE(fs::exists(dir / "out" / "run_000"));
+  RefineRow coarse;  // a slide that did not move at h: no change to report, and no crash
+  coarse.transfer = "xpic";
+  coarse.cell_size = 1.0;
+  coarse.status = "completed";
+  RefineRow fine = coarse;
+  fine.level = 1;
+  fine.cell_size = 0.5;
+  fine.last.runout = 0.3;
+  EXPECT_NE(refine_verdict({coarse, fine}).find("xpic: no change of the runout to report"),
+            std::string::npos);
+  EXPECT_NE(refine_verdict({fine}).find("no change of the runout to report"), std::string::npos);
   EXPECT_TRUE(std::isnan(relative_change(0.0, 1.0)));
   EXPECT_DOUBLE_EQ(relative_change(2.0, 2.5), 0.25);
   fs::remove_all(dir);

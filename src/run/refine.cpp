@@ -134,8 +134,8 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
     finest.push_back(&rows[k]);
     const double c = change_at(rows, k);
     if (!std::isfinite(c)) {
-      fmt::format_to(out, "{}: no runout to compare at h = {} m\n", label(rows[k].transfer),
-                     num(rows[k - 1].cell_size));
+      fmt::format_to(out, "{}: no change of the runout to report (one level, or no runout at the coarser)\n",
+                     label(rows[k].transfer));
       continue;
     }
     fmt::format_to(
