@@ -9,6 +9,8 @@
 # (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
 # Then, per problem, scripts/deposit_front.py: the front at thicknesses fixed in metres
 # (2, 4, 10 and 20 % of the initial height), the gravity work and the transfer's share of it.
+# For a scenario of your own, `skred refine SCENARIO.toml -o OUTDIR --transfers auto,apic` runs the
+# same kind of study (h, h/2, h/4, a fixed time step halved with the cell) and prints the verdict.
 # PROBLEMS=slope50 runs examples/slope_50m.toml instead (the slope at the thesis's scale, 50 m
 # high; h = 5, 2.5, 1.25 m: 60, 120, 240 cells across).
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
