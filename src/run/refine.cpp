@@ -139,7 +139,7 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
       continue;
     }
     fmt::format_to(
-        out, "{}: the last halving (h = {} to {} m) moved the runout by {:+.1f} %: {}\n",
+        out, "{}: the last halving (h = {} to {} m) moved the runout by {:+.2f} %: {}\n",
         label(rows[k].transfer), num(rows[k - 1].cell_size), num(rows[k].cell_size), 100.0 * c,
         std::abs(c) < kConverged ? "within 5 %" : "NOT within 5 %; refine further before relying on it");
   }
@@ -152,7 +152,7 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
                      num(finest.front()->cell_size));
     else
       fmt::format_to(
-          out, "at h = {} m the transfers' runouts lie within {:.1f} % of each other: {}\n",
+          out, "at h = {} m the transfers' runouts lie within {:.2f} % of each other: {}\n",
           num(finest.front()->cell_size), 100.0 * spread,
           spread < kConverged ? "within 5 %" : "NOT within 5 %: the runout depends on the velocity transfer");
   }
