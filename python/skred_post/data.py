@@ -249,6 +249,17 @@ def numeric_column(values):
         return np.array([float(v) if v else np.nan for v in values])
 
 
+def read_csv_columns(path, text_columns=()):
+    """(header, {column: NumPy array}) of a CSV table with a header row: the columns named in
+    `text_columns` as str, the others as numeric_column makes them."""
+    with open(path, newline="") as f:
+        reader = csv.reader(f)
+        header = next(reader, None) or []
+        rows = list(reader)
+    return header, {name: (np.array([r[k] for r in rows], dtype=str) if name in text_columns
+                           else numeric_column([r[k] for r in rows])) for k, name in enumerate(header)}
+
+
 def read_series(outdir):
     """OUTDIR/series.csv as {column: NumPy array} (step, stage, num_particles... as int64, the
     rest float), one entry per row: pandas.DataFrame(read_series(d)) takes it as it is.

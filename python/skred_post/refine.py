@@ -2,12 +2,11 @@
 runout, its change per halving of the cell, the largest displacement and the gravity work
 against the cell size, one line per velocity transfer, with the 5 % band of issue 12 around
 each transfer's finest runout."""
-import csv
 import os
 
 import numpy as np
 
-from .data import PostError, numeric_column
+from .data import PostError, read_csv_columns
 
 TEXT_COLUMNS = ("transfer", "status", "folder", "stage", "ended_by")
 
@@ -18,16 +17,12 @@ def read_refine(outdir):
     path = os.path.join(outdir, "refine.csv")
     if not os.path.isfile(path):
         raise PostError(f"{path} not found: is {outdir} the output folder of `skred refine`?")
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, None)
-        rows = list(reader)
-    if not header or "transfer" not in header or "runout" not in header:
+    header, table = read_csv_columns(path, TEXT_COLUMNS)
+    if "transfer" not in header or "runout" not in header:
         raise PostError(f"{path}: no header with transfer and runout columns")
-    if not rows:
+    if len(table["transfer"]) == 0:
         raise PostError(f"{path} has no rows")
-    return {name: (np.array([r[k] for r in rows], dtype=str) if name in TEXT_COLUMNS
-                   else numeric_column([r[k] for r in rows])) for k, name in enumerate(header)}
+    return table
 
 
 def plot_refine(outdir, dpi=100):

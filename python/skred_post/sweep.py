@@ -1,12 +1,11 @@
 """The picture of a parameter sweep (OUTDIR/sweep.csv of `skred sweep`): every slide measure
 of the last stage against the first swept key with more than one value, one line per value
 of the other swept keys (for a 2-key grid: one line per value of the second key)."""
-import csv
 import os
 
 import numpy as np
 
-from .data import PostError, numeric_column
+from .data import PostError, read_csv_columns
 
 TEXT_COLUMNS = ("status", "folder", "stage", "ended_by")
 
@@ -33,18 +32,10 @@ def read_sweep(outdir):
     path = os.path.join(outdir, "sweep.csv")
     if not os.path.isfile(path):
         raise PostError(f"{path} not found: is {outdir} the output folder of `skred sweep`?")
-    with open(path, newline="") as f:
-        reader = csv.reader(f)
-        header = next(reader, None)
-        rows = list(reader)
-    if not header or "status" not in header:
+    header, table = read_csv_columns(path, TEXT_COLUMNS)
+    if "status" not in header:
         raise PostError(f"{path}: no header with a status column")
-    keys = header[:header.index("status")]
-    table = {}
-    for k, name in enumerate(header):
-        column = [r[k] for r in rows]
-        table[name] = np.array(column, dtype=str) if name in TEXT_COLUMNS else numeric_column(column)
-    return keys, table
+    return header[:header.index("status")], table
 
 
 def plot_sweep(outdir, dpi=100):

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.hpp"
 #include "run/simulation.hpp"
+#include "run/table_text.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -21,7 +22,7 @@ namespace {
 // Issue 12's bound on the runout's change per halving of the cell, and between transfers.
 constexpr double kConverged = 0.05;
 
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.12g}", v) : std::string("nan"); }
+std::string num(double v) { return table_number(v); }
 
 std::string label(const std::string& transfer) {
   return transfer.empty() ? std::string("scenario") : transfer;
@@ -90,7 +91,7 @@ std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::pa
     ro.threads = opt.threads;
     ro.progress = opt.progress;
     const RunResult res = run_simulation(scenarios[i], outdir / r.folder, ro);
-    r.status = res.completed ? "completed" : res.left_grid ? "left_grid" : "unstable";
+    r.status = run_status(res);
     r.particles = res.particles;
     r.wall_seconds = res.wall_seconds;
     if (!res.stages.empty()) r.last = res.stages.back();
@@ -110,9 +111,9 @@ std::string refine_table(const std::vector<RefineRow>& rows) {
     const StageMeasures& m = r.last;
     fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", label(r.transfer), r.level,
                    num(r.cell_size), num(r.time_step), r.particles, r.status, r.folder, num(r.wall_seconds),
-                   m.name, m.ended_by, num(m.runout), num(change_at(rows, k)), num(m.max_displacement),
-                   num(m.height_end), num(m.gravity_work), num(m.plastic_dissipation),
-                   num(m.final_mean_speed));
+                   table_text(m.name), m.ended_by, num(m.runout), num(change_at(rows, k)),
+                   num(m.max_displacement), num(m.height_end), num(m.gravity_work),
+                   num(m.plastic_dissipation), num(m.final_mean_speed));
   }
   return text;
 }

@@ -10,6 +10,7 @@
 
 #include "io/atomic_file.hpp"
 #include "run/simulation.hpp"
+#include "run/table_text.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -37,17 +38,7 @@ double parse_number(const std::string& x) {
 // to its 12-significant-digit decimal (the inputs, as typed, have fewer).
 double clean(double v) { return std::stod(fmt::format("{:.12g}", v)); }
 
-// Every real number of the table: 12 significant digits, far beyond what a measure means,
-// and short of the last bits of rounding noise (0.05, not 0.05000000000000004).
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.12g}", v) : std::string("nan"); }
-
-// A text field of the table, quoted (RFC 4180) when it holds a comma, quote or line break.
-std::string text_field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
+std::string num(double v) { return table_number(v); }
 
 bool is_three_d(const std::vector<SweepRow>& rows) {
   for (const SweepRow& r : rows)
@@ -110,7 +101,7 @@ std::vector<std::vector<double>> sweep_grid(const std::vector<SweepAxis>& axes) 
 std::string sweep_table(const std::vector<SweepAxis>& axes, const std::vector<SweepRow>& rows) {
   const bool three_d = is_three_d(rows);
   std::string text;
-  for (const SweepAxis& a : axes) text += text_field(a.key) + ",";
+  for (const SweepAxis& a : axes) text += table_text(a.key) + ",";
   text += "status,folder,steps,simulated_time,wall_seconds,stage,ended_by,runout,runout_x_min,runout_x_max,";
   if (three_d) text += "runout_z_min,runout_z_max,";
   text +=
@@ -121,7 +112,7 @@ std::string sweep_table(const std::vector<SweepAxis>& axes, const std::vector<Sw
     for (double v : r.values) fmt::format_to(out, "{},", num(v));
     const StageMeasures& m = r.last;
     fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},", r.status, r.folder, r.steps, num(r.simulated_time),
-                   num(r.wall_seconds), text_field(m.name), m.ended_by, num(m.runout), num(m.runout_x_min),
+                   num(r.wall_seconds), table_text(m.name), m.ended_by, num(m.runout), num(m.runout_x_min),
                    num(m.runout_x_max));
     if (three_d) fmt::format_to(out, "{},{},", num(m.runout_z_min), num(m.runout_z_max));
     fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(m.max_displacement),
@@ -159,7 +150,7 @@ std::vector<SweepRow> run_sweep(const std::string& scenario_file, const fs::path
     ro.threads = opt.threads;
     ro.progress = opt.progress;
     const RunResult res = run_simulation(scenarios[i], outdir / row.folder, ro);
-    row.status = res.completed ? "completed" : res.left_grid ? "left_grid" : "unstable";
+    row.status = run_status(res);
     row.steps = res.steps;
     row.simulated_time = res.simulated_time;
     row.wall_seconds = res.wall_seconds;
