@@ -389,3 +389,21 @@ TEST(CliRun, ASweepWithoutPythonKeepsItsTable) {
   EXPECT_NE(r.output.find("sweep.csv is complete"), std::string::npos) << r.output;
   EXPECT_NE(read(d / "out" / "sweep.csv").find("\n1000,completed,run_000,"), std::string::npos);
 }
+
+// `skred check` sets a slope against limit equilibrium before any run (run/slope_stability.hpp):
+// Bishop's factor, the circle and what it means, or why it was not computed.
+TEST(CliRun, CheckGivesASlopesLimitEquilibrium) {
+  const std::string examples = q(fs::path(SKRED_SOURCE_DIR) / "examples");
+  const Outcome slope = sh(kSkred + " check " + examples + "/slope_collapse.toml");
+  EXPECT_EQ(slope.code, 0) << slope.output;
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(
+      slope.output, m, std::regex(R"(limit equilibrium \(Bishop's simplified method.*F = ([0-9.]+) on)")))
+      << slope.output;
+  EXPECT_NEAR(std::stod(m[1].str()), 0.82, 0.01);  // docs/method.md, "Limit equilibrium"
+  EXPECT_NE(slope.output.find("sliding towards +x: the slope is not expected to stand"), std::string::npos);
+  const Outcome layered = sh(kSkred + " check " + examples + "/rubjerg_knude.toml");
+  EXPECT_NE(layered.output.find("limit equilibrium: not computed (the bodies are of more than one material)"),
+            std::string::npos)
+      << layered.output;
+}

@@ -6,12 +6,15 @@
 // at 0.5 m cells), which fig. 5.14 shows sliding.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 
 #include "run/simulation.hpp"
+#include "run/slope_stability.hpp"
 #include "scenario/scenario.hpp"
 #include "temp_dir.hpp"
 
@@ -22,7 +25,7 @@ namespace {
 
 // examples/slope_50m.toml at 5 m cells (60 across, the coarsest of the thesis's fig. 5.18
 // range is 50) with the soil's friction angle and cohesion and the slide stage's duration set.
-StageMeasures slide(double phi, double c, double duration) {
+std::string slope_text(double phi, double c, double duration) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_50m.toml");
   const auto replace = [&](const std::string& a, const std::string& b) {
     const auto at = text.find(a);
@@ -33,6 +36,11 @@ StageMeasures slide(double phi, double c, double duration) {
   replace("friction = 18.0", "friction = " + std::to_string(phi));
   replace("cohesion = 5000.0", "cohesion = " + std::to_string(c));
   replace("duration = 80.0", "duration = " + std::to_string(duration));
+  return text;
+}
+
+StageMeasures slide(double phi, double c, double duration) {
+  const std::string text = slope_text(phi, c, duration);
   const fs::path out = skred::test::fresh_temp_dir("slope50");
   RunOptions opt;
   opt.progress = false;
@@ -71,4 +79,32 @@ TEST(Slides, FiftyMetreSlopeSlidesAsTheThesisSays) {
   EXPECT_EQ(strong.ended_by, "rest");
   EXPECT_EQ(strong.runout, 0.0);
   EXPECT_LT(strong.max_displacement, 0.005 * kHeight);
+}
+
+// The slope's strength from outside the MPM: Bishop's simplified method (run/slope_stability.hpp,
+// tested against published answers in test_limit_equilibrium.cpp) gives the 18 deg, 5 kPa slope
+// F = 0.59. Dividing c and tan(phi) by F / F_target gives the slope whose limit-equilibrium
+// factor is F_target. Measured at these 5 m cells (docs/method.md, "Limit equilibrium"): at
+// F = 0.9 / 0.95 the soil moves 17 / 9.5 m, at 1.0 0.5 m, at 1.05 / 1.1 / 1.2 0.10 / 0.09 / 0.07 m:
+// the MPM's onset lies within 5 % of Bishop's.
+TEST(Slides, FiftyMetreSlopeStandsAndFailsWhereLimitEquilibriumSays) {
+  constexpr double kHeight = 50.0;
+  const SlopeStability original =
+      slope_stability(parse_scenario(slope_text(18.0, 5e3, 20.0), "slope_50m.toml"));
+  ASSERT_TRUE(original.computed) << original.why_not;
+  EXPECT_NEAR(original.critical.factor, 0.59, 0.01);
+  EXPECT_EQ(original.critical.direction, 1);
+  for (const double target : {0.9, 1.1}) {
+    const double f = original.critical.factor / target;
+    const double phi = std::atan(std::tan(18.0 * std::numbers::pi / 180.0) / f) * 180.0 / std::numbers::pi;
+    const std::string text = slope_text(phi, 5e3 / f, 20.0);
+    const SlopeStability le = slope_stability(parse_scenario(text, "slope_50m.toml"));
+    ASSERT_TRUE(le.computed) << le.why_not;
+    EXPECT_NEAR(le.critical.factor, target, 2e-3) << "Bishop's F is a factor on c and tan(phi)";
+    const StageMeasures m = slide(phi, 5e3 / f, 20.0);
+    if (target < 1.0)
+      EXPECT_GT(m.max_displacement, 0.1 * kHeight) << "F = " << target << ": the slope should fail";
+    else
+      EXPECT_LT(m.max_displacement, 0.005 * kHeight) << "F = " << target << ": the slope should stand";
+  }
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <variant>
 
+#include "run/slope_stability.hpp"
 #include "scenario/build.hpp"
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
@@ -49,6 +50,8 @@ void print_check(const ScenarioOf<D>& s, bool force) {
              gigabytes(z.memory_bytes), gigabytes(available_memory_bytes()));
   fmt::print("output: {:.0f} particle frames of at most {:.3g} MB (less compressed), {} in all\n", z.frames,
              z.frame_bytes / 1e6, gigabytes(z.output_bytes()));
+  if constexpr (D == 2)
+    if (z.points <= kCountPointsUpTo) fmt::print("{}", slope_stability_line(slope_stability(s)));
   fmt::print("scenario is valid\n");
 }
 

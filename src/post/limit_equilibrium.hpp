@@ -1,0 +1,56 @@
+// Limit equilibrium of a slope: Bishop's simplified method of slices on circular slip surfaces
+// (Bishop 1955), a check on a scenario's strength from outside the MPM (docs/method.md, "Limit
+// equilibrium"). Plane strain, one homogeneous dry soil with a Mohr-Coulomb envelope (c, phi),
+// unit weight gamma; no pore pressure, no tension crack, no external load.
+#pragma once
+#include <vector>
+
+namespace skred {
+
+// The ground: its surface y = top[j] over the column [x0 + j width, x0 + (j + 1) width) (NaN
+// where there is no ground), soil from there down to `base`, which a slip surface may not cut
+// (the firm layer, or the grid's floor).
+struct GroundProfile {
+  double x0 = 0.0, width = 1.0;
+  std::vector<double> top;
+  double base = 0.0;
+  // The surface height at x: the column tops joined by straight lines between column centres
+  // (NaN outside the ground or beside a column without ground).
+  double surface(double x) const;
+  double x_end() const { return x0 + width * static_cast<double>(top.size()); }
+};
+
+struct SoilStrength {
+  double cohesion = 0.0;     // c [Pa]
+  double friction = 0.0;     // phi [rad]
+  double unit_weight = 0.0;  // gamma = rho g [N/m^3]
+};
+
+struct SlipCircle {
+  double xc = 0.0, yc = 0.0, radius = 0.0;
+};
+
+// Bishop's simplified factor of safety of one circle, the soil sliding towards +x (direction
+// +1) or -x (-1):
+//   F = sum_i [c b_i + W_i tan(phi)] / m_i  /  sum_i W_i sin(alpha_i),
+//   m_i = cos(alpha_i) + sin(alpha_i) tan(phi) / F,
+// over `slices` slices of width b_i between the circle's two crossings of the surface, with
+// W_i = gamma b_i h_i and alpha_i the inclination of the slice's base. NaN when the circle is
+// not admissible: it does not cut the ground in one piece, goes below the base, its sliding
+// mass does not drive towards `direction`, or m_i <= 0.2 on a slice whose base rises in the
+// direction of motion (the usual guard against Bishop's spurious solutions at steep toes).
+double bishop_factor(const GroundProfile& g, const SoilStrength& s, const SlipCircle& c, int direction,
+                     int slices = 60);
+
+struct CriticalCircle {
+  double factor = 0.0;  // the least F found (+inf if no circle was admissible)
+  SlipCircle circle;
+  int direction = 1;  // +1: the slip mass moves towards +x, -1 towards -x
+};
+
+// The least Bishop factor over circles in both directions: a grid of centres above the ground
+// and radii that reach from just under the surface to the base, then a pattern search from the
+// best of them (step halved down to width / 200).
+CriticalCircle critical_circle(const GroundProfile& g, const SoilStrength& s);
+
+}  // namespace skred
