@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <variant>
 #include <vector>
 
 #include "app/exit_codes.hpp"
@@ -20,6 +21,7 @@
 #include "run/output_folder.hpp"
 #include "run/refine.hpp"
 #include "run/simulation.hpp"
+#include "run/slope_stability.hpp"
 #include "run/sweep.hpp"
 #include "run/version.hpp"
 #include "scenario/build.hpp"
@@ -106,6 +108,11 @@ int cmd_refine(const std::string& file, const std::string& outdir, skred::Refine
   const auto rows = skred::run_refine(file, outdir, o);
   const std::filesystem::path table = std::filesystem::path(outdir) / "refine.csv";
   fmt::print("{}table: {}\n", skred::refine_verdict(rows), table.string());
+  // How near the slope stands to failing says how much its runout can move with the cell
+  // (docs/method.md, "Limit equilibrium").
+  if (const skred::AnyScenario s = skred::load_any_scenario(file); std::holds_alternative<skred::Scenario>(s))
+    if (const skred::SlopeStability le = skred::slope_stability(std::get<skred::Scenario>(s)); le.computed)
+      fmt::print("{}", skred::slope_stability_line(le));
   if (const int drawn = skred::run_post({"refine", outdir}); drawn != code::kSuccess) {
     fmt::print(stderr, "skred: the study's picture was not drawn; {} is complete\n", table.string());
     return drawn == code::kMissingPython ? code::kMissingPython : code::kError;

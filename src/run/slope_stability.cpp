@@ -69,7 +69,11 @@ std::string slope_stability_line(const SlopeStability& r) {
       "limit equilibrium (Bishop's simplified method on circles, dry, {}'s strength in stage '{}'): "
       "F = {:.3f} on the circle centred ({:.2f}, {:.2f}) m of radius {:.2f} m, sliding towards {}x: {}\n",
       r.material, r.stage, c.factor, c.circle.xc, c.circle.yc, c.circle.radius, c.direction > 0 ? "+" : "-",
-      c.factor < 1.0 ? "the slope is not expected to stand" : "the slope is expected to stand");
+      c.factor < 1.0
+          ? fmt::format("the slope is not expected to stand: its soil has {:.0f} % of the strength it needs "
+                        "(the nearer 100 %, the more a slide's runout depends on the cell)",
+                        100.0 * c.factor)
+          : std::string("the slope is expected to stand"));
 }
 
 }  // namespace skred
