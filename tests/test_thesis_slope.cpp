@@ -39,7 +39,7 @@ std::string slope_text(double phi, double c, double duration) {
   return text;
 }
 
-StageMeasures slide(double phi, double c, double duration) {
+StageMeasures slide(double phi, double c, double duration, double* limit_equilibrium = nullptr) {
   const std::string text = slope_text(phi, c, duration);
   const fs::path out = skred::test::fresh_temp_dir("slope50");
   RunOptions opt;
@@ -49,6 +49,7 @@ StageMeasures slide(double phi, double c, double duration) {
   fs::remove_all(out);
   if (!r.completed || r.stages.size() != 2) throw std::runtime_error("run failed: " + r.message);
   const StageMeasures m = r.stages[1];
+  if (limit_equilibrium) *limit_equilibrium = r.limit_equilibrium;
   std::printf("phi = %4.1f deg, c = %5.1f kPa: runout %7.2f m, max displacement %6.3f m, %s at %.1f s\n", phi,
               c / 1e3, m.runout, m.max_displacement, m.ended_by.c_str(), m.end_time - m.start_time);
   return m;
@@ -101,7 +102,9 @@ TEST(Slides, FiftyMetreSlopeStandsAndFailsWhereLimitEquilibriumSays) {
     const SlopeStability le = slope_stability(parse_scenario(text, "slope_50m.toml"));
     ASSERT_TRUE(le.computed) << le.why_not;
     EXPECT_NEAR(le.critical.factor, target, 2e-3) << "Bishop's F is a factor on c and tan(phi)";
-    const StageMeasures m = slide(phi, 5e3 / f, 20.0);
+    double written = NAN;
+    const StageMeasures m = slide(phi, 5e3 / f, 20.0, &written);
+    EXPECT_DOUBLE_EQ(written, le.critical.factor) << "summary.json's limit_equilibrium";
     if (target < 1.0)
       EXPECT_GT(m.max_displacement, 0.1 * kHeight) << "F = " << target << ": the slope should fail";
     else

@@ -125,6 +125,11 @@ std::string transfer_json(const Summary& s) {
   return out + fmt::format("  \"volumetric_strain\": {},\n", json_string(s.volumetric_strain));
 }
 
+std::string limit_equilibrium_json(const Summary& s) {
+  if (!std::isfinite(s.limit_equilibrium)) return "";
+  return fmt::format("  \"limit_equilibrium\": {},\n", json_number(s.limit_equilibrium));
+}
+
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
@@ -142,7 +147,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"threads\": {},\n"
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
-      "  \"scheme\": {},\n{}"
+      "  \"scheme\": {},\n{}{}"
       "  \"time_step\": {},\n"
       "  \"phase_seconds\": {{{}}},\n"
       "  \"stages\": [{}],\n"
@@ -154,8 +159,8 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
       json_number(s.wall_seconds), json_number(s.particle_updates_per_second), s.threads,
       json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
-      json_number(s.time_step), phases_json(s.phase_seconds), stages_json(s.stages), json_string(s.version),
-      json_string(s.git_commit));
+      limit_equilibrium_json(s), json_number(s.time_step), phases_json(s.phase_seconds),
+      stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

@@ -66,6 +66,9 @@ struct Summary {
   std::string velocity_transfer = {}, volumetric_strain = {};
   int xpic_order = 0;
   double xpic_period = 0.0, pic_fraction = 0.0;
+  // Bishop's factor of safety of the bodies at the start (run/slope_stability.hpp; written after
+  // the transfer as "limit_equilibrium" when finite: 2D slopes of one soil).
+  double limit_equilibrium = NAN;
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

@@ -22,6 +22,7 @@
 #include "run/density_trigger.hpp"
 #include "run/dilation_continuum.hpp"
 #include "run/slide_measures.hpp"
+#include "run/slope_stability.hpp"
 #include "run/stability.hpp"
 #include "run/version.hpp"
 #include "scenario/build.hpp"
@@ -428,6 +429,13 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.xpic_period = s.xpic_period;
   sum.pic_fraction = s.pic_fraction;
   sum.volumetric_strain = s.volumetric_averaging ? "cell-average" : "point";
+  // Bishop's F of the bodies at the start (docs/method.md, "Limit equilibrium"); slope_stability
+  // builds them afresh, so not for the largest runs.
+  if constexpr (D == 2)
+    if (n <= 2'000'000) {
+      const SlopeStability le = slope_stability(s);
+      if (le.computed) res.limit_equilibrium = sum.limit_equilibrium = le.critical.factor;
+    }
   sum.time_step = dt;
   sum.stages = at.finished;
   sum.phase_seconds = solver.phase_times().report();

@@ -106,7 +106,8 @@ std::string sweep_table(const std::vector<SweepAxis>& axes, const std::vector<Sw
   if (three_d) text += "runout_z_min,runout_z_max,";
   text +=
       "max_displacement,height_start,height_end,peak_mean_speed,peak_time,final_mean_speed,stop_time,"
-      "gravity_work,kinetic_energy_change,strain_energy,plastic_dissipation,plastic_volume,plastic_points\n";
+      "gravity_work,kinetic_energy_change,strain_energy,plastic_dissipation,plastic_volume,plastic_points,"
+      "limit_equilibrium\n";
   auto out = std::back_inserter(text);
   for (const SweepRow& r : rows) {
     for (double v : r.values) fmt::format_to(out, "{},", num(v));
@@ -115,11 +116,11 @@ std::string sweep_table(const std::vector<SweepAxis>& axes, const std::vector<Sw
                    num(r.wall_seconds), table_text(m.name), m.ended_by, num(m.runout), num(m.runout_x_min),
                    num(m.runout_x_max));
     if (three_d) fmt::format_to(out, "{},{},", num(m.runout_z_min), num(m.runout_z_max));
-    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(m.max_displacement),
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", num(m.max_displacement),
                    num(m.height_start), num(m.height_end), num(m.peak_mean_speed), num(m.peak_time),
                    num(m.final_mean_speed), num(m.stop_time.value_or(NAN)), num(m.gravity_work),
                    num(m.kinetic_energy_change), num(m.strain_energy), num(m.plastic_dissipation),
-                   num(m.plastic_volume), m.plastic_points);
+                   num(m.plastic_volume), m.plastic_points, num(r.limit_equilibrium));
   }
   return text;
 }
@@ -155,6 +156,7 @@ std::vector<SweepRow> run_sweep(const std::string& scenario_file, const fs::path
     row.simulated_time = res.simulated_time;
     row.wall_seconds = res.wall_seconds;
     if (!res.stages.empty()) row.last = res.stages.back();
+    row.limit_equilibrium = res.limit_equilibrium;
     rows.push_back(row);
     write_file_atomically(outdir / "sweep.csv", [&](std::ostream& os) { os << sweep_table(opt.axes, rows); });
   }

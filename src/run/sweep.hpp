@@ -28,7 +28,8 @@ struct SweepRow {
   std::string folder;          // run folder, relative to the sweep folder
   long steps = 0;
   double simulated_time = 0.0, wall_seconds = 0.0;
-  StageMeasures last;  // the last stage's slide measures (stop_time unset: NaN in the table)
+  StageMeasures last;              // the last stage's slide measures (stop_time unset: NaN in the table)
+  double limit_equilibrium = NAN;  // Bishop's F (RunResult::limit_equilibrium)
 };
 
 // "KEY=V1,V2,..." where each item is a number or a range FROM:TO:STEP (TO included, values
