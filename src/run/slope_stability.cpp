@@ -25,7 +25,8 @@ SlopeStability slope_stability(const Scenario& s) {
   for (const Stage& st : s.stages)
     if (!st.elastic) stage = &st;
   if (!stage) return not_computed("every stage holds the materials elastic");
-  if (!(s.gravity[1] < 0.0) || s.gravity[0] != 0.0) return not_computed("no gravity along -y alone");
+  if (s.gravity.norm() == 0.0) return not_computed("no gravity");
+  if (!(s.gravity[1] < 0.0) || s.gravity[0] != 0.0) return not_computed("gravity is not along -y");
   int material = -1;
   for (const Body& b : s.bodies) {
     if (b.rigid || b.dilated_from >= 0) continue;
