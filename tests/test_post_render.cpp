@@ -135,6 +135,25 @@ TEST_F(IoTest, RenderFollowsTheDomainsAspectRatio) {
   expect_pixels("layout", png, info);
 }
 
+// --slip-circle draws summary.json's limit-equilibrium circle where it cut the ground (and
+// only there), and says clearly when the run has none.
+TEST_F(IoTest, RenderDrawsTheSlipCircleOfTheSummary) {
+  require_python_vtk();
+  write_two_particles(dir);
+  const std::string d = shell_quote(dir.string());
+  auto [s1, o1] = run_skred("render " + d + " --slip-circle");
+  EXPECT_EQ(s1, 1) << o1;
+  EXPECT_NE(o1.find("summary.json has no slip circle"), std::string::npos) << o1;
+  std::ofstream(dir / "summary.json")
+      << R"({"limit_equilibrium": 0.8, "slip_circle": [1.0, 1.9, 1.6, 0.2, 1.8]})";
+  const fs::path png = dir / "circle.png", info = dir / "circle.json";
+  const auto [status, out] =
+      run_skred("render " + d + " --field stress:xx --step 0 --range 0 10 --slip-circle -o " +
+                shell_quote(png.string()) + " --info " + shell_quote(info.string()));
+  ASSERT_EQ(status, 0) << out;
+  expect_pixels("circle", png, info);
+}
+
 TEST_F(IoTest, RenderAndReportFailClearly) {
   require_python_vtk();
   write_two_particles(dir);

@@ -31,6 +31,7 @@ def cmd_refine(a):
 
 def cmd_render(a):
     from .render import Style, bounds, check_style, draw_frame, save
+    from .data import slip_circle_of
     from .scenario_info import body_names_of
     import matplotlib
     if a.cmap not in matplotlib.colormaps:
@@ -39,7 +40,8 @@ def cmd_render(a):
     style = Style(field=a.field, cmap=a.cmap, vrange=tuple(a.range) if a.range else None,
                   pattern=pattern, pattern_width=a.pattern_width, pattern_angle=a.pattern_angle,
                   arrows=a.arrows, crosses=a.crosses, sample=a.sample, dpi=a.dpi,
-                  body_names=body_names_of(a.outdir))
+                  body_names=body_names_of(a.outdir),
+                  slip_circle=slip_circle_of(a.outdir) if a.slip_circle else None)
     pictures = os.path.join(a.outdir, "pictures")
     view = View(kind=a.view, z=a.section_z, width=a.slab)  # 3D frames only
     if a.series:
@@ -89,6 +91,8 @@ def parser():
     r.add_argument("-o", "--output")
     r.add_argument("--arrows", action="store_true")
     r.add_argument("--crosses", action="store_true")
+    r.add_argument("--slip-circle", action="store_true",
+                   help="summary.json's limit-equilibrium slip circle (Bishop's F), dashed")
     pat = r.add_mutually_exclusive_group()
     pat.add_argument("--stripes", action="store_true")
     pat.add_argument("--checkerboard", action="store_true")

@@ -284,3 +284,15 @@ def read_summary(outdir):
         return None
     with open(path) as f:
         return json.load(f)
+
+
+def slip_circle_of(outdir):
+    """(xc, yc, radius, x_from, x_to, F) of summary.json's limit-equilibrium slip circle
+    (docs/method.md, "Limit equilibrium"): its centre, radius and where it cuts the ground;
+    PostError if the run has none."""
+    summary = read_summary(outdir) or {}
+    circle, factor = summary.get("slip_circle"), summary.get("limit_equilibrium")
+    if not circle or factor is None or any(v is None for v in circle):
+        raise PostError(f"{outdir}/summary.json has no slip circle: limit equilibrium is computed for a "
+                        "finished 2D run whose deformable bodies are of one soil under gravity along -y")
+    return (*circle, factor)

@@ -41,6 +41,7 @@ class Style:
     max_height: float = 9.0       # the tallest figure [inch] (a tall domain narrows it)
     dpi: int = 100
     body_names: dict = None       # body id -> name, for the pattern legend
+    slip_circle: tuple = None     # (xc, yc, radius, x_from, x_to, F): Bishop's critical circle
 
 
 def data_range(values_list):
@@ -188,6 +189,16 @@ MIN_PLOT_HEIGHT = 1.2           # [inch]; a flatter domain gets more room above 
 MIN_PLOT_WIDTH = 2.6            # [inch]; a narrower domain gets room beside it (for the title)
 
 
+def draw_slip_circle(ax, circle):
+    """The limit-equilibrium slip circle (docs/method.md, "Limit equilibrium") where it cut the
+    ground at the start, dashed, black over white so it shows on any colour map."""
+    xc, yc, r, x_from, x_to = circle[:5]
+    x = np.linspace(x_from, x_to, 361)
+    y = yc - np.sqrt(np.maximum(r * r - (x - xc) ** 2, 0.0))
+    ax.plot(x, y, color="white", linewidth=2.4, zorder=4, solid_capstyle="round")
+    ax.plot(x, y, color="black", linewidth=1.2, linestyle=(0, (5, 3)), zorder=5)
+
+
 def layout(style, xlim, ylim):
     """(figure width, height) and the plot's (left, bottom, width, height) in inches: the
     plot has the domain's aspect ratio, so the picture has no empty band."""
@@ -248,6 +259,9 @@ def draw_frame(frame, style, xlim, ylim, vrange=None):
     if style.arrows:
         draw_arrows(ax, frame, idx, spacing)
         overlays.append("arrows: velocity")
+    if style.slip_circle:
+        draw_slip_circle(ax, style.slip_circle)
+        overlays.append(f"dashed: Bishop's critical slip circle at the start, F = {style.slip_circle[5]:.3f}")
     if overlays:
         what += "\n" + ", ".join(overlays)
     ax.set_xlim(*xlim)

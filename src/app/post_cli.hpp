@@ -30,6 +30,8 @@ class PostCommands {
     render_->add_option("-o,--output", output_, "Output file (default: OUTDIR/pictures/...)");
     render_->add_flag("--arrows", arrows_, "Velocity arrows on a subsample (Post fig. 9)");
     render_->add_flag("--crosses", crosses_, "Principal-stress crosses on a subsample (Post fig. 12)");
+    render_->add_flag("--slip-circle", slip_circle_,
+                      "Draw summary.json's limit-equilibrium slip circle (Bishop's, a 2D slope of one soil)");
     auto* stripes = render_->add_flag("--stripes", stripes_, "Colour by body with stripes (Post §5.2)");
     auto* checker = render_->add_flag("--checkerboard", checker_, "Colour by body with a checkerboard");
     stripes->excludes(checker);
@@ -87,6 +89,7 @@ class PostCommands {
     if (series_) a.push_back("--series");
     if (arrows_) a.push_back("--arrows");
     if (crosses_) a.push_back("--crosses");
+    if (slip_circle_) a.push_back("--slip-circle");
     if (stripes_) a.push_back("--stripes");
     if (checker_) a.push_back("--checkerboard");
     if (render_->count("--pattern-width")) opt("--pattern-width", num(pattern_width_));
@@ -107,7 +110,8 @@ class PostCommands {
   CLI::App* report_ = nullptr;
   std::string outdir_, field_, output_, cmap_, info_, view_;
   int step_ = -1, sample_ = 4, dpi_ = 100;
-  bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, stripes_ = false, checker_ = false;
+  bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, slip_circle_ = false,
+       stripes_ = false, checker_ = false;
   double pattern_width_ = 0.0, pattern_angle_ = 0.0, fps_ = 8.0, section_z_ = 0.0, slab_ = 0.0;
   std::vector<double> range_;
 };

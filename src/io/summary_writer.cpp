@@ -127,7 +127,10 @@ std::string transfer_json(const Summary& s) {
 
 std::string limit_equilibrium_json(const Summary& s) {
   if (!std::isfinite(s.limit_equilibrium)) return "";
-  return fmt::format("  \"limit_equilibrium\": {},\n", json_number(s.limit_equilibrium));
+  const auto& c = s.slip_circle;
+  return fmt::format("  \"limit_equilibrium\": {},\n  \"slip_circle\": [{}, {}, {}, {}, {}],\n",
+                     json_number(s.limit_equilibrium), json_number(c[0]), json_number(c[1]),
+                     json_number(c[2]), json_number(c[3]), json_number(c[4]));
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 // The end-of-run summary (summary.json).
 #pragma once
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <optional>
@@ -66,9 +67,11 @@ struct Summary {
   std::string velocity_transfer = {}, volumetric_strain = {};
   int xpic_order = 0;
   double xpic_period = 0.0, pic_fraction = 0.0;
-  // Bishop's factor of safety of the bodies at the start (run/slope_stability.hpp; written after
-  // the transfer as "limit_equilibrium" when finite: 2D slopes of one soil).
+  // Bishop's factor of safety of the bodies at the start and its critical circle (centre x, y,
+  // radius, and the x where it enters and leaves the ground; run/slope_stability.hpp), written
+  // after the transfer as "limit_equilibrium" and "slip_circle" when finite: 2D slopes of one soil.
   double limit_equilibrium = NAN;
+  std::array<double, 5> slip_circle = {NAN, NAN, NAN, NAN, NAN};
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

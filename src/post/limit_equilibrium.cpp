@@ -150,6 +150,7 @@ CriticalCircle critical_circle(const GroundProfile& g, const SoilStrength& s) {
       if (n.radius > 0.0) trial(n);
     if (!(best.factor < before.factor)) step *= 0.5;
   }
+  slip_range(g, best.circle, best.x_from, best.x_to);
   return best;
 }
 

@@ -45,7 +45,8 @@ double bishop_factor(const GroundProfile& g, const SoilStrength& s, const SlipCi
 struct CriticalCircle {
   double factor = 0.0;  // the least F found (+inf if no circle was admissible)
   SlipCircle circle;
-  int direction = 1;  // +1: the slip mass moves towards +x, -1 towards -x
+  int direction = 1;                // +1: the slip mass moves towards +x, -1 towards -x
+  double x_from = 0.0, x_to = 0.0;  // where the circle enters and leaves the ground
 };
 
 // The least Bishop factor over circles in both directions: a grid of centres above the ground

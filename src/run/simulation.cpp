@@ -434,7 +434,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   if constexpr (D == 2)
     if (n <= 2'000'000) {
       const SlopeStability le = slope_stability(s);
-      if (le.computed) res.limit_equilibrium = sum.limit_equilibrium = le.critical.factor;
+      if (le.computed) {
+        res.limit_equilibrium = sum.limit_equilibrium = le.critical.factor;
+        const SlipCircle& c = le.critical.circle;
+        sum.slip_circle = {c.xc, c.yc, c.radius, le.critical.x_from, le.critical.x_to};
+      }
     }
   sum.time_step = dt;
   sum.stages = at.finished;

@@ -6,6 +6,7 @@ Voxel B: centre (1.5, 0.5), sheared by F = [[1, 1], [0, 1]], stress xx 10, body 
 MODE: field   (--field stress:xx --range 0 10 [kPa]: A = viridis(0.25), B = viridis(1), colour bar)
       nan     (--field relative_yield with no strength: both grey #c8c8c8)
       checker (--checkerboard --pattern-width 1: A light body-0 blue, B dark body-1 orange)
+      circle  (field, with --slip-circle from a summary.json: the dashed arc crosses voxel A)
       zero    (the first frame of --all, displacement 0 of a range 0 ... 0.4 m: both viridis(0))
       layout  (the plot box has the aspect of its axis limits, the colour bar its height, and
                the image holds little besides them)
@@ -62,6 +63,16 @@ def main(mode, png, info_path):
     b_in = [(1.5, 0.5), (1.8, 0.65), (1.2, 0.35)]   # (1.8, 0.65): sheared part, outside the square
     background = [(1.0, 0.5), (1.35, 0.65),        # (1.35, 0.65): inside the square, not the voxel
                   (0.5, 0.75), (x0 + 0.01 * (x1 - x0), y0 + 0.01 * (y1 - y0))]
+    if mode == "circle":  # field's colours, and the slip circle (1, 1.9), r 1.6, from x 0.2 to 1.8
+        want_a = rgb(colormaps["viridis"](0.25))
+        on_arc = at(0.5, 1.9 - np.sqrt(1.6 ** 2 - 0.5 ** 2))  # y = 0.38, inside voxel A
+        away = max(abs(int(g) - int(w)) for g, w in zip(on_arc, want_a))
+        print(f"{'ok' if away > 60 else 'FAIL'} the arc over voxel A: got {tuple(int(g) for g in on_arc)}")
+        if away <= 60:
+            failures.append("no slip circle over voxel A")
+        check("voxel A off the arc", at(0.5, 0.62), want_a)
+        check("the arc's end at x = 0.2 is not drawn beyond it", at(0.1, 0.5), WHITE, 0)
+        return report()
     if mode == "field":
         viridis = colormaps["viridis"]
         want_a, want_b = rgb(viridis(0.25)), rgb(viridis(1.0))
