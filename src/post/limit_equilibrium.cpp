@@ -35,7 +35,7 @@ double crossing(const GroundProfile& g, const SlipCircle& c, double x_in, double
 bool slip_range(const GroundProfile& g, const SlipCircle& c, double& xa, double& xb) {
   const double lo = std::max(g.x0, c.xc - c.radius), hi = std::min(g.x_end(), c.xc + c.radius);
   if (!(hi > lo)) return false;
-  constexpr int kSamples = 240;
+  constexpr int kSamples = 160;
   const double dx = (hi - lo) / kSamples;
   int first = -1, last = -1, runs = 0;
   bool was = false;
