@@ -22,6 +22,7 @@
 #include "run/refine.hpp"
 #include "run/simulation.hpp"
 #include "run/slope_stability.hpp"
+#include "run/strength_reduction.hpp"
 #include "run/sweep.hpp"
 #include "run/version.hpp"
 #include "scenario/build.hpp"
@@ -122,6 +123,24 @@ int cmd_refine(const std::string& file, const std::string& outdir, skred::Refine
   return code::kSuccess;
 }
 
+// The MPM's factor of safety by strength reduction (run/strength_reduction.hpp): fos.csv and the
+// verdict on the terminal. Exits: usage for bad options, unstable if a run was.
+int cmd_fos(const std::string& file, const std::string& outdir, skred::FosOptions o, int threads,
+            bool overwrite) {
+  try {
+    skred::check_fos_options(o);
+  } catch (const std::invalid_argument& e) {
+    throw CLI::ValidationError("fos", e.what());
+  }
+  skred::prepare_output_folder(outdir, overwrite, file);
+  o.threads = threads > 0 ? threads : omp_get_max_threads();
+  const skred::FosResult r = skred::run_strength_reduction(file, outdir, o);
+  fmt::print("{}table: {}\n", skred::fos_verdict(r, o), (std::filesystem::path(outdir) / "fos.csv").string());
+  for (const auto& run : r.runs)
+    if (run.status == "unstable") return code::kUnstable;
+  return code::kSuccess;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -195,6 +214,21 @@ int main(int argc, char** argv) {
   refine->add_flag("--overwrite", overwrite, "Replace an earlier study in OUTDIR (removes its files first)");
   refine->add_flag("--force", force, "Run levels that need more memory than the machine has");
 
+  skred::FosOptions fo;
+  std::vector<double> fos_range;
+  auto* fos = app.add_subcommand(
+      "fos", "The MPM's factor of safety of a slope: bisect the strength reduction at which it fails");
+  fos->add_option("scenario", scenario, "Scenario file (TOML)")->required()->check(CLI::ExistingFile);
+  fos->add_option("-o,--output", outdir, "Output folder (one sub-folder per run, fos.csv)")->required();
+  fos->add_option("--range", fos_range, "LOW HIGH: the slope stands at LOW and fails at HIGH (default 0.5 2)")
+      ->expected(2);
+  fos->add_option("--steps", fo.steps, "Bisections after the two ends (default 5)");
+  fos->add_option("--moved", fo.moved,
+                  "Fails: a point moved more than this share of the material's height (default 0.01)");
+  fos->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));
+  fos->add_flag("--overwrite", overwrite, "Replace an earlier study in OUTDIR (removes its files first)");
+  fos->add_flag("--force", force, "Run scenarios that need more memory than the machine has");
+
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged", transfer = "flip";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
@@ -256,6 +290,11 @@ int main(int argc, char** argv) {
     if (*refine) {
       if (!force) rfo.check = [](const skred::AnyScenario& s) { skred::require_fits_machine(s); };
       return cmd_refine(scenario, outdir, rfo, threads, overwrite);
+    }
+    if (*fos) {
+      if (!fos_range.empty()) fo.low = fos_range[0], fo.high = fos_range[1];
+      if (!force) fo.check = [](const skred::AnyScenario& s) { skred::require_fits_machine(s); };
+      return cmd_fos(scenario, outdir, fo, threads, overwrite);
     }
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column") {

@@ -25,9 +25,9 @@ bool numbered(const std::string& name, const std::string& prefix, std::size_t di
 
 bool skred_file_name(std::string name) {
   if (name.size() > 4 && name.ends_with(".tmp")) name.resize(name.size() - 4);
-  static const char* fixed[] = {"particles.pvd", "grid.pvd",      "series.csv",
-                                "summary.json",  "scenario.toml", "checkpoint.skc",
-                                "report.html",   "sweep.csv",     "refine.csv"};
+  static const char* fixed[] = {"particles.pvd", "grid.pvd",       "series.csv",  "summary.json",
+                                "scenario.toml", "checkpoint.skc", "report.html", "sweep.csv",
+                                "refine.csv",    "fos.csv"};
   for (const char* f : fixed)
     if (name == f) return true;
   return numbered(name, "particles_", 6, ".vtu") || numbered(name, "grid_", 6, ".vtr");

@@ -188,8 +188,9 @@ void add_run_sections(std::vector<Section>& s) {
            {.name = "strength_reduction",
             .unit = "-",
             .def = value(1),
-            .range = Range::closed(1.0, 100.0),
-            .doc = "c, tan(phi) and tan(psi) are divided by it"},
+            .range = Range::closed(0.1, 100.0),
+            .doc = "c, tan(phi) and tan(psi) are divided by it (below 1: a stronger soil; `skred fos` "
+                   "bisects it)"},
            {.name = "material",
             .type = Type::Tables,
             .def = none(),

@@ -1,0 +1,146 @@
+#include "run/strength_reduction.hpp"
+
+#include <fmt/format.h>
+
+#include <iterator>
+#include <stdexcept>
+#include <variant>
+
+#include "io/atomic_file.hpp"
+#include "run/simulation.hpp"
+#include "run/slope_stability.hpp"
+#include "run/table_text.hpp"
+#include "scenario/initial_stress.hpp"
+
+namespace skred {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const ScenarioCommon& common_of(const AnyScenario& s) {
+  return std::visit([](const auto& x) -> const ScenarioCommon& { return x; }, s);
+}
+
+// The last stage that lets the soil yield (as slope_stability takes its strength).
+std::size_t slide_stage(const ScenarioCommon& s, const std::string& file) {
+  for (std::size_t k = s.stages.size(); k-- > 0;)
+    if (!s.stages[k].elastic) {
+      for (const Material& m : stage_materials(s, s.stages[k]))
+        if (m.plastic()) return k;
+      break;
+    }
+  throw ScenarioError(file +
+                      ": no material can yield in the last stage that is not held elastic; strength "
+                      "reduction needs a stage that lets the soil yield");
+}
+
+}  // namespace
+
+void check_fos_options(const FosOptions& opt) {
+  if (!(opt.low > 0.0 && opt.low < opt.high))
+    throw std::invalid_argument(fmt::format("--range needs 0 < LOW < HIGH, got {} {}", opt.low, opt.high));
+  if (opt.steps < 0 || opt.steps > 12)
+    throw std::invalid_argument(fmt::format("--steps must be 0 to 12, got {}", opt.steps));
+  if (!(opt.moved > 0.0 && opt.moved < 1.0))
+    throw std::invalid_argument(fmt::format("--moved must lie between 0 and 1, got {}", opt.moved));
+}
+
+FosResult run_strength_reduction(const std::string& scenario_file, const fs::path& outdir,
+                                 const FosOptions& opt) {
+  check_fos_options(opt);
+  const std::string text = read_scenario_text(scenario_file);
+  const AnyScenario base = parse_any_scenario(text, scenario_file);
+  const std::size_t k = slide_stage(common_of(base), scenario_file);
+  if (text.find("[[stage]]") == std::string::npos)
+    throw ScenarioError(scenario_file +
+                        ": strength reduction sets a [[stage]]'s strength_reduction, and the scenario has no "
+                        "[[stage]] table: add one (e.g. an elastic equilibrium stage, then the slide)");
+  const double own = common_of(base).stages[k].strength_reduction;
+  const std::string key = fmt::format("stage[{}].strength_reduction", k);
+  const auto scenario_at = [&](double f) {
+    AnyScenario s = parse_any_scenario(text, scenario_file, {{key, own * f}});
+    if (opt.check) opt.check(s);
+    return s;
+  };
+  scenario_at(opt.low), scenario_at(opt.high);  // both ends valid before the first run
+
+  FosResult result;
+  result.stage = common_of(base).stages[k].name;
+  if (const Scenario* s2 = std::get_if<Scenario>(&base))
+    if (const SlopeStability le = slope_stability(*s2); le.computed)
+      result.limit_equilibrium = le.critical.factor;
+  fs::create_directories(outdir);
+  const auto run = [&](double f) {
+    FosRun r;
+    r.factor = f;
+    r.folder = fmt::format("run_{:03}", result.runs.size());  // as a sweep's (run/output_folder.hpp)
+    if (opt.progress)
+      fmt::print(stderr, "fos {}: stage '{}' with the strength divided by {}\n", result.runs.size() + 1,
+                 result.stage, table_number(f));
+    RunOptions ro;
+    ro.threads = opt.threads;
+    ro.progress = opt.progress;
+    const RunResult res = run_simulation(scenario_at(f), outdir / r.folder, ro);
+    r.status = run_status(res);
+    const bool reached = res.stages.size() > k;  // the slide stage ran (to its end or not)
+    if (reached) r.stage = res.stages[k];
+    // A run that left the grid or went unstable in the slide counts as failing.
+    r.fails = !res.completed || !reached || r.stage.max_displacement > opt.moved * r.stage.height_start;
+    result.runs.push_back(r);
+    write_file_atomically(outdir / "fos.csv", [&](std::ostream& os) { os << fos_table(result.runs); });
+    return r.fails;
+  };
+  if (run(opt.low) || !run(opt.high)) return result;  // the ends do not bracket the onset
+  double stands = opt.low, fails = opt.high;
+  for (int i = 0; i < opt.steps; ++i) {
+    const double mid = 0.5 * (stands + fails);
+    (run(mid) ? fails : stands) = mid;
+  }
+  result.stands = stands, result.fails = fails;
+  return result;
+}
+
+std::string fos_table(const std::vector<FosRun>& runs) {
+  std::string text =
+      "factor,status,folder,fails,max_displacement,height_start,runout,ended_by,gravity_work,"
+      "plastic_dissipation\n";
+  auto out = std::back_inserter(text);
+  for (const FosRun& r : runs) {
+    const StageMeasures& m = r.stage;
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{}\n", table_number(r.factor), r.status, r.folder,
+                   r.fails ? "true" : "false", table_number(m.max_displacement), table_number(m.height_start),
+                   table_number(m.runout), m.ended_by, table_number(m.gravity_work),
+                   table_number(m.plastic_dissipation));
+  }
+  return text;
+}
+
+std::string fos_verdict(const FosResult& r, const FosOptions& opt) {
+  std::string text = fmt::format(
+      "strength reduction of stage '{}' (c, tan(phi) and tan(psi) divided by f; fails: a point moved more "
+      "than "
+      "{} % of the material's height within the stage):\n",
+      table_text(r.stage), table_number(100.0 * opt.moved));
+  auto out = std::back_inserter(text);
+  for (const FosRun& run : r.runs)
+    fmt::format_to(out, "  f = {}: {} (largest displacement {:.3g} m, the height {:.3g} m){}\n",
+                   table_number(run.factor), run.fails ? "fails" : "stands", run.stage.max_displacement,
+                   run.stage.height_start, run.status == "completed" ? "" : ", " + run.status);
+  if (std::isfinite(r.stands))
+    fmt::format_to(out, "the MPM's factor of safety lies between {} and {}\n", table_number(r.stands),
+                   table_number(r.fails));
+  else if (!r.runs.empty() && r.runs.front().fails)
+    fmt::format_to(out,
+                   "the slope fails already at f = {}: its factor of safety is below it (lower --range)\n",
+                   table_number(opt.low));
+  else
+    fmt::format_to(out, "the slope stands at f = {}: its factor of safety is above it (raise --range)\n",
+                   table_number(opt.high));
+  if (std::isfinite(r.limit_equilibrium))
+    fmt::format_to(out, "limit equilibrium (Bishop's simplified method on circles): F = {:.3f}\n",
+                   r.limit_equilibrium);
+  return text;
+}
+
+}  // namespace skred

@@ -1,0 +1,61 @@
+// The MPM's own factor of safety of a slope by strength reduction (`skred fos`): the scenario's
+// slide stage (its last stage that lets the soil yield) is run with c, tan(phi) and tan(psi)
+// divided by a factor f (`[[stage]] strength_reduction`, times the stage's own), bracketing the
+// f at which the slope starts to fail by bisection. "Fails" means some point moved more than a
+// share of the material's height within the stage. The factor found is set beside Bishop's
+// limit equilibrium (run/slope_stability.hpp; docs/method.md, "Limit equilibrium").
+#pragma once
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/summary_writer.hpp"
+#include "scenario/scenario.hpp"
+
+namespace skred {
+
+struct FosOptions {
+  double low = 0.5, high = 2.0;  // the bracket: the slope must stand at `low` and fail at `high`
+  int steps = 5;                 // bisections after the two ends (the bracket shrinks by 2^steps)
+  double moved = 0.01;           // fails: a displacement above this share of the height
+  int threads = 1;
+  bool progress = true;
+  // Called on every run's scenario before it starts (`skred fos`: whether it fits the
+  // machine's memory); it throws to refuse.
+  std::function<void(const AnyScenario&)> check;
+};
+
+struct FosRun {
+  double factor = 1.0;  // the strength-reduction factor f
+  std::string status;   // "completed", "unstable" or "left_grid"
+  std::string folder;   // run folder, relative to the study's folder
+  bool fails = false;
+  StageMeasures stage;  // the slide stage's measures
+};
+
+struct FosResult {
+  std::vector<FosRun> runs;          // in the order run
+  std::string stage;                 // the slide stage's name
+  double stands = NAN, fails = NAN;  // the final bracket (NaN: the ends did not bracket)
+  double limit_equilibrium = NAN;    // Bishop's F, where computed
+};
+
+// Throws std::invalid_argument unless 0 < low < high, 0 <= steps <= 12 and 0 < moved < 1.
+void check_fos_options(const FosOptions& opt);
+
+// Runs the ends of the bracket, then bisects while they bracket the onset, into
+// OUTDIR/run_NNN/, rewriting OUTDIR/fos.csv after every run. Throws ScenarioError for a
+// scenario without a stage that lets the soil yield.
+FosResult run_strength_reduction(const std::string& scenario_file, const std::filesystem::path& outdir,
+                                 const FosOptions& opt);
+
+// fos.csv: factor, status, folder, fails, max_displacement, height_start, runout, ended_by,
+// gravity_work, plastic_dissipation; one row per run, in the order run.
+std::string fos_table(const std::vector<FosRun>& runs);
+
+// What the study shows, for the terminal: the bracket, or which end failed to bracket, and
+// Bishop's F beside it.
+std::string fos_verdict(const FosResult& r, const FosOptions& opt);
+
+}  // namespace skred

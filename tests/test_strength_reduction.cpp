@@ -1,0 +1,96 @@
+// `skred fos` (run/strength_reduction.hpp): the MPM's factor of safety by strength reduction,
+// bisected, against Bishop's limit equilibrium (tested on its own against published answers in
+// test_limit_equilibrium.cpp).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "run/strength_reduction.hpp"
+#include "temp_dir.hpp"
+
+namespace fs = std::filesystem;
+using namespace skred;
+
+namespace {
+
+// examples/slope_50m.toml at 5 m cells with a 20 s slide, written to `dir`.
+fs::path fifty_metre_slope(const fs::path& dir) {
+  std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_50m.toml");
+  for (const auto& [a, b] : {std::pair<std::string, std::string>{"cell_size = 2.5", "cell_size = 5.0"},
+                             {"duration = 80.0", "duration = 20.0"}}) {
+    const auto at = text.find(a);
+    if (at == std::string::npos) throw std::runtime_error("not in examples/slope_50m.toml: " + a);
+    text.replace(at, a.size(), b);
+  }
+  const fs::path file = dir / "slope_50m.toml";
+  std::ofstream(file) << text;
+  return file;
+}
+
+}  // namespace
+
+// Measured (docs/method.md, "Limit equilibrium"): from [0.5, 0.7] in three bisections the slope
+// stands at 0.575 and fails at 0.6, Bishop's F = 0.587 lying between.
+TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
+  const fs::path dir = test::fresh_temp_dir("fos");
+  FosOptions opt;
+  opt.low = 0.5, opt.high = 0.7, opt.steps = 2, opt.threads = 1, opt.progress = false;
+  const FosResult r = run_strength_reduction(fifty_metre_slope(dir).string(), dir / "out", opt);
+  ASSERT_EQ(r.runs.size(), 4u);
+  EXPECT_EQ(r.stage, "slide");
+  EXPECT_FALSE(r.runs[0].fails);  // 0.5: c and tan(phi) doubled
+  EXPECT_TRUE(r.runs[1].fails);   // 0.7
+  EXPECT_DOUBLE_EQ(r.runs[2].factor, 0.6);
+  EXPECT_DOUBLE_EQ(r.runs[3].factor, 0.55);
+  ASSERT_TRUE(std::isfinite(r.stands) && std::isfinite(r.fails));
+  EXPECT_NEAR(r.fails - r.stands, 0.05, 1e-12);
+  ASSERT_NEAR(r.limit_equilibrium, 0.59, 0.01);
+  // The MPM's onset within 5 % of limit equilibrium's.
+  EXPECT_GE(r.fails, 0.95 * r.limit_equilibrium);
+  EXPECT_LE(r.stands, 1.05 * r.limit_equilibrium);
+  for (const FosRun& run : r.runs) {
+    EXPECT_EQ(run.status, "completed");
+    EXPECT_EQ(run.fails, run.stage.max_displacement > 0.01 * run.stage.height_start);
+  }
+  std::ifstream table(dir / "out" / "fos.csv");
+  std::stringstream text;
+  text << table.rdbuf();
+  EXPECT_EQ(text.str(), fos_table(r.runs));
+  EXPECT_EQ(text.str().rfind("factor,status,folder,fails,max_displacement,", 0), 0u);
+  EXPECT_NE(text.str().find("\n0.5,completed,run_000,false,"), std::string::npos) << text.str();
+  const std::string verdict = fos_verdict(r, opt);
+  EXPECT_NE(verdict.find("the MPM's factor of safety lies between"), std::string::npos) << verdict;
+  EXPECT_NE(verdict.find("limit equilibrium (Bishop's simplified method on circles): F = 0.5"),
+            std::string::npos)
+      << verdict;
+  fs::remove_all(dir);
+}
+
+TEST(FactorOfSafety, BadOptionsAndElasticScenariosAreRefused) {
+  for (const auto& [low, high, steps, moved] :
+       {std::tuple{0.0, 1.0, 5, 0.01}, {1.0, 0.5, 5, 0.01}, {0.5, 2.0, 13, 0.01}, {0.5, 2.0, 5, 1.5}}) {
+    FosOptions o;
+    o.low = low, o.high = high, o.steps = steps, o.moved = moved;
+    EXPECT_THROW(check_fos_options(o), std::invalid_argument) << low << " " << high << " " << steps;
+  }
+  const fs::path dir = test::fresh_temp_dir("fos_elastic");
+  FosOptions o;
+  o.progress = false;
+  const std::pair<std::string, std::string> refused[] = {
+      {"elastic_column.toml", "no material can yield in the last stage that is not held elastic"},
+      {"column_3d.toml", "the scenario has no [[stage]] table"}};
+  for (const auto& [file, message] : refused) {
+    try {
+      run_strength_reduction(std::string(SKRED_SOURCE_DIR) + "/examples/" + file, dir / "out", o);
+      ADD_FAILURE() << file << " was accepted";
+    } catch (const ScenarioError& e) {
+      EXPECT_NE(std::string(e.what()).find(message), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_FALSE(fs::exists(dir / "out" / "run_000"));
+  fs::remove_all(dir);
+}
