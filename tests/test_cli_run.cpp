@@ -404,8 +404,16 @@ TEST(CliRun, CheckGivesASlopesLimitEquilibrium) {
   EXPECT_NE(slope.output.find("sliding towards +x: the slope is not expected to stand: its soil has 82 % of "
                               "the strength it needs"),
             std::string::npos);
+  // Layered ground (clay on sand) with a contact between the layers, which the circles ignore.
   const Outcome layered = sh(kSkred + " check " + examples + "/rubjerg_knude.toml");
-  EXPECT_NE(layered.output.find("limit equilibrium: not computed (the bodies are of more than one material)"),
-            std::string::npos)
+  EXPECT_NE(layered.output.find("dry, the strengths of sand, clay in stage 'rain'): F = "), std::string::npos)
       << layered.output;
+  EXPECT_NE(
+      layered.output.find("note: the contact between 'sand' and 'clay' (mu = 0.6) is not a weakness to it"),
+      std::string::npos)
+      << layered.output;
+  const Outcome elastic = sh(kSkred + " check " + examples + "/elastic_column.toml");
+  EXPECT_NE(elastic.output.find("limit equilibrium: not computed (material 'soil' does not yield)"),
+            std::string::npos)
+      << elastic.output;
 }

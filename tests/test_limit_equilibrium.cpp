@@ -6,8 +6,13 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "post/limit_equilibrium.hpp"
+#include "run/slope_stability.hpp"
+#include "scenario/scenario.hpp"
 
 namespace skred {
 namespace {
@@ -94,6 +99,121 @@ TEST(LimitEquilibrium, OneCircleByHand) {
       << "a quarter disc at a face rising towards -x does not slide towards -x";
   EXPECT_TRUE(std::isnan(bishop_factor(g, {c, 0.0, gamma}, {10.0, 10.0, 12.0}, 1, 400)))
       << "a circle below the firm base";
+}
+
+// Layers in cells of the columns' width x `row_height` from y = 0: soil 0 above `boundary`,
+// soil 1 below it (horizontal layers), none where a column has no ground.
+void layer(GroundProfile& g, double row_height, int rows, double boundary) {
+  g.rows = rows, g.row0 = 0.0, g.row_height = row_height;
+  g.soil.assign(g.top.size() * static_cast<std::size_t>(rows), GroundProfile::kNoSoil);
+  for (std::size_t j = 0; j < g.top.size(); ++j)
+    for (int k = 0; k < rows; ++k)
+      if (std::isfinite(g.top[j]) && k * row_height < g.top[j])
+        g.soil[j * rows + k] = (k + 0.5) * row_height > boundary ? 0 : 1;
+}
+
+TEST(LimitEquilibrium, LayeredQuarterDiscByHand) {
+  // phi = 0, the quarter disc of OneCircleByHand (centre (10, 10) on the face's top edge,
+  // R = 5) in two layers meeting at y = 10 - R/2: soil 0 (c1, gamma1) above, soil 1 below.
+  // The arc runs through soil 0 for R pi/6 (from 60 deg off the vertical) and through soil 1 for
+  // R pi/3. The driving moment is the integral of gamma |x - 10| over the disc: gamma1 - gamma2
+  // over the strip of depth R/2, integral_0^{R/2} (R^2 - d^2)/2 dd = 11 R^3 / 48, and gamma2 R^3/3
+  // over the whole. F = R^2 (c1 pi/6 + c2 pi/3) / M.
+  GroundProfile g;
+  g.x0 = 0.0, g.width = 0.01, g.base = 0.0;
+  for (double x = 0.005; x < 30.0; x += 0.01) g.top.push_back(x < 10.0 ? 10.0 : NAN);
+  const double R = 5.0, c1 = 5e3, c2 = 20e3, gamma1 = 16e3, gamma2 = 22e3;
+  layer(g, 0.5, 24, 10.0 - R / 2);
+  const double pi = std::numbers::pi;
+  const double moment = gamma2 * R * R * R / 3 + (gamma1 - gamma2) * 11 * R * R * R / 48;
+  const double expected = R * R * (c1 * pi / 6 + c2 * pi / 3) / moment;
+  const std::vector<SoilStrength> soils{{c1, 0.0, gamma1}, {c2, 0.0, gamma2}};
+  EXPECT_NEAR(bishop_factor(g, soils, {10.0, 10.0, R}, 1, 2000), expected, 1e-3 * expected);
+  // The same layers of one soil are the homogeneous ground's answer.
+  const std::vector<SoilStrength> same{{c1, 0.0, gamma1}, {c1, 0.0, gamma1}};
+  EXPECT_NEAR(bishop_factor(g, same, {10.0, 10.0, R}, 1, 400),
+              c1 * (pi * R / 2) * R / (gamma1 * pi * R * R / 4 * (4 * R / (3 * pi))), 1e-3);
+  // A layer index beyond the soils given is refused.
+  EXPECT_TRUE(std::isnan(bishop_factor(g, std::vector<SoilStrength>{soils[0]}, {10.0, 10.0, R}, 1)));
+}
+
+TEST(LimitEquilibrium, LayersOfOneSoilAreTheHomogeneousGround) {
+  // ACADS 1(a)'s slope cut into two layers of the same soil: the same critical circle and F.
+  GroundProfile g = slope(10.0, std::atan(0.5) / kDeg, 5.0, 0.1, 60.0);
+  const SoilStrength soil{3e3, 19.6 * kDeg, 20e3};
+  const CriticalCircle one = critical_circle(g, soil);
+  layer(g, 0.1, 160, 7.0);
+  const CriticalCircle two = critical_circle(g, std::vector<SoilStrength>{soil, soil});
+  EXPECT_NEAR(two.factor, one.factor, 1e-9);
+  EXPECT_NEAR(two.circle.radius, one.circle.radius, 1e-6);
+}
+
+TEST(LimitEquilibrium, AWeakLayerDrawsTheCircleAndFirmGroundStopsIt) {
+  // The same slope over a 5 m foundation. A weak layer 1 m thick at the foundation's top
+  // (c = 1 kPa, phi = 10 deg) lowers F, and the critical circle reaches down into it.
+  GroundProfile g = slope(10.0, std::atan(0.5) / kDeg, 5.0, 0.1, 60.0);
+  const SoilStrength soil{3e3, 19.6 * kDeg, 20e3};
+  const CriticalCircle homogeneous = critical_circle(g, soil);
+  layer(g, 0.1, 160, 5.0);  // soil 1 is the foundation, y < 5
+  for (std::size_t j = 0; j < g.top.size(); ++j)
+    for (int k = 40; k < 50; ++k) g.soil[j * 160 + k] = 2;  // 4 m < y < 5 m: the weak layer
+  const CriticalCircle weak = critical_circle(g, {soil, soil, {1e3, 10.0 * kDeg, 20e3}});
+  EXPECT_LT(weak.factor, 0.8 * homogeneous.factor);
+  const double lowest = weak.circle.yc - weak.circle.radius;
+  EXPECT_GT(lowest, 4.0 - 1e-9);
+  EXPECT_LT(lowest, 5.0) << "the circle reaches into the weak layer";
+  // Undrained clay (phi = 0) on a 2 : 1 slope fails on deep circles (Taylor: base circles below
+  // 53 deg); a firm foundation holds them at its top, and F rises.
+  for (std::size_t j = 0; j < g.top.size(); ++j)
+    for (int k = 40; k < 50; ++k) g.soil[j * 160 + k] = 1;
+  const SoilStrength clay{20e3, 0.0, 20e3};
+  SoilStrength firm = clay;
+  firm.firm = true;
+  const CriticalCircle deep = critical_circle(g, {clay, clay});
+  const CriticalCircle held = critical_circle(g, {clay, firm});
+  EXPECT_LT(deep.circle.yc - deep.circle.radius, 4.0) << "the clay's circle reaches deep";
+  EXPECT_GT(held.circle.yc - held.circle.radius, 5.0 - 1e-9) << "no circle cuts the firm foundation";
+  EXPECT_GT(held.factor, deep.factor);
+}
+
+// examples/slope_collapse.toml with its base layer (y < 4 m) a second body of material `base`,
+// given as a [[material]] table.
+std::string two_body_slope(const std::string& base) {
+  std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml");
+  const std::string one =
+      "vertices = [[0.0, 0.0], [60.0, 0.0], [60.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]";
+  const auto at = text.find(one);
+  if (at == std::string::npos) throw std::runtime_error("examples/slope_collapse.toml's body has changed");
+  text.replace(
+      at, one.size(),
+      "vertices = [[0.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]\n\n[[body]]\nname = \"base\"\n"
+      "material = \"base\"\nparticles_per_cell = 3\nshape = \"polygon\"\n"
+      "vertices = [[0.0, 0.0], [60.0, 0.0], [60.0, 4.0], [0.0, 4.0]]");
+  return text + "\n" + base;
+}
+
+TEST(SlopeStability, TwoBodiesOfOneSoilAreOneAndAnElasticBaseIsFirm) {
+  const std::string file = std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml";
+  const SlopeStability one = slope_stability(parse_scenario(read_scenario_text(file), file));
+  ASSERT_TRUE(one.computed) << one.why_not;
+  const std::string soil =
+      "[[material]]\nname = \"base\"\nmodel = \"mohr-coulomb\"\ndensity = 2000.0\nyoung = 40.0e6\n"
+      "poisson = 0.42\nfriction = 18.0\ncohesion = 5000.0\ndilation = 0.0\n";
+  const SlopeStability two = slope_stability(parse_scenario(two_body_slope(soil), "two_bodies.toml"));
+  ASSERT_TRUE(two.computed) << two.why_not;
+  EXPECT_NEAR(two.critical.factor, one.critical.factor, 1e-9);
+  EXPECT_EQ(two.materials, (std::vector<std::string>{"soil", "base"}));
+  EXPECT_NE(slope_stability_line(two).find("the strengths of soil, base in stage 'slide'"),
+            std::string::npos);
+  const std::string rock =
+      "[[material]]\nname = \"base\"\nmodel = \"linear-elastic\"\ndensity = 2000.0\nyoung = 40.0e6\n"
+      "poisson = 0.42\n";
+  const SlopeStability firm = slope_stability(parse_scenario(two_body_slope(rock), "elastic_base.toml"));
+  ASSERT_TRUE(firm.computed) << firm.why_not;
+  EXPECT_EQ(firm.materials, std::vector<std::string>{"soil"});
+  EXPECT_GT(firm.critical.circle.yc - firm.critical.circle.radius, 4.0 - 1e-9)
+      << "a circle cut the elastic base";
+  EXPECT_GE(firm.critical.factor, one.critical.factor - 1e-9);
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ struct RunResult {
   double wall_seconds = 0.0;
   double particle_updates_per_second = 0.0;
   std::vector<StageMeasures> stages;  // slide measures per stage run
-  double limit_equilibrium = NAN;     // Bishop's F of the bodies at the start (2D slopes of one soil)
+  double limit_equilibrium = NAN;     // Bishop's F of the bodies at the start (2D slopes)
 };
 
 template <int D>
