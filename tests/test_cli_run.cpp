@@ -169,6 +169,36 @@ TEST(CliRun, ARefinementStudyTellsHowFarTheRunoutMoved) {
   EXPECT_NE(bad.output.find("--levels must be 2 to 5"), std::string::npos) << bad.output;
 }
 
+// `skred fos`: the 50 m slope at 5 m cells stands at f = 0.5 and fails at 0.7 (Bishop's F 0.587
+// on those cells; test_strength_reduction.cpp bisects it); the verdict, fos.csv and the picture.
+TEST(CliRun, AFactorOfSafetyStudyBracketsTheOnset) {
+  TempDir d;
+  std::string text = read(fs::path(SKRED_SOURCE_DIR) / "examples" / "slope_50m.toml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"cell_size = 2.5", "cell_size = 5.0"},
+                                 {"duration = 80.0", "duration = 20.0"}}) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  }
+  write(d / "slope.toml", text);
+  const std::string fos = kSkred + " fos " + q(d / "slope.toml") + " -o " + q(d / "out") + " --threads 1";
+  const Outcome r = sh(fos + " --range 0.5 0.7 --steps 0");
+  ASSERT_EQ(r.code, 0) << r.output;
+  EXPECT_NE(r.output.find("the MPM's factor of safety lies between 0.5 and 0.7"), std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("limit equilibrium (Bishop's simplified method on circles): F = 0.58"),
+            std::string::npos)
+      << r.output;
+  const std::string table = read(d / "out" / "fos.csv");
+  EXPECT_EQ(table.rfind("factor,status,folder,fails,max_displacement,height_start,threshold,", 0), 0u)
+      << table;
+  EXPECT_NE(table.find("\n0.7,completed,run_001,true,"), std::string::npos) << table;
+  EXPECT_TRUE(fs::exists(d / "out" / "pictures" / "fos.png"));
+  EXPECT_EQ(sh(fos + " --range 0.5 0.7 --steps 0").code, 1);  // an earlier study, not --overwrite
+  const Outcome bad = sh(fos + " --range 0.7 0.5 --overwrite");
+  EXPECT_EQ(bad.code, 4) << bad.output;
+  EXPECT_NE(bad.output.find("--range needs 0 < LOW < HIGH"), std::string::npos) << bad.output;
+}
+
 TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {
   TempDir d;
   std::string text = discs("cell_size = 0.05", "cell_size = 0.02");  // 30,000 steps: several seconds

@@ -55,11 +55,12 @@ TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
   for (const FosRun& run : r.runs) {
     EXPECT_EQ(run.status, "completed");
     EXPECT_EQ(run.fails, run.stage.max_displacement > 0.01 * run.stage.height_start);
+    EXPECT_DOUBLE_EQ(run.threshold, 0.01 * run.stage.height_start);
   }
   std::ifstream table(dir / "out" / "fos.csv");
   std::stringstream text;
   text << table.rdbuf();
-  EXPECT_EQ(text.str(), fos_table(r.runs));
+  EXPECT_EQ(text.str(), fos_table(r));
   EXPECT_EQ(text.str().rfind("factor,status,folder,fails,max_displacement,", 0), 0u);
   EXPECT_NE(text.str().find("\n0.5,completed,run_000,false,"), std::string::npos) << text.str();
   const std::string verdict = fos_verdict(r, opt);

@@ -29,6 +29,15 @@ def cmd_refine(a):
     return 0
 
 
+def cmd_fos(a):
+    from .render import save
+    from .fos import plot_fos
+    out = a.output or os.path.join(a.outdir, "pictures", "fos.png")
+    save(plot_fos(a.outdir, dpi=a.dpi), out)
+    print(f"wrote {out}")
+    return 0
+
+
 def cmd_render(a):
     from .render import Style, bounds, check_style, draw_frame, save
     from .data import slip_circle_of
@@ -125,6 +134,11 @@ def parser():
     rf.add_argument("-o", "--output", help="PNG file (default OUTDIR/pictures/refine.png)")
     rf.add_argument("--dpi", type=int, default=100)
     rf.set_defaults(run=cmd_refine)
+    fo = sub.add_parser("fos", help="picture of a strength-reduction study's fos.csv (run by `skred fos`)")
+    fo.add_argument("outdir")
+    fo.add_argument("-o", "--output", help="PNG file (default OUTDIR/pictures/fos.png)")
+    fo.add_argument("--dpi", type=int, default=100)
+    fo.set_defaults(run=cmd_fos)
     return p
 
 
@@ -141,7 +155,7 @@ def main(argv):
 
 
 def entry():
-    """The `skred-post` command of the installed package: skred-post render|report|sweep|refine ..."""
+    """The `skred-post` command of the installed package: skred-post render|report|sweep|refine|fos ..."""
     from .deps import require_modules
     require_modules()
     sys.exit(main(sys.argv[1:]))

@@ -123,8 +123,9 @@ int cmd_refine(const std::string& file, const std::string& outdir, skred::Refine
   return code::kSuccess;
 }
 
-// The MPM's factor of safety by strength reduction (run/strength_reduction.hpp): fos.csv and the
-// verdict on the terminal. Exits: usage for bad options, unstable if a run was.
+// The MPM's factor of safety by strength reduction (run/strength_reduction.hpp): fos.csv, the
+// verdict on the terminal and pictures/fos.png. Exits: usage for bad options, missing Python if
+// the picture could not be drawn, unstable if a run was.
 int cmd_fos(const std::string& file, const std::string& outdir, skred::FosOptions o, int threads,
             bool overwrite) {
   try {
@@ -135,7 +136,12 @@ int cmd_fos(const std::string& file, const std::string& outdir, skred::FosOption
   skred::prepare_output_folder(outdir, overwrite, file);
   o.threads = threads > 0 ? threads : omp_get_max_threads();
   const skred::FosResult r = skred::run_strength_reduction(file, outdir, o);
-  fmt::print("{}table: {}\n", skred::fos_verdict(r, o), (std::filesystem::path(outdir) / "fos.csv").string());
+  const std::filesystem::path table = std::filesystem::path(outdir) / "fos.csv";
+  fmt::print("{}table: {}\n", skred::fos_verdict(r, o), table.string());
+  if (const int drawn = skred::run_post({"fos", outdir}); drawn != code::kSuccess) {
+    fmt::print(stderr, "skred: the study's picture was not drawn; {} is complete\n", table.string());
+    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
+  }
   for (const auto& run : r.runs)
     if (run.status == "unstable") return code::kUnstable;
   return code::kSuccess;

@@ -60,6 +60,9 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
   const std::string key = fmt::format("stage[{}].strength_reduction", k);
   const auto scenario_at = [&](double f) {
     AnyScenario s = parse_any_scenario(text, scenario_file, {{key, own * f}});
+    // The slide runs its whole duration: a slope near its onset starts slowly, and the rest test
+    // (mean speed below rest_speed for rest_time) would end it as standing before it fails.
+    std::visit([&](auto& x) { x.stages[k].rest_speed = 0.0; }, s);
     if (opt.check) opt.check(s);
     return s;
   };
@@ -86,9 +89,10 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
     const bool reached = res.stages.size() > k;  // the slide stage ran (to its end or not)
     if (reached) r.stage = res.stages[k];
     // A run that left the grid or went unstable in the slide counts as failing.
-    r.fails = !res.completed || !reached || r.stage.max_displacement > opt.moved * r.stage.height_start;
+    r.threshold = opt.moved * r.stage.height_start;
+    r.fails = !res.completed || !reached || r.stage.max_displacement > r.threshold;
     result.runs.push_back(r);
-    write_file_atomically(outdir / "fos.csv", [&](std::ostream& os) { os << fos_table(result.runs); });
+    write_file_atomically(outdir / "fos.csv", [&](std::ostream& os) { os << fos_table(result); });
     return r.fails;
   };
   if (run(opt.low) || !run(opt.high)) return result;  // the ends do not bracket the onset
@@ -101,17 +105,18 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
   return result;
 }
 
-std::string fos_table(const std::vector<FosRun>& runs) {
+std::string fos_table(const FosResult& result) {
   std::string text =
-      "factor,status,folder,fails,max_displacement,height_start,runout,ended_by,gravity_work,"
-      "plastic_dissipation\n";
+      "factor,status,folder,fails,max_displacement,height_start,threshold,runout,ended_by,gravity_work,"
+      "plastic_dissipation,limit_equilibrium\n";
   auto out = std::back_inserter(text);
-  for (const FosRun& r : runs) {
+  for (const FosRun& r : result.runs) {
     const StageMeasures& m = r.stage;
-    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{}\n", table_number(r.factor), r.status, r.folder,
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{}\n", table_number(r.factor), r.status, r.folder,
                    r.fails ? "true" : "false", table_number(m.max_displacement), table_number(m.height_start),
-                   table_number(m.runout), m.ended_by, table_number(m.gravity_work),
-                   table_number(m.plastic_dissipation));
+                   table_number(r.threshold), table_number(m.runout), table_text(m.ended_by),
+                   table_number(m.gravity_work), table_number(m.plastic_dissipation),
+                   table_number(result.limit_equilibrium));
   }
   return text;
 }

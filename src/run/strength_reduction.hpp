@@ -2,7 +2,8 @@
 // slide stage (its last stage that lets the soil yield) is run with c, tan(phi) and tan(psi)
 // divided by a factor f (`[[stage]] strength_reduction`, times the stage's own), bracketing the
 // f at which the slope starts to fail by bisection. "Fails" means some point moved more than a
-// share of the material's height within the stage. The factor found is set beside Bishop's
+// share of the material's height within the stage, which runs its whole duration (the rest
+// test would end a slowly starting failure as standing). The factor found is set beside Bishop's
 // limit equilibrium (run/slope_stability.hpp; docs/method.md, "Limit equilibrium").
 #pragma once
 #include <filesystem>
@@ -31,7 +32,8 @@ struct FosRun {
   std::string status;   // "completed", "unstable" or "left_grid"
   std::string folder;   // run folder, relative to the study's folder
   bool fails = false;
-  StageMeasures stage;  // the slide stage's measures
+  double threshold = NAN;  // the displacement above which it fails [m]
+  StageMeasures stage;     // the slide stage's measures
 };
 
 struct FosResult {
@@ -50,9 +52,10 @@ void check_fos_options(const FosOptions& opt);
 FosResult run_strength_reduction(const std::string& scenario_file, const std::filesystem::path& outdir,
                                  const FosOptions& opt);
 
-// fos.csv: factor, status, folder, fails, max_displacement, height_start, runout, ended_by,
-// gravity_work, plastic_dissipation; one row per run, in the order run.
-std::string fos_table(const std::vector<FosRun>& runs);
+// fos.csv: factor, status, folder, fails, max_displacement, height_start, threshold, runout,
+// ended_by, gravity_work, plastic_dissipation, limit_equilibrium (Bishop's F, nan where not
+// computed); one row per run, in the order run.
+std::string fos_table(const FosResult& r);
 
 // What the study shows, for the terminal: the bracket, or which end failed to bracket, and
 // Bishop's F beside it.

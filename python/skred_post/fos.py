@@ -1,0 +1,73 @@
+"""The picture of a strength-reduction study (OUTDIR/fos.csv of `skred fos`): how far the slope
+moved in the slide stage, and the gravity work it released, against the factor f that divided
+c, tan(phi) and tan(psi); the threshold that counts a run as failing, the bracket found, and
+Bishop's limit-equilibrium F where the study has it."""
+import os
+
+import numpy as np
+
+from .data import PostError, read_csv_columns
+
+TEXT_COLUMNS = ("status", "folder", "fails", "ended_by")
+
+
+def read_fos(outdir):
+    """{column: NumPy array} of OUTDIR/fos.csv, rows sorted by the factor: numbers as float
+    (NaN where the table says nan), the text columns (status, folder, fails, ended_by) as str."""
+    path = os.path.join(outdir, "fos.csv")
+    if not os.path.isfile(path):
+        raise PostError(f"{path} not found: is {outdir} the output folder of `skred fos`?")
+    header, table = read_csv_columns(path, TEXT_COLUMNS)
+    for column in ("factor", "fails", "max_displacement", "threshold"):
+        if column not in header:
+            raise PostError(f"{path}: no {column} column")
+    if len(table["factor"]) == 0:
+        raise PostError(f"{path} has no rows")
+    order = np.argsort(table["factor"], kind="stable")
+    return {name: values[order] for name, values in table.items()}
+
+
+def fos_bracket(t):
+    """(stands, fails): the largest factor that stood below the smallest that failed, or None
+    where the runs do not bracket the onset."""
+    fails = t["fails"] == "true"
+    if not fails.any() or fails.all():
+        return None
+    first = t["factor"][fails].min()
+    below = t["factor"][~fails & (t["factor"] < first)]
+    return (below.max(), first) if below.size else None
+
+
+def plot_fos(outdir, dpi=100):
+    t = read_fos(outdir)
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    f, fails = t["factor"], t["fails"] == "true"
+    bishop = t["limit_equilibrium"][0] if "limit_equilibrium" in t else np.nan
+    bracket = fos_bracket(t)
+    fig, axes = plt.subplots(1, 2, figsize=(9.5, 3.8), dpi=dpi, constrained_layout=True, sharex=True)
+    panels = [("max_displacement", "largest displacement in the stage [m]", True),
+              ("gravity_work", "gravity work $W_g$ in the stage [kJ/m; 3D: kJ]", False)]
+    for ax, (column, label, log) in zip(axes, panels):
+        y = t[column] if log else 1e-3 * t[column]
+        if log:
+            y = np.maximum(y, 1e-6)  # a slope that did not move at all
+            ax.set_yscale("log")
+            ax.axhline(t["threshold"][0], color="0.3", ls=":", lw=1.2, label="fails above")
+        ax.plot(f, y, "-", color="0.6", lw=1.0)
+        ax.plot(f[~fails], y[~fails], "o", color="#2ca02c", ms=6, label="stands")
+        ax.plot(f[fails], y[fails], "s", color="#d62728", ms=6, label="fails")
+        if bracket:
+            ax.axvspan(*bracket, color="#ff7f0e", alpha=0.2, lw=0, label="the MPM's factor of safety")
+        if np.isfinite(bishop):
+            ax.axvline(bishop, color="#1f77b4", ls="--", lw=1.3, label=f"Bishop's F = {bishop:.3f}")
+        ax.set_xlabel("strength reduction factor f (c, tan φ, tan ψ divided by f)", fontsize="small")
+        ax.set_ylabel(label, fontsize="small")
+        ax.grid(alpha=0.3)
+    axes[0].legend(fontsize="x-small")
+    title = "strength reduction (fos.csv): the slide stage at each factor"
+    if bracket:
+        title += f"; the slope fails between f = {bracket[0]:g} and {bracket[1]:g}"
+    fig.suptitle(title, fontsize="medium")
+    return fig
