@@ -6,13 +6,13 @@
 
 #include <cmath>
 #include <numbers>
-#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "post/limit_equilibrium.hpp"
 #include "run/slope_stability.hpp"
 #include "scenario/scenario.hpp"
+#include "slope_texts.hpp"
 
 namespace skred {
 namespace {
@@ -176,30 +176,12 @@ TEST(LimitEquilibrium, AWeakLayerDrawsTheCircleAndFirmGroundStopsIt) {
   EXPECT_GT(held.factor, deep.factor);
 }
 
-// examples/slope_collapse.toml with its base layer (y < 4 m) a second body of material `base`,
-// given as a [[material]] table.
-std::string two_body_slope(const std::string& base) {
-  std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml");
-  const std::string one =
-      "vertices = [[0.0, 0.0], [60.0, 0.0], [60.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]";
-  const auto at = text.find(one);
-  if (at == std::string::npos) throw std::runtime_error("examples/slope_collapse.toml's body has changed");
-  text.replace(
-      at, one.size(),
-      "vertices = [[0.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]\n\n[[body]]\nname = \"base\"\n"
-      "material = \"base\"\nparticles_per_cell = 3\nshape = \"polygon\"\n"
-      "vertices = [[0.0, 0.0], [60.0, 0.0], [60.0, 4.0], [0.0, 4.0]]");
-  return text + "\n" + base;
-}
-
 TEST(SlopeStability, TwoBodiesOfOneSoilAreOneAndAnElasticBaseIsFirm) {
   const std::string file = std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml";
   const SlopeStability one = slope_stability(parse_scenario(read_scenario_text(file), file));
   ASSERT_TRUE(one.computed) << one.why_not;
-  const std::string soil =
-      "[[material]]\nname = \"base\"\nmodel = \"mohr-coulomb\"\ndensity = 2000.0\nyoung = 40.0e6\n"
-      "poisson = 0.42\nfriction = 18.0\ncohesion = 5000.0\ndilation = 0.0\n";
-  const SlopeStability two = slope_stability(parse_scenario(two_body_slope(soil), "two_bodies.toml"));
+  const std::string soil = test::mohr_coulomb_material("base", 18.0, 5000.0);
+  const SlopeStability two = slope_stability(parse_scenario(test::two_body_slope(soil), "two_bodies.toml"));
   ASSERT_TRUE(two.computed) << two.why_not;
   EXPECT_NEAR(two.critical.factor, one.critical.factor, 1e-9);
   EXPECT_EQ(two.materials, (std::vector<std::string>{"soil", "base"}));
@@ -208,7 +190,8 @@ TEST(SlopeStability, TwoBodiesOfOneSoilAreOneAndAnElasticBaseIsFirm) {
   const std::string rock =
       "[[material]]\nname = \"base\"\nmodel = \"linear-elastic\"\ndensity = 2000.0\nyoung = 40.0e6\n"
       "poisson = 0.42\n";
-  const SlopeStability firm = slope_stability(parse_scenario(two_body_slope(rock), "elastic_base.toml"));
+  const SlopeStability firm =
+      slope_stability(parse_scenario(test::two_body_slope(rock), "elastic_base.toml"));
   ASSERT_TRUE(firm.computed) << firm.why_not;
   EXPECT_EQ(firm.materials, std::vector<std::string>{"soil"});
   EXPECT_GT(firm.critical.circle.yc - firm.critical.circle.radius, 4.0 - 1e-9)

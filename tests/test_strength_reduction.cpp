@@ -9,7 +9,9 @@
 #include <stdexcept>
 #include <string>
 
+#include "run/slope_stability.hpp"
 #include "run/strength_reduction.hpp"
+#include "slope_texts.hpp"
 #include "temp_dir.hpp"
 
 namespace fs = std::filesystem;
@@ -68,6 +70,29 @@ TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
   EXPECT_NE(verdict.find("limit equilibrium (Bishop's simplified method on circles): F = 0.5"),
             std::string::npos)
       << verdict;
+  fs::remove_all(dir);
+}
+
+// Layered ground against the MPM: the slope example at 1 m cells on a weak base layer (c = 3 kPa,
+// phi = 10 deg) into which its critical circle dips (Bishop's F = 0.706). Measured (docs/method.md,
+// "Limit equilibrium"): the MPM's onset lies between f = 0.6625 and 0.694 on these cells. With the
+// strength divided by 0.9 F the slope must stand (Bishop's F 1.11), by 1.1 F fail (0.91).
+TEST(FactorOfSafety, ASlopeOnAWeakLayerFailsWhereBishopSays) {
+  const fs::path dir = test::fresh_temp_dir("fos_layered");
+  const fs::path file = dir / "layered.toml";
+  std::ofstream(file) << test::two_body_slope(test::mohr_coulomb_material("base", 10.0, 3000.0), 1.0);
+  const SlopeStability le = slope_stability(load_scenario(file.string()));
+  ASSERT_TRUE(le.computed) << le.why_not;
+  ASSERT_NEAR(le.critical.factor, 0.706, 0.005);
+  EXPECT_LT(le.critical.circle.yc - le.critical.circle.radius, 4.0) << "the circle dips into the weak layer";
+  FosOptions opt;
+  opt.low = 0.9 * le.critical.factor, opt.high = 1.1 * le.critical.factor;
+  opt.steps = 0, opt.threads = 1, opt.progress = false;
+  const FosResult r = run_strength_reduction(file.string(), dir / "out", opt);
+  ASSERT_EQ(r.runs.size(), 2u);
+  EXPECT_FALSE(r.runs[0].fails) << r.runs[0].stage.max_displacement;
+  EXPECT_TRUE(r.runs[1].fails) << r.runs[1].stage.max_displacement;
+  EXPECT_DOUBLE_EQ(r.limit_equilibrium, le.critical.factor);
   fs::remove_all(dir);
 }
 
