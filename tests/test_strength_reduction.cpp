@@ -58,6 +58,8 @@ TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
     EXPECT_EQ(run.status, "completed");
     EXPECT_EQ(run.fails, run.stage.max_displacement > 0.01 * run.stage.height_start);
     EXPECT_DOUBLE_EQ(run.threshold, 0.01 * run.stage.height_start);
+    // A failing run ends once it has failed; one that stands runs the stage's whole duration.
+    EXPECT_EQ(run.stage.ended_by, run.fails ? "moved" : "duration") << run.factor;
   }
   std::ifstream table(dir / "out" / "fos.csv");
   std::stringstream text;

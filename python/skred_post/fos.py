@@ -1,7 +1,8 @@
 """The picture of a strength-reduction study (OUTDIR/fos.csv of `skred fos`): how far the slope
-moved in the slide stage, and the gravity work it released, against the factor f that divided
-c, tan(phi) and tan(psi); the threshold that counts a run as failing, the bracket found, and
-Bishop's limit-equilibrium F where the study has it."""
+moved in the slide stage, and how long the stage ran (a failing run stops once it has failed,
+so its time to fail), against the factor f that divided c, tan(phi) and tan(psi); the
+threshold that counts a run as failing, the bracket found, and Bishop's limit-equilibrium F
+where the study has it."""
 import os
 
 import numpy as np
@@ -18,7 +19,7 @@ def read_fos(outdir):
     if not os.path.isfile(path):
         raise PostError(f"{path} not found: is {outdir} the output folder of `skred fos`?")
     header, table = read_csv_columns(path, TEXT_COLUMNS)
-    for column in ("factor", "fails", "max_displacement", "threshold"):
+    for column in ("factor", "fails", "max_displacement", "threshold", "stage_time"):
         if column not in header:
             raise PostError(f"{path}: no {column} column")
     if len(table["factor"]) == 0:
@@ -48,9 +49,9 @@ def plot_fos(outdir, dpi=100):
     bracket = fos_bracket(t)
     fig, axes = plt.subplots(1, 2, figsize=(9.5, 3.8), dpi=dpi, constrained_layout=True, sharex=True)
     panels = [("max_displacement", "largest displacement in the stage [m]", True),
-              ("gravity_work", "gravity work $W_g$ in the stage [kJ/m; 3D: kJ]", False)]
+              ("stage_time", "time the stage ran [s] (failed: time to fail)", False)]
     for ax, (column, label, log) in zip(axes, panels):
-        y = t[column] if log else 1e-3 * t[column]
+        y = t[column]
         if log:
             y = np.maximum(y, 1e-6)  # a slope that did not move at all
             ax.set_yscale("log")

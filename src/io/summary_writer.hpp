@@ -15,7 +15,7 @@ struct StageMeasures {
   std::string name;
   double start_time = 0.0, end_time = 0.0;  // [s], simulation time
   long steps = 0;
-  std::string ended_by;  // "duration", "rest" or "unstable"
+  std::string ended_by;  // "duration", "rest", "unstable" or "moved" (skred fos: it failed)
   // Runout: how far the front of the moving mass (points displaced more than half a cell)
   // has advanced beyond its start position, towards -x and +x, and the larger of the two.
   double runout_x_min = 0.0, runout_x_max = 0.0, runout = 0.0;

@@ -245,6 +245,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   auto last_report = start;
   StepStatus status;
   bool stopped = false;  // by a signal, after a checkpoint
+  bool moved = false;    // a point of opt.stop_stage moved further than opt.stop_moved allows
   for (std::size_t k = at.stage; k < s.stages.size() && status.ok && unstable.ok && !stopped; ++k) {
     const Stage& st = s.stages[k];
     Stage as_plastic = st;
@@ -329,8 +330,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       if (t >= at.next_series - 0.5 * dt || last) {
         at_rest = sample();
         while (at.next_series <= t + 0.5 * dt) at.next_series += s.series_interval;
+        moved = static_cast<int>(k) == opt.stop_stage &&
+                tracker.max_displacement(particles) > opt.stop_moved * tracker.height_start();
       }
-      const bool frame = t >= at.next_output - 0.5 * dt || last || at_rest;
+      const bool frame = t >= at.next_output - 0.5 * dt || last || at_rest || moved;
       if (frame && unstable.ok)  // a frame must not hold a non-finite value
         if (const long p = first_non_finite_point(particles); p >= 0)
           stop_unstable("non-finite position, velocity, deformation gradient or stress", p);
@@ -343,7 +346,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         while (at.next_output <= t + 0.5 * dt) at.next_output += s.output_interval;
       }
       const auto now = Clock::now();
-      if (opt.progress && (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest)) {
+      if (opt.progress &&
+          (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest || moved)) {
         last_report = now;
         const double elapsed = std::chrono::duration<double>(now - start).count();
         const double frac = static_cast<double>(solver.steps()) / total_steps;
@@ -351,11 +355,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         fmt::print(stderr,
                    "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
                    tty ? "\r" : "", k + 1, st.name, solver.steps(), t, 100 * frac,
-                   hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest) ? "" : "\n");
+                   hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest || moved) ? "" : "\n");
         std::fflush(stderr);
       }
-      if (at_rest) {
-        ended_by = "rest";
+      if (at_rest || moved) {
+        ended_by = moved ? "moved" : "rest";
         break;
       }
       if (checkpoints.after_step(particles, solver, at, series)) {  // periodic; stop on a signal
@@ -372,6 +376,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     at.finished.back().rest_measure = to_string(measure);
     at.in_stage = false;
     at.stage = k + 1;
+    if (moved) break;  // the stages after it do not run
   }
   const long n = static_cast<long>(particles.size());
   res.particles = n;

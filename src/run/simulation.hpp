@@ -23,6 +23,12 @@ struct RunOptions {
   std::filesystem::path restart;
   bool handle_signals = false;
   long stop_at_step = -1;  // stop as if interrupted after this step (tests)
+  // Ends the run, completed, once a point of stage `stop_stage` has moved more than
+  // `stop_moved` times the material's height at the stage start (checked at every series row;
+  // the stage ends_by "moved"): a strength-reduction run that has failed
+  // (run/strength_reduction.hpp). -1: never.
+  int stop_stage = -1;
+  double stop_moved = 0.0;
   // Called before every step; may change the points (their number too) and then returns true
   // (tests of the point lifecycle, adaptive refinement).
   std::function<bool(Particles<2>&, const ExplicitSolver<2>&)> edit_points;

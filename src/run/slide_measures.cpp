@@ -63,6 +63,15 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
 }
 
 template <int D>
+double StageTracker<D>::max_displacement(const Particles<D>& P) {
+  double largest = 0.0;
+  const long n = static_cast<long>(P.size());
+#pragma omp parallel for reduction(max : largest) schedule(static)
+  for (long p = 0; p < n; ++p) largest = std::max(largest, (P.x[p] - P.x_ref[p]).squaredNorm());
+  return std::sqrt(largest);
+}
+
+template <int D>
 void StageTracker<D>::record_speed(double time, double mean_speed) {
   if (mean_speed > m_.peak_mean_speed) {
     m_.peak_mean_speed = mean_speed;
@@ -215,8 +224,7 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
     m.runout_z_min = z.x_min;
     m.runout_z_max = z.x_max;
   }
-  for (std::size_t p = 0; p < P.size(); ++p)
-    m.max_displacement = std::max(m.max_displacement, (P.x[p] - P.x_ref[p]).norm());
+  m.max_displacement = max_displacement(P);
   m.height_end = e.y_max - e.y_min;
   m.gravity_work = gravity_work;
   m.kinetic_energy_change = kinetic_energy - kinetic_start_;

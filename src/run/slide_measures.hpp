@@ -125,6 +125,9 @@ class StageTracker {
   // Current runout and deposit height, for the series rows.
   double runout(const Particles<D>& P) const;
   double kinetic_start() const { return kinetic_start_; }  // kinetic energy at the stage start
+  double height_start() const { return m_.height_start; }  // the material's height then
+  // The largest displacement of a point in the stage, max_p |x_p - x_ref_p|.
+  static double max_displacement(const Particles<D>& P);
 
   // Reads or writes the tracker's whole state through `a` (see run/checkpointing.cpp):
   // a(value) for every member.

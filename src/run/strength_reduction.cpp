@@ -84,6 +84,7 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
     RunOptions ro;
     ro.threads = opt.threads;
     ro.progress = opt.progress;
+    ro.stop_stage = static_cast<int>(k), ro.stop_moved = opt.moved;  // failed: no need to run on
     const RunResult res = run_simulation(scenario_at(f), outdir / r.folder, ro);
     r.status = run_status(res);
     const bool reached = res.stages.size() > k;  // the slide stage ran (to its end or not)
@@ -107,14 +108,15 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
 
 std::string fos_table(const FosResult& result) {
   std::string text =
-      "factor,status,folder,fails,max_displacement,height_start,threshold,runout,ended_by,gravity_work,"
-      "plastic_dissipation,limit_equilibrium\n";
+      "factor,status,folder,fails,max_displacement,height_start,threshold,runout,ended_by,stage_time,"
+      "gravity_work,plastic_dissipation,limit_equilibrium\n";
   auto out = std::back_inserter(text);
   for (const FosRun& r : result.runs) {
     const StageMeasures& m = r.stage;
-    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{}\n", table_number(r.factor), r.status, r.folder,
-                   r.fails ? "true" : "false", table_number(m.max_displacement), table_number(m.height_start),
-                   table_number(r.threshold), table_number(m.runout), table_text(m.ended_by),
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{}\n", table_number(r.factor), r.status,
+                   r.folder, r.fails ? "true" : "false", table_number(m.max_displacement),
+                   table_number(m.height_start), table_number(r.threshold), table_number(m.runout),
+                   table_text(m.ended_by), table_number(m.end_time - m.start_time),
                    table_number(m.gravity_work), table_number(m.plastic_dissipation),
                    table_number(result.limit_equilibrium));
   }

@@ -3,8 +3,8 @@
 // divided by a factor f (`[[stage]] strength_reduction`, times the stage's own), bracketing the
 // f at which the slope starts to fail by bisection. "Fails" means some point moved more than a
 // share of the material's height within the stage, which runs its whole duration (the rest
-// test would end a slowly starting failure as standing). The factor found is set beside Bishop's
-// limit equilibrium (run/slope_stability.hpp; docs/method.md, "Limit equilibrium").
+// test would end a slowly starting failure as standing) unless it fails: the run ends there. The factor found
+// is set beside Bishop's limit equilibrium (run/slope_stability.hpp; docs/method.md, "Limit equilibrium").
 #pragma once
 #include <filesystem>
 #include <functional>
@@ -53,8 +53,9 @@ FosResult run_strength_reduction(const std::string& scenario_file, const std::fi
                                  const FosOptions& opt);
 
 // fos.csv: factor, status, folder, fails, max_displacement, height_start, threshold, runout,
-// ended_by, gravity_work, plastic_dissipation, limit_equilibrium (Bishop's F, nan where not
-// computed); one row per run, in the order run.
+// ended_by, stage_time (how long the stage ran: a failing run's time to fail), gravity_work,
+// plastic_dissipation, limit_equilibrium (Bishop's F, nan where not computed); one row per run,
+// in the order run.
 std::string fos_table(const FosResult& r);
 
 // What the study shows, for the terminal: the bracket, or which end failed to bracket, and
