@@ -294,5 +294,5 @@ def slip_circle_of(outdir):
     circle, factor = summary.get("slip_circle"), summary.get("limit_equilibrium")
     if not circle or factor is None or any(v is None for v in circle):
         raise PostError(f"{outdir}/summary.json has no slip circle: limit equilibrium is computed for a "
-                        "finished 2D run whose deformable bodies are of one soil under gravity along -y")
+                        "finished 2D run of a slope (one soil or layers) under gravity along -y")
     return (*circle, factor)

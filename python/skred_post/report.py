@@ -6,7 +6,7 @@ import html
 import io
 import os
 
-from .data import View, frames_index, read_frame, read_summary
+from .data import PostError, View, frames_index, read_frame, read_summary, slip_circle_of
 from .render import Style, bounds, check_style, draw_frame, finite_range, select
 from .scenario_info import body_names, read_scenario
 from .series import plot_series
@@ -52,6 +52,7 @@ RUN_ROWS = [("status", "status", ""), ("message", "message", ""), ("steps", "ste
             ("time_step", "time step", "s"), ("particles", "material points", ""),
             ("cells", "grid cells", ""), ("interpolation", "interpolation", ""),
             ("scheme", "stress update", ""), ("threads", "threads", ""),
+            ("limit_equilibrium", "Bishop's factor of safety F (at the start)", ""),
             ("wall_seconds", "wall time", "s"),
             ("particle_updates_per_second", "particle-updates per second", "1/s"),
             ("version", "skred version", ""), ("git_commit", "git commit", "")]
@@ -130,8 +131,9 @@ def stages_table(summary):
 
 def frame_pictures(outdir, field, names):
     """(uri, caption) of the first, middle and last frame coloured by `field`, and of the last
-    frame with the checkerboard of the reference configuration and with the smoothed mean
-    stress and principal-stress crosses."""
+    frame with the checkerboard of the reference configuration, with the plastic shear strain and
+    Bishop's critical circle (a run that has one), and with the smoothed mean stress and
+    principal-stress crosses."""
     index = frames_index(outdir)
     if not index:
         return []
@@ -148,6 +150,16 @@ def frame_pictures(outdir, field, names):
     style.pattern = "checkerboard"
     fig, _ = draw_frame(frames[-1], style, xlim, ylim)
     out.append((png_data_uri(fig), f"deformation (checkerboard), t = {frames[-1].time:.4g} s"))
+    try:  # Bishop's critical circle over the mechanism (docs/method.md, "Limit equilibrium")
+        circle = slip_circle_of(outdir)
+    except PostError:
+        circle = None
+    if circle is not None:
+        shear = "plastic_shear_strain" if "plastic_shear_strain" in frames[-1].arrays else style.field
+        s = Style(field=shear, body_names=names, width=7.0, max_height=6.0, slip_circle=circle)
+        fig, _ = draw_frame(frames[-1], s, xlim, ylim)
+        out.append((png_data_uri(fig), f"{shear} with Bishop's critical circle at the start (F = {circle[-1]:.3f}), "
+                                       f"t = {frames[-1].time:.4g} s"))
     if "smoothed_p" in frames[-1].arrays:  # grid-smoothed stresses (Post §7.1-7.2)
         stress = Style(field="smoothed_p", crosses=True, body_names=names, width=7.0, max_height=6.0)
         fig, _ = draw_frame(frames[-1], stress, xlim, ylim)
