@@ -60,6 +60,16 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads, skr
   return code::kSuccess;
 }
 
+// Draws a study's picture from its table (skred-post KIND OUTDIR): success, or the exit code
+// when it could not be drawn (the table is complete either way).
+int draw_study(const std::string& kind, const std::string& outdir, const std::filesystem::path& table) {
+  const int drawn = skred::run_post({kind, outdir});
+  if (drawn == code::kSuccess) return code::kSuccess;
+  fmt::print(stderr, "skred: the {}'s picture was not drawn; {} is complete\n",
+             kind == "sweep" ? "sweep" : "study", table.string());
+  return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
+}
+
 // One run per point of the grid of --set values; then sweep.csv's picture (pictures/sweep.png)
 // is drawn by the Python post-processing. Exits: usage for a bad --set, unstable if a run
 // was, missing Python if the picture could not be drawn (sweep.csv is written all the same).
@@ -84,11 +94,7 @@ int cmd_sweep(const std::string& file, const std::string& outdir, const std::vec
   }
   const std::filesystem::path table = std::filesystem::path(outdir) / "sweep.csv";
   fmt::print("table: {}\n", table.string());
-  const int drawn = skred::run_post({"sweep", outdir});
-  if (drawn != code::kSuccess) {
-    fmt::print(stderr, "skred: the sweep's picture was not drawn; {} is complete\n", table.string());
-    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
-  }
+  if (const int drawn = draw_study("sweep", outdir, table); drawn != code::kSuccess) return drawn;
   for (const auto& r : rows)
     if (r.status != "completed") return code::kUnstable;
   return code::kSuccess;
@@ -114,10 +120,7 @@ int cmd_refine(const std::string& file, const std::string& outdir, skred::Refine
   if (const skred::AnyScenario s = skred::load_any_scenario(file); std::holds_alternative<skred::Scenario>(s))
     if (const skred::SlopeStability le = skred::slope_stability(std::get<skred::Scenario>(s)); le.computed)
       fmt::print("{}", skred::slope_stability_line(le));
-  if (const int drawn = skred::run_post({"refine", outdir}); drawn != code::kSuccess) {
-    fmt::print(stderr, "skred: the study's picture was not drawn; {} is complete\n", table.string());
-    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
-  }
+  if (const int drawn = draw_study("refine", outdir, table); drawn != code::kSuccess) return drawn;
   for (const auto& r : rows)
     if (r.status != "completed") return code::kUnstable;
   return code::kSuccess;
@@ -138,10 +141,7 @@ int cmd_fos(const std::string& file, const std::string& outdir, skred::FosOption
   const skred::FosResult r = skred::run_strength_reduction(file, outdir, o);
   const std::filesystem::path table = std::filesystem::path(outdir) / "fos.csv";
   fmt::print("{}table: {}\n", skred::fos_verdict(r, o), table.string());
-  if (const int drawn = skred::run_post({"fos", outdir}); drawn != code::kSuccess) {
-    fmt::print(stderr, "skred: the study's picture was not drawn; {} is complete\n", table.string());
-    return drawn == code::kMissingPython ? code::kMissingPython : code::kError;
-  }
+  if (const int drawn = draw_study("fos", outdir, table); drawn != code::kSuccess) return drawn;
   for (const auto& run : r.runs)
     if (run.status == "unstable") return code::kUnstable;
   return code::kSuccess;

@@ -51,10 +51,7 @@ std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::pa
   check_refine_options(opt);
   const std::string text = read_scenario_text(scenario_file);
   const AnyScenario base = parse_any_scenario(text, scenario_file);
-  const auto common = [](const AnyScenario& s) -> const ScenarioCommon& {
-    return std::visit([](const auto& x) -> const ScenarioCommon& { return x; }, s);
-  };
-  const double h = common(base).cell_size, dt = common(base).time_step;
+  const double h = common_of(base).cell_size, dt = common_of(base).time_step;
   const int dim = std::holds_alternative<Scenario>(base) ? 2 : 3;
   const std::vector<std::string> transfers =
       opt.transfers.empty() ? std::vector<std::string>{""} : opt.transfers;
@@ -65,10 +62,10 @@ std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::pa
       const double f = std::ldexp(1.0, -k);  // 2^-k: exact, so the halved grids stay whole
       std::vector<std::pair<std::string, double>> set{{"grid.cell_size", h * f}};
       if (dt > 0.0) set.emplace_back("solver.time_step", dt * f);  // c dt / h stays
-      if (common(base).max_points_given)  // the cap grows with the points (10 x them if not given)
+      if (common_of(base).max_points_given)  // the cap grows with the points (10 x them if not given)
         set.emplace_back(
             "splitting.max_points",
-            std::round(std::ldexp(static_cast<double>(common(base).splitting.max_points), dim * k)));
+            std::round(std::ldexp(static_cast<double>(common_of(base).splitting.max_points), dim * k)));
       std::vector<std::pair<std::string, std::string>> text_set;
       if (!t.empty()) text_set.emplace_back("solver.velocity_transfer", t);
       scenarios.push_back(parse_any_scenario(text, scenario_file, set, text_set));

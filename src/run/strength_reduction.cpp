@@ -4,7 +4,6 @@
 
 #include <iterator>
 #include <stdexcept>
-#include <variant>
 
 #include "io/atomic_file.hpp"
 #include "run/simulation.hpp"
@@ -17,10 +16,6 @@ namespace skred {
 namespace fs = std::filesystem;
 
 namespace {
-
-const ScenarioCommon& common_of(const AnyScenario& s) {
-  return std::visit([](const auto& x) -> const ScenarioCommon& { return x; }, s);
-}
 
 // The last stage that lets the soil yield (as slope_stability takes its strength).
 std::size_t slide_stage(const ScenarioCommon& s, const std::string& file) {
@@ -62,7 +57,7 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
     AnyScenario s = parse_any_scenario(text, scenario_file, {{key, own * f}});
     // The slide runs its whole duration: a slope near its onset starts slowly, and the rest test
     // (mean speed below rest_speed for rest_time) would end it as standing before it fails.
-    std::visit([&](auto& x) { x.stages[k].rest_speed = 0.0; }, s);
+    common_of(s).stages[k].rest_speed = 0.0;
     if (opt.check) opt.check(s);
     return s;
   };

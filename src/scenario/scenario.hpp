@@ -244,6 +244,14 @@ using Scenario3 = ScenarioOf<3>;
 // A parsed file of either dimension.
 using AnyScenario = std::variant<Scenario, Scenario3>;
 
+// What a scenario of either dimension says apart from its geometry.
+inline const ScenarioCommon& common_of(const AnyScenario& s) {
+  return std::visit([](const auto& x) -> const ScenarioCommon& { return x; }, s);
+}
+inline ScenarioCommon& common_of(AnyScenario& s) {
+  return std::visit([](auto& x) -> ScenarioCommon& { return x; }, s);
+}
+
 // A scenario that cannot be used. what() reads "FILE:LINE:COLUMN: key 'a.b': message".
 struct ScenarioError : std::runtime_error {
   using std::runtime_error::runtime_error;
