@@ -6,6 +6,7 @@
 #include <sched.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -167,10 +168,19 @@ TEST(CliRun, ARefinementStudyTellsHowFarTheRunoutMoved) {
   const Outcome bad = sh(refine + " --levels 1 --overwrite");
   EXPECT_EQ(bad.code, 4) << bad.output;
   EXPECT_NE(bad.output.find("--levels must be 2 to 5"), std::string::npos) << bad.output;
+  // Three levels: Richardson's extrapolation of the runout and the gravity work, and its table.
+  const Outcome three = sh(refine + " --levels 3 --overwrite");
+  ASSERT_EQ(three.code, 0) << three.output;
+  EXPECT_NE(three.output.find("Richardson's extrapolation of the last three sizes"), std::string::npos)
+      << three.output;
+  const std::string ex = read(d / "out" / "extrapolation.csv");
+  EXPECT_EQ(ex.rfind("transfer,quantity,cell_size,fine,medium,coarse,kind,", 0), 0u) << ex;
+  EXPECT_EQ(std::count(ex.begin(), ex.end(), '\n'), 3) << ex;  // the header, runout, gravity work
 }
 
-// `skred fos`: the 50 m slope at 5 m cells stands at f = 0.5 and fails at 0.7 (Bishop's F 0.587
-// on those cells; test_strength_reduction.cpp bisects it); the verdict, fos.csv and the picture.
+// `skred fos`: the 50 m slope at 5 and 2.5 m cells (--levels 2) stands at f = 0.5 and fails at
+// 0.7 (Bishop's F 0.587 on the 5 m cells; test_strength_reduction.cpp bisects it); the verdict,
+// fos.csv and the picture.
 TEST(CliRun, AFactorOfSafetyStudyBracketsTheOnset) {
   TempDir d;
   std::string text = read(fs::path(SKRED_SOURCE_DIR) / "examples" / "slope_50m.toml");
@@ -181,10 +191,12 @@ TEST(CliRun, AFactorOfSafetyStudyBracketsTheOnset) {
   }
   write(d / "slope.toml", text);
   const std::string fos = kSkred + " fos " + q(d / "slope.toml") + " -o " + q(d / "out") + " --threads 1";
-  const Outcome r = sh(fos + " --range 0.5 0.7 --steps 0");
+  const Outcome r = sh(fos + " --range 0.5 0.7 --steps 0 --levels 2");  // at 5 and 2.5 m cells
   ASSERT_EQ(r.code, 0) << r.output;
-  EXPECT_NE(r.output.find("the MPM's factor of safety lies between 0.5 and 0.7"), std::string::npos)
-      << r.output;
+  for (const char* at : {"at h = 5 m", "at h = 2.5 m"})
+    EXPECT_NE(r.output.find(std::string(at) + " the MPM's factor of safety lies between 0.5 and 0.7"),
+              std::string::npos)
+        << r.output;
   EXPECT_NE(r.output.find("limit equilibrium (Bishop's simplified method on circles): F = 0.58"),
             std::string::npos)
       << r.output;
@@ -192,11 +204,14 @@ TEST(CliRun, AFactorOfSafetyStudyBracketsTheOnset) {
   EXPECT_EQ(table.rfind("factor,status,folder,fails,max_displacement,height_start,threshold,", 0), 0u)
       << table;
   EXPECT_NE(table.find("\n0.7,completed,run_001,true,"), std::string::npos) << table;
+  EXPECT_NE(table.find(",1,2.5\n"), std::string::npos) << table;  // level 1, h/2
+  EXPECT_TRUE(fs::exists(d / "out" / "run_003" / "summary.json"));
   EXPECT_TRUE(fs::exists(d / "out" / "pictures" / "fos.png"));
   EXPECT_EQ(sh(fos + " --range 0.5 0.7 --steps 0").code, 1);  // an earlier study, not --overwrite
   const Outcome bad = sh(fos + " --range 0.7 0.5 --overwrite");
   EXPECT_EQ(bad.code, 4) << bad.output;
   EXPECT_NE(bad.output.find("--range needs 0 < LOW < HIGH"), std::string::npos) << bad.output;
+  EXPECT_EQ(sh(fos + " --levels 5 --overwrite").code, 4);
 }
 
 TEST(CliRun, AKilledRunLeavesCompleteFilesAndIsNotReusedSilently) {

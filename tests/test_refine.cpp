@@ -2,11 +2,13 @@
 // reference R4's thrown block, whose sliding distance v0^2 / (2 mu g) does not depend on the cell.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
+#include <vector>
 
 #include "run/refine.hpp"
 #include "scenario/scenario.hpp"
@@ -100,6 +102,8 @@ TEST(Refine, HalvesTheCellAndTheStepAndTheBlockSlidesAsR4Says) {
   EXPECT_NE(table.find("\nxpic,0,0.01,2.5e-05,"), std::string::npos) << table;
   EXPECT_NE(table.find("\napic,1,0.005,1.25e-05,"), std::string::npos) << table;
   EXPECT_TRUE(fs::exists(dir / "out" / "run_003" / "summary.json"));
+  // Two levels extrapolate nothing: extrapolation.csv holds its header alone.
+  EXPECT_EQ(read(dir / "out" / "extrapolation.csv"), extrapolation_table({}));
   // runout_change: the relative change from the level before, of the same transfer.
   std::istringstream lines(table);
   std::string line;
@@ -211,4 +215,67 @@ TEST(Refine, ASplittingCapGrowsWithThePointsAndEveryLevelIsCheckedFirst) {
   EXPECT_EQ(cells, (std::vector<double>{0.01, 0.005, 0.0025}));
   EXPECT_FALSE(fs::exists(dir / "out" / "run_000"));
   fs::remove_all(dir);
+}
+
+// Richardson's extrapolation of the last three sizes, on rows with the soil column's figures of
+// docs/method.md ("The filter per unit time": the default 3.753 / 4.123 / 4.238 m at h = 0.5 /
+// 0.25 / 0.125 m) and the 10 m slope's (0.869 / 2.324 / 3.988 m, whose change grows).
+TEST(Refine, RichardsonsExtrapolationOfTheLastThreeSizes) {
+  const auto series = [](const std::string& transfer, double h, std::vector<double> runout,
+                         std::vector<double> work) {
+    std::vector<RefineRow> rows;
+    for (std::size_t k = 0; k < runout.size(); ++k) {
+      RefineRow r;
+      r.transfer = transfer;
+      r.level = static_cast<int>(k);
+      r.cell_size = std::ldexp(h, -static_cast<int>(k));
+      r.status = "completed";
+      r.last.ended_by = "rest";
+      r.last.runout = runout[k];
+      r.last.gravity_work = work[k];
+      rows.push_back(r);
+    }
+    return rows;
+  };
+  std::vector<RefineRow> rows = series("auto", 0.5, {3.753, 4.123, 4.238}, {337.1e3, 357.2e3, 361.7e3});
+  const std::vector<RefineRow> slope = series("apic", 1.0, {0.869, 2.324, 3.988}, {1283e3, 1735e3, 1954e3});
+  rows.insert(rows.end(), slope.begin(), slope.end());
+
+  const std::vector<RefineExtrapolation> ex = refine_extrapolations(rows);
+  ASSERT_EQ(ex.size(), 4u);  // runout and gravity work per transfer
+  EXPECT_EQ(ex[0].quantity, "runout");
+  EXPECT_DOUBLE_EQ(ex[0].cell_size, 0.125);
+  EXPECT_EQ(ex[0].estimate.kind, ConvergenceKind::monotone);
+  const double p = std::log(0.370 / 0.115) / std::log(2.0);  // eq. 3a with r = 2
+  EXPECT_NEAR(ex[0].estimate.order, p, 1e-9);
+  EXPECT_NEAR(ex[0].estimate.extrapolated, 4.238 + 0.115 / (std::pow(2.0, p) - 1.0), 1e-9);  // eq. 4
+  EXPECT_EQ(ex[1].quantity, "gravity_work");
+  EXPECT_EQ(ex[1].estimate.kind, ConvergenceKind::monotone);
+  EXPECT_EQ(ex[2].estimate.kind, ConvergenceKind::diverging);  // the slope's runout: +1.455, then +1.664 m
+  EXPECT_EQ(ex[3].estimate.kind, ConvergenceKind::monotone);   // its gravity work: +452, then +219 kJ/m
+
+  const std::string verdict = refine_verdict(rows);
+  EXPECT_NE(verdict.find("auto: runout over h = 0.5, 0.25, 0.125 m: converges monotonically with apparent "
+                         "order p = 1.69 towards 4.28986 m as h -> 0; GCI of the finest 1.53 %"),
+            std::string::npos)
+      << verdict;
+  EXPECT_NE(
+      verdict.find("apic: runout over h = 1, 0.5, 0.25 m: the last halving moved it by +1.664 m, the one "
+                   "before by +1.455 m (R = 1.14): the changes do not shrink"),
+      std::string::npos)
+      << verdict;
+  // Only one transfer's runout extrapolates, so no line compares them as h -> 0.
+  EXPECT_EQ(verdict.find("extrapolated runouts lie within"), std::string::npos) << verdict;
+
+  const std::string table = extrapolation_table(ex);
+  EXPECT_EQ(table.substr(0, table.find('\n')),
+            "transfer,quantity,cell_size,fine,medium,coarse,kind,ratio,order,extrapolated,approximate_error,"
+            "extrapolated_error,gci_fine,next_change");
+  EXPECT_NE(table.find("\napic,runout,0.25,3.988,2.324,0.869,diverging,"), std::string::npos) << table;
+  EXPECT_EQ(std::count(table.begin(), table.end(), '\n'), 5);
+
+  // A run that did not complete, or two levels only, give no extrapolation.
+  rows[1].status = "unstable";
+  EXPECT_EQ(refine_extrapolations(rows).size(), 2u);
+  EXPECT_TRUE(refine_extrapolations(series("auto", 1.0, {1.0, 2.0}, {1.0, 2.0})).empty());
 }

@@ -3,8 +3,10 @@
 // test_limit_equilibrium.cpp).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -105,6 +107,11 @@ TEST(FactorOfSafety, BadOptionsAndElasticScenariosAreRefused) {
     o.low = low, o.high = high, o.steps = steps, o.moved = moved;
     EXPECT_THROW(check_fos_options(o), std::invalid_argument) << low << " " << high << " " << steps;
   }
+  for (const int levels : {0, 5}) {
+    FosOptions o;
+    o.levels = levels;
+    EXPECT_THROW(check_fos_options(o), std::invalid_argument) << levels;
+  }
   const fs::path dir = test::fresh_temp_dir("fos_elastic");
   FosOptions o;
   o.progress = false;
@@ -121,4 +128,43 @@ TEST(FactorOfSafety, BadOptionsAndElasticScenariosAreRefused) {
   }
   EXPECT_FALSE(fs::exists(dir / "out" / "run_000"));
   fs::remove_all(dir);
+}
+
+// The onset at three cell sizes, extrapolated to h -> 0 (post/grid_convergence.hpp): the 10 m
+// slope's brackets at 1, 0.5 and 0.25 m cells (docs/method.md, "The slope's strength under
+// refinement": 0.838-0.844, 0.806-0.813, 0.788-0.791) converge with p = 0.66 towards 0.755, and
+// predict the next halving's onset inside the bracket measured at 0.125 m cells, 0.77-0.78.
+TEST(FactorOfSafety, OnsetsAtThreeCellSizesExtrapolate) {
+  FosResult r;
+  r.stage = "slide";
+  r.levels = {{1.0, 0.838, 0.844}, {0.5, 0.806, 0.813}, {0.25, 0.788, 0.791}};
+  r.stands = 0.788, r.fails = 0.791;
+  const std::optional<GridConvergence> g = fos_extrapolation(r);
+  ASSERT_TRUE(g.has_value());
+  EXPECT_EQ(g->kind, ConvergenceKind::monotone);
+  EXPECT_NEAR(g->order, std::log(0.0315 / 0.02) / std::log(2.0), 1e-9);
+  EXPECT_NEAR(g->extrapolated, 0.7547, 5e-5);
+  const double next = 0.7895 + g->next_change;
+  EXPECT_GT(next, 0.77);
+  EXPECT_LT(next, 0.78);
+  FosOptions opt;
+  opt.levels = 3;
+  const std::string verdict = fos_verdict(r, opt);
+  EXPECT_NE(verdict.find("at h = 0.25 m the MPM's factor of safety lies between 0.788 and 0.791"),
+            std::string::npos)
+      << verdict;
+  EXPECT_NE(
+      verdict.find("it converges monotonically with apparent order p = 0.66, towards f = 0.755 as h -> 0"),
+      std::string::npos)
+      << verdict;
+  EXPECT_EQ(verdict.find("raise --steps"), std::string::npos) << verdict;
+  // A finest bracket wider than the last change of its midpoint: the bisection's resolution.
+  r.levels.back() = {0.25, 0.78, 0.80};
+  EXPECT_NE(fos_verdict(r, opt).find("the extrapolation rests on the bisection's resolution; raise --steps"),
+            std::string::npos);
+  // Two levels, or a level that did not bracket the onset, extrapolate nothing.
+  r.levels.back() = {0.25, NAN, NAN};
+  EXPECT_FALSE(fos_extrapolation(r).has_value());
+  r.levels.pop_back();
+  EXPECT_FALSE(fos_extrapolation(r).has_value());
 }

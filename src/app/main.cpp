@@ -229,6 +229,9 @@ int main(int argc, char** argv) {
   fos->add_option("--range", fos_range, "LOW HIGH: the slope stands at LOW and fails at HIGH (default 0.5 2)")
       ->expected(2);
   fos->add_option("--steps", fo.steps, "Bisections after the two ends (default 5)");
+  fos->add_option("--levels", fo.levels,
+                  "Cell sizes h, h/2, ... each bisected alike, 1 to 4 (default 1); 3 or more extrapolate the "
+                  "factor to h -> 0");
   fos->add_option("--moved", fo.moved,
                   "Fails: a point moved more than this share of the material's height (default 0.01)");
   fos->add_option("--threads", threads, "OpenMP threads (default: all cores)")->check(CLI::Range(1, 1024));

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "io/atomic_file.hpp"
+#include "post/grid_convergence.hpp"
 #include "run/simulation.hpp"
 #include "run/table_text.hpp"
 #include "scenario/scenario.hpp"
@@ -34,7 +35,89 @@ double change_at(const std::vector<RefineRow>& rows, std::size_t k) {
   return relative_change(rows[k - 1].last.runout, rows[k].last.runout);
 }
 
+// A value of one measure: its unit and how to print it.
+struct Measure {
+  const char* name;   // the column of refine.csv
+  const char* words;  // for the terminal
+  const char* unit;   // with its leading space; "" for the gravity work (J, or J/m in 2D)
+  double (*of)(const StageMeasures&);
+};
+constexpr Measure kMeasures[] = {
+    {"runout", "runout", " m", [](const StageMeasures& m) { return m.runout; }},
+    {"gravity_work", "gravity work (the energy released)", "",
+     [](const StageMeasures& m) { return m.gravity_work; }},
+};
+
+std::string percent(double v) { return fmt::format("{:+.1f} %", 100.0 * v); }
+
+// One line on a measure's extrapolation (Celik et al. 2008), for the verdict.
+std::string extrapolation_line(const RefineExtrapolation& e, const Measure& m) {
+  const GridConvergence& g = e.estimate;
+  const std::string head = fmt::format("{} over h = {}, {}, {} m:", m.words, num(4.0 * e.cell_size),
+                                       num(2.0 * e.cell_size), num(e.cell_size));
+  switch (g.kind) {
+    case ConvergenceKind::unchanged:
+      return fmt::format("{} the two finest agree exactly ({:.6g}{})\n", head, e.fine, m.unit);
+    case ConvergenceKind::diverging:
+      return fmt::format(
+          "{} the last halving moved it by {:+.4g}{}, the one before by {:+.4g}{} (R = {}): the changes do "
+          "not shrink, so these cells are not yet in the asymptotic range and nothing is extrapolated; "
+          "refine further\n",
+          head, e.fine - e.medium, m.unit, e.medium - e.coarse, m.unit,
+          std::isfinite(g.ratio) ? fmt::format("{:.3g}", g.ratio) : std::string("inf"));
+    case ConvergenceKind::monotone:
+    case ConvergenceKind::oscillatory: break;
+  }
+  const std::string how = g.kind == ConvergenceKind::monotone
+                              ? std::string("converges monotonically")
+                              : fmt::format("oscillates (R = {:.3g}; extrapolate with care)", g.ratio);
+  if (!std::isfinite(g.extrapolated))
+    return fmt::format("{} {}, but no apparent order could be found\n", head, how);
+  return fmt::format(
+      "{} {} with apparent order p = {:.2f} towards {:.6g}{} as h -> 0; GCI of the finest {:.2f} %, and "
+      "one more halving would move it by about {}\n",
+      head, how, g.order, g.extrapolated, m.unit, 100.0 * g.gci_fine,
+      e.fine != 0.0 ? percent(g.next_change / e.fine) : fmt::format("{:+.3g}{}", g.next_change, m.unit));
+}
+
 }  // namespace
+
+std::vector<RefineExtrapolation> refine_extrapolations(const std::vector<RefineRow>& rows) {
+  std::vector<RefineExtrapolation> out;
+  for (std::size_t k = 2; k < rows.size(); ++k) {
+    const bool last_of_transfer = k + 1 == rows.size() || rows[k + 1].transfer != rows[k].transfer;
+    if (!last_of_transfer || rows[k].level < 2 || rows[k - 2].transfer != rows[k].transfer) continue;
+    const RefineRow *f = &rows[k], *m = &rows[k - 1], *c = &rows[k - 2];
+    if (f->status != "completed" || m->status != "completed" || c->status != "completed") continue;
+    for (const Measure& q : kMeasures) {
+      RefineExtrapolation e;
+      e.transfer = f->transfer;
+      e.quantity = q.name;
+      e.cell_size = f->cell_size;
+      e.fine = q.of(f->last), e.medium = q.of(m->last), e.coarse = q.of(c->last);
+      if (!std::isfinite(e.fine) || !std::isfinite(e.medium) || !std::isfinite(e.coarse)) continue;
+      e.estimate = grid_convergence(e.fine, e.medium, e.coarse, m->cell_size / f->cell_size,
+                                    c->cell_size / m->cell_size);
+      out.push_back(e);
+    }
+  }
+  return out;
+}
+
+std::string extrapolation_table(const std::vector<RefineExtrapolation>& ex) {
+  std::string text =
+      "transfer,quantity,cell_size,fine,medium,coarse,kind,ratio,order,extrapolated,approximate_error,"
+      "extrapolated_error,gci_fine,next_change\n";
+  auto out = std::back_inserter(text);
+  for (const RefineExtrapolation& e : ex) {
+    const GridConvergence& g = e.estimate;
+    fmt::format_to(out, "{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", label(e.transfer), e.quantity,
+                   num(e.cell_size), num(e.fine), num(e.medium), num(e.coarse), convergence_kind_name(g.kind),
+                   num(g.ratio), num(g.order), num(g.extrapolated), num(g.approximate_error),
+                   num(g.extrapolated_error), num(g.gci_fine), num(g.next_change));
+  }
+  return text;
+}
 
 void check_refine_options(const RefineOptions& opt) {
   if (opt.levels < 2 || opt.levels > 5)
@@ -46,29 +129,34 @@ void check_refine_options(const RefineOptions& opt) {
 
 double relative_change(double a, double b) { return a > 0.0 ? (b - a) / a : NAN; }
 
+std::vector<std::pair<std::string, double>> refined_keys(const AnyScenario& base, int level) {
+  const ScenarioCommon& c = common_of(base);
+  const int dim = std::holds_alternative<Scenario>(base) ? 2 : 3;
+  const double f = std::ldexp(1.0, -level);  // 2^-k: exact, so the halved grids stay whole
+  std::vector<std::pair<std::string, double>> set{{"grid.cell_size", c.cell_size * f}};
+  if (c.time_step > 0.0) set.emplace_back("solver.time_step", c.time_step * f);  // c dt / h stays
+  if (c.max_points_given)  // the cap grows with the points (10 x them if not given)
+    set.emplace_back("splitting.max_points",
+                     std::round(std::ldexp(static_cast<double>(c.splitting.max_points), dim * level)));
+  return set;
+}
+
 std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::path& outdir,
                                   const RefineOptions& opt) {
   check_refine_options(opt);
   const std::string text = read_scenario_text(scenario_file);
   const AnyScenario base = parse_any_scenario(text, scenario_file);
   const double h = common_of(base).cell_size, dt = common_of(base).time_step;
-  const int dim = std::holds_alternative<Scenario>(base) ? 2 : 3;
   const std::vector<std::string> transfers =
       opt.transfers.empty() ? std::vector<std::string>{""} : opt.transfers;
   std::vector<RefineRow> rows;
   std::vector<AnyScenario> scenarios;  // every run validated before the first starts
   for (const std::string& t : transfers)
     for (int k = 0; k < opt.levels; ++k) {
-      const double f = std::ldexp(1.0, -k);  // 2^-k: exact, so the halved grids stay whole
-      std::vector<std::pair<std::string, double>> set{{"grid.cell_size", h * f}};
-      if (dt > 0.0) set.emplace_back("solver.time_step", dt * f);  // c dt / h stays
-      if (common_of(base).max_points_given)  // the cap grows with the points (10 x them if not given)
-        set.emplace_back(
-            "splitting.max_points",
-            std::round(std::ldexp(static_cast<double>(common_of(base).splitting.max_points), dim * k)));
+      const double f = std::ldexp(1.0, -k);
       std::vector<std::pair<std::string, std::string>> text_set;
       if (!t.empty()) text_set.emplace_back("solver.velocity_transfer", t);
-      scenarios.push_back(parse_any_scenario(text, scenario_file, set, text_set));
+      scenarios.push_back(parse_any_scenario(text, scenario_file, refined_keys(base, k), text_set));
       if (opt.check) opt.check(scenarios.back());
       RefineRow r;
       r.transfer = t;
@@ -94,6 +182,8 @@ std::vector<RefineRow> run_refine(const std::string& scenario_file, const fs::pa
     if (!res.stages.empty()) r.last = res.stages.back();
     const std::vector<RefineRow> done(rows.begin(), rows.begin() + static_cast<long>(i) + 1);
     write_file_atomically(outdir / "refine.csv", [&](std::ostream& os) { os << refine_table(done); });
+    write_file_atomically(outdir / "extrapolation.csv",
+                          [&](std::ostream& os) { os << extrapolation_table(refine_extrapolations(done)); });
   }
   return rows;
 }
@@ -141,6 +231,15 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
         label(rows[k].transfer), num(rows[k - 1].cell_size), num(rows[k].cell_size), 100.0 * c,
         std::abs(c) < kConverged ? "within 5 %" : "NOT within 5 %; refine further before relying on it");
   }
+  const std::vector<RefineExtrapolation> ex = refine_extrapolations(rows);
+  if (!ex.empty())
+    fmt::format_to(out,
+                   "Richardson's extrapolation of the last three sizes (Celik et al. 2008; "
+                   "extrapolation.csv):\n");
+  for (const RefineExtrapolation& e : ex) {
+    const Measure& m = e.quantity == "runout" ? kMeasures[0] : kMeasures[1];
+    fmt::format_to(out, "{}: {}", label(e.transfer), extrapolation_line(e, m));
+  }
   if (finest.size() > 1) {
     double lo = INFINITY, hi = -INFINITY;
     for (const RefineRow* r : finest) lo = std::min(lo, r->last.runout), hi = std::max(hi, r->last.runout);
@@ -153,6 +252,15 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
           out, "at h = {} m the transfers' runouts lie within {:.2f} % of each other: {}\n",
           num(finest.front()->cell_size), 100.0 * spread,
           spread < kConverged ? "within 5 %" : "NOT within 5 %: the runout depends on the velocity transfer");
+    double elo = INFINITY, ehi = -INFINITY;
+    int extrapolated = 0;
+    for (const RefineExtrapolation& e : ex)
+      if (e.quantity == "runout" && std::isfinite(e.estimate.extrapolated))
+        ++extrapolated, elo = std::min(elo, e.estimate.extrapolated),
+                        ehi = std::max(ehi, e.estimate.extrapolated);
+    if (extrapolated == static_cast<int>(finest.size()) && std::isfinite(relative_change(elo, ehi)))
+      fmt::format_to(out, "as h -> 0 the transfers' extrapolated runouts lie within {:.2f} % of each other\n",
+                     100.0 * relative_change(elo, ehi));
   }
   return text;
 }

@@ -7,9 +7,11 @@
 #include <filesystem>
 #include <functional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/summary_writer.hpp"
+#include "post/grid_convergence.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -36,12 +38,17 @@ struct RefineRow {
   StageMeasures last;  // the last stage's slide measures
 };
 
+// The keys that make the scenario's level k of a refinement study (refine's and fos's): the cell
+// h / 2^k, a fixed time step halved with it (so c dt / h stays), and a splitting cap given in the
+// scenario times 2^(d k), as the points grow.
+std::vector<std::pair<std::string, double>> refined_keys(const AnyScenario& base, int level);
+
 // Throws std::invalid_argument unless 2 <= levels <= 5 and the transfers are distinct.
 void check_refine_options(const RefineOptions& opt);
 
 // Runs every level of every transfer into OUTDIR/run_NNN/ (in the table's order) and writes
-// OUTDIR/refine.csv (rewritten atomically after every run). Every run's scenario is validated
-// before the first starts; a bad value throws ScenarioError naming the file and key.
+// OUTDIR/refine.csv and OUTDIR/extrapolation.csv (both rewritten atomically after every run). Every run's
+// scenario is validated before the first starts; a bad value throws ScenarioError naming the file and key.
 std::vector<RefineRow> run_refine(const std::string& scenario_file, const std::filesystem::path& outdir,
                                   const RefineOptions& opt);
 
@@ -54,9 +61,28 @@ std::string refine_table(const std::vector<RefineRow>& rows);
 // (b - a) / a, or NaN when a is not positive (a runout of zero cannot be refined relative to).
 double relative_change(double a, double b);
 
+// Richardson's extrapolation of one measure over a transfer's last three levels (post/grid_convergence.hpp).
+struct RefineExtrapolation {
+  std::string transfer;
+  std::string quantity;    // "runout" or "gravity_work"
+  double cell_size = 0.0;  // the finest of the three
+  double fine = 0.0, medium = 0.0, coarse = 0.0;
+  GridConvergence estimate;
+};
+
+// The extrapolations of the runout and the gravity work (the energy the slide released) of every
+// transfer with three levels or more whose last three runs completed, each from its last three
+// levels (r = 2).
+std::vector<RefineExtrapolation> refine_extrapolations(const std::vector<RefineRow>& rows);
+
+// The text of extrapolation.csv: transfer, quantity, cell_size, fine, medium, coarse, kind, ratio,
+// order, extrapolated, approximate_error, extrapolated_error, gci_fine, next_change.
+std::string extrapolation_table(const std::vector<RefineExtrapolation>& ex);
+
 // What the study shows, as lines for the terminal: per transfer the runout per level and the
-// change per halving, the last halving against the 5 % of issue 12, and, with several
-// transfers, how far apart they are at the finest level.
+// change per halving, the last halving against the 5 % of issue 12, Richardson's extrapolation of
+// the runout and the gravity work (with three levels or more), and, with several transfers, how
+// far apart they are at the finest level and, where both extrapolate, as h -> 0.
 std::string refine_verdict(const std::vector<RefineRow>& rows);
 
 }  // namespace skred
