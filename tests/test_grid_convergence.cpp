@@ -20,9 +20,9 @@ double ratio(double n_fine, double n_coarse) { return std::sqrt(n_fine / n_coars
 
 // The three columns of Table 1 (a backward-facing step on 2D grids): the dimensionless
 // reattachment length on 18,000, 8,000 and 4,500 cells (r21 = 1.5, r32 = 1.333, so p needs the
-// iteration of eq. 3b), and two axial velocities on 18,000, 4,500 and 980 cells, one with p < 1
-// and one oscillating (s = -1 in eq. 3c; Celik et al. report it with the same formulas). The
-// second column's e_ext is checked against its definition (eq. 5b) with the table's phi_ext.
+// iteration of step 3), and two axial velocities on 18,000, 4,500 and 980 cells, one with p < 1
+// and one oscillating (s = -1 in step 3; Celik et al. report it with the same formulas). The
+// second column's e_ext is checked against its definition (step 5) with the table's phi_ext.
 TEST(GridConvergence, CeliksThreeExamples) {
   struct Column {
     double n1, n2, n3, phi1, phi2, phi3;
@@ -58,7 +58,7 @@ TEST(GridConvergence, RecoversAKnownErrorExpansion) {
     EXPECT_NEAR(g.extrapolated, phi0, 1e-9);
     EXPECT_NEAR(g.next_change, phi(h / 2) - phi(h), 1e-9);
     EXPECT_NEAR(g.ratio, std::pow(2.0, -p), 1e-9);
-    // With unequal ratios the iteration of eq. 3b finds the same order.
+    // With unequal ratios the iteration of step 3 finds the same order.
     const GridConvergence u = grid_convergence(phi(h), phi(1.5 * h), phi(2.7 * h), 1.5, 1.8);
     EXPECT_NEAR(u.order, p, 1e-8) << p;
     EXPECT_NEAR(u.extrapolated, phi0, 1e-8) << p;

@@ -246,9 +246,9 @@ TEST(Refine, RichardsonsExtrapolationOfTheLastThreeSizes) {
   EXPECT_EQ(ex[0].quantity, "runout");
   EXPECT_DOUBLE_EQ(ex[0].cell_size, 0.125);
   EXPECT_EQ(ex[0].estimate.kind, ConvergenceKind::monotone);
-  const double p = std::log(0.370 / 0.115) / std::log(2.0);  // eq. 3a with r = 2
+  const double p = std::log(0.370 / 0.115) / std::log(2.0);  // step 3 with r = 2
   EXPECT_NEAR(ex[0].estimate.order, p, 1e-9);
-  EXPECT_NEAR(ex[0].estimate.extrapolated, 4.238 + 0.115 / (std::pow(2.0, p) - 1.0), 1e-9);  // eq. 4
+  EXPECT_NEAR(ex[0].estimate.extrapolated, 4.238 + 0.115 / (std::pow(2.0, p) - 1.0), 1e-9);  // step 4
   EXPECT_EQ(ex[1].quantity, "gravity_work");
   EXPECT_EQ(ex[1].estimate.kind, ConvergenceKind::monotone);
   EXPECT_EQ(ex[2].estimate.kind, ConvergenceKind::diverging);  // the slope's runout: +1.455, then +1.664 m

@@ -17,7 +17,7 @@ const char* convergence_kind_name(ConvergenceKind k) {
 
 namespace {
 
-// The apparent order p of Celik et al. eq. 3a-3c by fixed-point iteration:
+// The apparent order p of Celik et al.'s step 3 by fixed-point iteration:
 // p = |ln|ε32/ε21| + q(p)| / ln r21, q(p) = ln((r21^p − s) / (r32^p − s)), s = sgn(ε32/ε21);
 // q = 0 for a constant ratio, so one pass is exact there. NaN if it does not settle.
 double apparent_order(double e21, double e32, double r21, double r32) {
@@ -45,7 +45,7 @@ GridConvergence grid_convergence(double phi1, double phi2, double phi3, double r
   GridConvergence g;
   const double e21 = phi2 - phi1, e32 = phi3 - phi2;
   g.ratio = e32 != 0.0 ? e21 / e32 : NAN;
-  g.approximate_error = phi1 != 0.0 ? std::abs(e21 / phi1) : NAN;  // eq. 5a
+  g.approximate_error = phi1 != 0.0 ? std::abs(e21 / phi1) : NAN;  // step 5
   g.order = g.extrapolated = g.extrapolated_error = g.gci_fine = g.next_change = NAN;
   if (e21 == 0.0) {
     g.kind = ConvergenceKind::unchanged;
@@ -61,9 +61,9 @@ GridConvergence grid_convergence(double phi1, double phi2, double phi3, double r
   g.order = apparent_order(e21, e32, r21, r32);
   if (!std::isfinite(g.order) || g.order <= 0.0) return g;
   const double rp = std::pow(r21, g.order);
-  g.extrapolated = (rp * phi1 - phi2) / (rp - 1.0);  // eq. 4
+  g.extrapolated = (rp * phi1 - phi2) / (rp - 1.0);  // step 4
   g.extrapolated_error = g.extrapolated != 0.0 ? std::abs((g.extrapolated - phi1) / g.extrapolated) : NAN;
-  g.gci_fine = safety_factor * g.approximate_error / (rp - 1.0);  // eq. 5c
+  g.gci_fine = safety_factor * g.approximate_error / (rp - 1.0);  // step 5
   g.next_change = (g.extrapolated - phi1) * (1.0 - 1.0 / rp);
   return g;
 }

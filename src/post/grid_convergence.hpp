@@ -2,7 +2,7 @@
 // Richardson's extrapolation and Roache's grid convergence index (GCI), as the procedure of
 // Celik, Ghia, Roache, Freitas, Coleman & Raad (2008), "Procedure for estimation and reporting
 // of uncertainty due to discretization in CFD applications", J. Fluids Eng. 130, 078001, sets it
-// out (its eq. 1-5; ASME V&V 20-2009 §5). `skred refine` applies it to the runout and the
+// out (its steps 1-5; ASME V&V 20-2009 §5). `skred refine` applies it to the runout and the
 // released energy of the last three cell sizes (docs/method.md, "Richardson's extrapolation").
 #pragma once
 
@@ -23,11 +23,11 @@ const char* convergence_kind_name(ConvergenceKind k);
 struct GridConvergence {
   ConvergenceKind kind = ConvergenceKind::diverging;
   double ratio = 0.0;               // R = ε21 / ε32 (NaN when ε32 = 0)
-  double order = 0.0;               // the apparent order p (eq. 3a-3c); NaN unless monotone or oscillatory
-  double extrapolated = 0.0;        // φ_ext^21 (eq. 4): the value as h → 0; NaN when not estimated
-  double approximate_error = 0.0;   // e_a^21 = |(φ1 − φ2) / φ1| (eq. 5a)
-  double extrapolated_error = 0.0;  // e_ext^21 = |(φ_ext − φ1) / φ_ext| (eq. 5b); NaN when not estimated
-  double gci_fine = 0.0;  // GCI_fine^21 = Fs e_a^21 / (r21^p − 1) (eq. 5c); NaN when not estimated
+  double order = 0.0;               // the apparent order p (step 3); NaN unless monotone or oscillatory
+  double extrapolated = 0.0;        // φ_ext^21 (step 4): the value as h → 0; NaN when not estimated
+  double approximate_error = 0.0;   // e_a^21 = |(φ1 − φ2) / φ1| (step 5)
+  double extrapolated_error = 0.0;  // e_ext^21 = |(φ_ext − φ1) / φ_ext| (step 5); NaN when not estimated
+  double gci_fine = 0.0;  // GCI_fine^21 = Fs e_a^21 / (r21^p − 1) (step 5); NaN when not estimated
   // The change of φ that one more refinement by r21 would make, as the extrapolation predicts it:
   // (φ_ext − φ1)(1 − r21^−p); NaN when not estimated.
   double next_change = 0.0;
