@@ -2,7 +2,6 @@
 
 #include <fmt/format.h>
 
-#include <algorithm>
 #include <cmath>
 #include <iterator>
 #include <stdexcept>
@@ -52,8 +51,8 @@ std::optional<GridConvergence> fos_extrapolation(const FosResult& r) {
   const FosLevel *f = &r.levels[n - 1], *m = &r.levels[n - 2], *c = &r.levels[n - 3];
   for (const FosLevel* l : {f, m, c})
     if (!std::isfinite(l->stands) || !std::isfinite(l->fails)) return std::nullopt;
-  const auto mid = [](const FosLevel* l) { return 0.5 * (l->stands + l->fails); };
-  return grid_convergence(mid(f), mid(m), mid(c), m->cell_size / f->cell_size, c->cell_size / m->cell_size);
+  return grid_convergence(f->midpoint(), m->midpoint(), c->midpoint(), m->cell_size / f->cell_size,
+                          c->cell_size / m->cell_size);
 }
 
 FosResult run_strength_reduction(const std::string& scenario_file, const fs::path& outdir,
@@ -114,7 +113,8 @@ FosResult run_strength_reduction(const std::string& scenario_file, const fs::pat
   for (int l = 0; l < opt.levels; ++l) {
     FosLevel level;
     level.cell_size = common_of(base).cell_size * std::ldexp(1.0, -l);
-    if (!run(opt.low, l) && run(opt.high, l)) {  // else the ends do not bracket the onset
+    level.fails_at_low = run(opt.low, l);
+    if (!level.fails_at_low && run(opt.high, l)) {  // else the ends do not bracket the onset
       double stands = opt.low, fails = opt.high;
       for (int i = 0; i < opt.steps; ++i) {
         const double mid = 0.5 * (stands + fails);
@@ -160,13 +160,10 @@ std::string fos_verdict(const FosResult& r, const FosOptions& opt) {
                    run.stage.height_start, run.status == "completed" ? "" : ", " + run.status);
   for (const FosLevel& l : r.levels) {
     const std::string at = several ? fmt::format("at h = {} m ", table_number(l.cell_size)) : std::string();
-    const bool low_failed = std::any_of(r.runs.begin(), r.runs.end(), [&](const FosRun& run) {
-      return run.cell_size == l.cell_size && run.factor == opt.low && run.fails;
-    });
     if (std::isfinite(l.stands))
       fmt::format_to(out, "{}the MPM's factor of safety lies between {} and {}\n", at, table_number(l.stands),
                      table_number(l.fails));
-    else if (low_failed)
+    else if (l.fails_at_low)
       fmt::format_to(
           out, "{}the slope fails already at f = {}: its factor of safety is below it (lower --range)\n", at,
           table_number(opt.low));
@@ -177,8 +174,7 @@ std::string fos_verdict(const FosResult& r, const FosOptions& opt) {
   if (const std::optional<GridConvergence> g = fos_extrapolation(r)) {
     const std::size_t n = r.levels.size();
     const double width = r.levels[n - 1].fails - r.levels[n - 1].stands;
-    const double last = 0.5 * (r.levels[n - 1].stands + r.levels[n - 1].fails) -
-                        0.5 * (r.levels[n - 2].stands + r.levels[n - 2].fails);
+    const double last = r.levels[n - 1].midpoint() - r.levels[n - 2].midpoint();
     fmt::format_to(out, "Richardson's extrapolation of the brackets' midpoints (Celik et al. 2008): ");
     if (std::isfinite(g->extrapolated) && g->kind != ConvergenceKind::diverging)
       fmt::format_to(

@@ -45,6 +45,8 @@ struct FosRun {
 struct FosLevel {
   double cell_size = 0.0;
   double stands = NAN, fails = NAN;  // NaN: the ends did not bracket the onset
+  bool fails_at_low = false;         // the slope failed already at --range's LOW
+  double midpoint() const { return 0.5 * (stands + fails); }
 };
 
 struct FosResult {
