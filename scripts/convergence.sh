@@ -12,7 +12,9 @@
 # For a scenario of your own, `skred refine SCENARIO.toml -o OUTDIR --transfers auto,apic` runs the
 # same kind of study (h, h/2, h/4, a fixed time step halved with the cell) and prints the verdict.
 # PROBLEMS=slope50 runs examples/slope_50m.toml instead (the slope at the thesis's scale, 50 m
-# high; h = 5, 2.5, 1.25 m: 60, 120, 240 cells across).
+# high; h = 5, 2.5, 1.25 m: 60, 120, 240 cells across its grid, and by the count of the soil's
+# cells the thesis's 39, 77, 154 across; SIZES="3.3333333333333335 1.6666666666666667
+# 0.8333333333333334" starts at the thesis's 58: docs/method.md, "At the thesis's own discretisation").
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
 #   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
 #   PROBLEMS=column SIZES="0.125 0.0625" scripts/convergence.sh build/skred apic   (other sizes)
