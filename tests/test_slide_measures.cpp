@@ -136,11 +136,37 @@ TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
   EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 2.6, 1e-12);
 }
 
+// Over a base layer every column holds material, so the deposit is also cut where the slide left
+// a column unraised: a clump that came to rest beyond bare ground is not the front, however high
+// it stands (on the 50 m slope at 10/7 m cells such a clump, 3 m^2 two columns beyond the
+// deposit, had set the runout 4.6 m too far; docs/method.md, "At the thesis's own
+// discretisation").
+TEST(SlideMeasures, AClumpBeyondBareGroundOnABaseLayerDoesNotMoveTheFront) {
+  const double width = 1.0;
+  const Particles<2> slope = hand_made_slope();
+  const SurfaceProfile before = surface_profile(slope, 0.0, width, 20);
+  Particles<2> after = slope;
+  for (int k = 3; k <= 6; ++k) add(after, k + 0.5, 1.4, 0.45, 0.4);  // the deposit, 0.8 m thick
+  // Its front 6.95 m, the toe where the original surface comes down to 1.5 m: x = 3.0.
+  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 3.95, 1e-12);
+  Particles<2> clump = after;
+  add(clump, 9.5, 1.6, 0.45, 0.6);  // 1.2 m thick, beyond the bare columns 7 and 8
+  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 3.95, 1e-12);
+  // Joined to the deposit by material raising the columns between, it is the front.
+  for (int k = 7; k <= 8; ++k) add(clump, k + 0.5, 1.35, 0.45, 0.35);
+  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 9.95 - 3.0, 1e-12);
+  // A wider clump beyond the gap is the deposit, as the wider of two runs.
+  Particles<2> wide = after;
+  for (int k = 9; k <= 13; ++k) add(wide, k + 0.5, 1.4, 0.45, 0.4);
+  EXPECT_NEAR(runout_of(before, wide, 0.0, width, 0.5).x_max, 13.95 - 3.0, 1e-12);
+}
+
 // The stage's runout_thickness (metres) is the level the runout's front must stand above the
 // original surface, in place of half a cell. On the slope of the test above, a point lying on
-// the ground 0.4 m thick, its outer edge at 9.8 m, is the front at 0.3 m: the toe is where the
-// original surface comes down to 1.3 m, between (2.5, 2) and (3.5, 1): x = 3.2, so the runout is
-// 9.8 - 3.2 = 6.6 m; at half a cell (0.5 m) it is not, and the runout stays 2.6 m.
+// the ground 0.4 m thick, its outer edge at 9.8 m, joined to the front point at 5.35 m by a sheet
+// 0.35 m thick, is the front at 0.3 m: the toe is where the original surface comes down to 1.3 m,
+// between (2.5, 2) and (3.5, 1): x = 3.2, so the runout is 9.8 - 3.2 = 6.6 m; at half a cell
+// (0.5 m) neither the sheet nor the point is, and the runout stays 2.6 m.
 TEST(SlideMeasures, TheStagesRunoutThicknessSetsTheFrontsLevel) {
   const auto text = [](const std::string& slide_extra) {
     return std::string(R"(
@@ -180,6 +206,7 @@ duration = 0.1
   Particles<2> slope = hand_made_slope();  // (the tracker records each point's strain in it)
   Particles<2> after = slope;
   add(after, 5.35, 1.4, 0.25, 0.4);
+  for (int k = 6; k <= 8; ++k) add(after, k + 0.5, 1.175, 0.45, 0.175);
   add(after, 9.5, 1.2, 0.3, 0.2);
   const StageTracker<2> at_half_cell("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.0);
   const StageTracker<2> at_thickness("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.3);

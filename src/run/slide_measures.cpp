@@ -163,17 +163,27 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
   while (last < n - 1 && std::isfinite(after.top[last + 1])) ++last;
   const auto raised = [&](int b) { return b >= first && b <= last && after.top[b] > level[b]; };
   for (int dir : {+1, -1}) {
-    // Tip: the outermost column the deposit has raised; toe: the outermost column, inward of
-    // the tip, whose original surface stood above the original surface at the tip.
-    int tip = -1;
-    for (int k = 0; k < n; ++k) {
-      const int b = dir > 0 ? n - 1 - k : k;
-      if (raised(b)) {
-        tip = b;
-        break;
+    // Tip: the outer end of the deposit's run of raised columns on this side of the main mass.
+    // Over a base layer every column holds material, so the deposit is also cut where the slide
+    // left a column unraised: of the runs of raised columns reaching this side of the highest
+    // column, the deposit is the widest (of equal ones the outer), and a clump that came to rest
+    // beyond a column the slide left bare is a run of its own that moves no front.
+    int tip = -1, widest = 0;
+    for (int b = first; b <= last;) {
+      if (!raised(b)) {
+        ++b;
+        continue;
       }
+      int e = b;
+      while (e < last && raised(e + 1)) ++e;
+      const int w = e - b + 1;
+      if ((dir > 0 ? e >= peak : b <= peak) && (w > widest || (w == widest && dir > 0)))
+        widest = w, tip = dir > 0 ? e : b;
+      b = e + 1;
     }
     if (tip < 0) continue;
+    // Toe: the outermost column, inward of the tip, whose original surface stood above the
+    // original surface at the tip.
     int toe = tip;
     for (int b = tip; b >= 0 && b < n; b -= dir)
       if (before.top[b] > level[tip]) {

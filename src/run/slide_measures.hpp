@@ -36,8 +36,11 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
                                const std::vector<double>& above = {});
 
 // Runout towards +x and -x (or z) from the profile `before`, at the stage start, and the points
-// now. The connected deposit is the run of non-empty columns around the highest one; its tip
-// the outermost of those columns that the deposit has raised by more than `threshold`; the toe
+// now. The connected deposit lies in the run of non-empty columns around the highest one; per
+// side, it is the widest run of columns raised by more than `threshold` that reaches that side
+// of the highest (of equal ones the outer: over a base layer, where every column holds
+// material, a clump resting beyond a column the slide left unraised is not the deposit); its
+// tip the outer end of that run; the toe
 // column the outermost column inward of the tip whose original surface stood higher than
 // the original surface at the tip plus `threshold`. The runout is continuous, not counted
 // in columns: front - toe, where the front is the outermost edge x_p +- l_p of the points
