@@ -161,26 +161,27 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
   int first = peak, last = peak;
   while (first > 0 && std::isfinite(after.top[first - 1])) --first;
   while (last < n - 1 && std::isfinite(after.top[last + 1])) ++last;
-  const auto raised = [&](int b) { return b >= first && b <= last && after.top[b] > level[b]; };
-  for (int dir : {+1, -1}) {
-    // Tip: the outer end of the deposit's run of raised columns on this side of the main mass.
-    // Over a base layer every column holds material, so the deposit is also cut where the slide
-    // left a column unraised: of the runs of raised columns reaching this side of the highest
-    // column, the deposit is the widest (of equal ones the outer), and a clump that came to rest
-    // beyond a column the slide left bare is a run of its own that moves no front.
-    int tip = -1, widest = 0;
-    for (int b = first; b <= last;) {
-      if (!raised(b)) {
-        ++b;
-        continue;
-      }
-      int e = b;
-      while (e < last && raised(e + 1)) ++e;
-      const int w = e - b + 1;
-      if ((dir > 0 ? e >= peak : b <= peak) && (w > widest || (w == widest && dir > 0)))
-        widest = w, tip = dir > 0 ? e : b;
-      b = e + 1;
+  // Over a base layer every column holds material, so the deposit is also cut where the slide
+  // left a column unraised: of the runs of raised columns within [first, last] that reach a side
+  // of the highest column, the deposit on that side is the widest (of equal ones the outer), and
+  // a clump that came to rest beyond a column the slide left bare is a run of its own that moves
+  // no front. Its outer end is the tip column: tips[0] towards +x, tips[1] towards -x.
+  const auto raised = [&](int b) { return after.top[b] > level[b]; };
+  int tips[2] = {-1, -1}, widest[2] = {0, 0};
+  for (int b = first; b <= last;) {
+    if (!raised(b)) {
+      ++b;
+      continue;
     }
+    int e = b;
+    while (e < last && raised(e + 1)) ++e;
+    const int w = e - b + 1;
+    if (e >= peak && w >= widest[0]) widest[0] = w, tips[0] = e;  // runs come inner to outer
+    if (b <= peak && w > widest[1]) widest[1] = w, tips[1] = b;   // runs come outer to inner
+    b = e + 1;
+  }
+  for (int dir : {+1, -1}) {
+    const int tip = tips[dir > 0 ? 0 : 1];
     if (tip < 0) continue;
     // Toe: the outermost column, inward of the tip, whose original surface stood above the
     // original surface at the tip.
