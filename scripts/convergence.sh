@@ -32,6 +32,10 @@
 #   PPC=2 ...   (particles_per_cell: n x n points per cell instead of the examples' 3 x 3)
 #   scripts/convergence.sh build/skred auto   (the engine's defaults: for these slides XPIC once
 #                               per 2 h/c; with VOLUMETRIC=auto also the cell-averaged strain)
+#   SHIFTS="0 1 2 3 4" ...   (each size run once per k, with the column, or the slope's face,
+#                               moved k h / 5 along +x against the grid: where the material's
+#                               edges fall in their cells; the rows read h+k, and a line per size
+#                               gives the mean runout, its half-range and the mean's change)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -48,6 +52,7 @@ thick=${RUNOUT_THICKNESS:-}
 restm=${REST_MEASURE:-}
 ppc=${PPC:-}
 order=${XPIC_ORDER:-}
+shifts=${SHIFTS:-0}
 tag=$volumetric
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
@@ -57,6 +62,15 @@ fi
 tag=$tag${period:+_p$period}
 [ "$dtf" = 1 ] || tag=${tag}_dt$dtf
 tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}${order:+_m$order}${restm:+_r$restm}
+# moved PROBLEM H K > sed expression: the column's sides, or the slope's toe and crest vertices,
+# moved by K H / 5 along +x (K = 0: unchanged).
+moved() {
+  awk -v p="$1" -v h="$2" -v k="$3" 'BEGIN {
+    d = k * h / 5
+    if (p == "column") printf "s/^min = \\[15.0,/min = [%.9g,/;s/^max = \\[25.0,/max = [%.9g,/", 15 + d, 25 + d
+    else if (p == "slope") printf "s/\\[30.28, 4.0\\], \\[16.0, 14.0\\]/[%.9g, 4.0], [%.9g, 14.0]/", 30.28 + d, 16 + d
+    else printf "s/\\[151.4, 20.0\\], \\[80.0, 70.0\\]/[%.9g, 20.0], [%.9g, 70.0]/", 151.4 + d, 80 + d }'
+}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -88,24 +102,50 @@ for tr in $transfers; do
     esac
     sizes=${SIZES:-$sizes}
     dirs=
+    before=
     for h in $sizes; do
       dt=
       [ "$problem" = column ] && dt=$(awk -v h="$h" -v f="$dtf" 'BEGIN { printf "%g", 0.002 * h * f }')
-      dir=$out/${problem}_${tr}_${tag}_$h
-      dirs="$dirs $dir"
       extra=
       [ -n "$period" ] && [ "$tr" = xpic ] && extra="\\nxpic_period = $period"
       [ -n "$order" ] && [ "$tr" = xpic ] && extra="$extra\\nxpic_order = $order"
-      scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
-      "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
-        > "$dir.log" 2>&1 || true
-      /usr/bin/python3 - "$dir/summary.json" "$problem" "$tr" "$h" << 'EOF'
+      runouts=
+      for k in $shifts; do
+        dir=$out/${problem}_${tr}_${tag}_$h
+        [ "$shifts" = 0 ] || dir=${dir}_s$k
+        dirs="$dirs $dir"
+        if [ "$k" = 0 ]; then
+          scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
+        else
+          scenario "$file" "$h" "$dt" "$tr" "$extra" | sed -e "$(moved "$problem" "$h" "$k")" > "$dir.toml"
+        fi
+        "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
+          > "$dir.log" 2>&1 || true
+        row=$(/usr/bin/python3 - "$dir/summary.json" "$problem" "$tr" "$h" "$k" << 'EOF'
 import json, sys
 s = json.load(open(sys.argv[1]))
 st = s["stages"][-1]
-print("%-7s %-6s %6s %8d %9.3f %-9s %7.2f %7.0f" % (sys.argv[2], sys.argv[3], sys.argv[4], s["particles"],
+h = sys.argv[4][:6] + ("" if sys.argv[5] == "0" else "+" + sys.argv[5])
+print("%-7s %-6s %6s %8d %9.3f %-9s %7.2f %7.0f" % (sys.argv[2], sys.argv[3], h, s["particles"],
       st["runout"], st.get("ended_by", s["status"]), st["end_time"] - st["start_time"], s.get("wall_seconds", 0)))
 EOF
+)
+        echo "$row"
+        runouts="$runouts $(echo "$row" | awk '{ print $5 }')"
+      done
+      # Several shifts: the mean runout at this size, its half-range, the mean's change per size.
+      if [ "$shifts" != 0 ]; then
+        mean=$(echo $runouts | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.6g", s / NF }')
+        echo $runouts | awk -v p="$problem" -v t="$tr" -v h="$h" -v m="$mean" -v b="$before" '{
+          lo = $1; hi = $1
+          for (i = 2; i <= NF; i++) { if ($i < lo) lo = $i; if ($i > hi) hi = $i }
+          pct = m > 0 ? 50 * (hi - lo) / m : 0
+          printf "%-7s %-6s %6s the mean of %d shifts %.3f m, half-range %.3f m (%.1f %%)", p, t,
+            substr(h, 1, 6), NF, m, (hi - lo) / 2, pct
+          if (b != "" && b > 0) printf "; %+.1f %% from the size before", 100 * (m / b - 1)
+          printf "\n" }'
+        before=$mean
+      fi
     done
     fronts="$fronts
 $(/usr/bin/python3 "$here/scripts/deposit_front.py" "$height" $dirs)"
