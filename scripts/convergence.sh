@@ -114,10 +114,16 @@ for tr in $transfers; do
         dir=$out/${problem}_${tr}_${tag}_$h
         [ "$shifts" = 0 ] || dir=${dir}_s$k
         dirs="$dirs $dir"
-        if [ "$k" = 0 ]; then
-          scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
-        else
-          scenario "$file" "$h" "$dt" "$tr" "$extra" | sed -e "$(moved "$problem" "$h" "$k")" > "$dir.toml"
+        scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
+        if [ "$k" != 0 ]; then
+          # A pattern that no longer matches the example would run another body: the column's
+          # min and max lines, or the slope's vertices line, must each have changed.
+          sed -i -e "$(moved "$problem" "$h" "$k")" "$dir.toml"
+          changed=$(scenario "$file" "$h" "$dt" "$tr" "$extra" | diff - "$dir.toml" | grep -c '^>' || true)
+          if [ "$changed" != "$([ "$problem" = column ] && echo 2 || echo 1)" ]; then
+            echo "SHIFTS: $file's edges are not where moved() looks for them" >&2
+            exit 4
+          fi
         fi
         "$skred" run "$dir.toml" -o "$dir" --overwrite --threads "$threads" \
           > "$dir.log" 2>&1 || true
