@@ -7,6 +7,8 @@
 # last stage's runout (summary.json: continuous, from the points and their half-sizes, along the
 # connected deposit), how the stage ended, simulated and wall seconds. Takes tens of minutes
 # (the finest slope is 70,000 points for 13 s); run it beside other work with nice.
+# With three sizes or more, per problem and transfer, Richardson's extrapolation of the runout
+# and of the gravity work over the three finest (`skred extrapolate`, Celik et al. 2008).
 # Then, per problem, scripts/deposit_front.py: the front at thicknesses fixed in metres
 # (2, 4, 10 and 20 % of the initial height), the gravity work and the transfer's share of it.
 # For a scenario of your own, `skred refine SCENARIO.toml -o OUTDIR --transfers auto,apic` runs the
@@ -103,6 +105,8 @@ for tr in $transfers; do
     sizes=${SIZES:-$sizes}
     dirs=
     before=
+    tips=
+    works=
     for h in $sizes; do
       dt=
       [ "$problem" = column ] && dt=$(awk -v h="$h" -v f="$dtf" 'BEGIN { printf "%g", 0.002 * h * f }')
@@ -110,6 +114,7 @@ for tr in $transfers; do
       [ -n "$period" ] && [ "$tr" = xpic ] && extra="\\nxpic_period = $period"
       [ -n "$order" ] && [ "$tr" = xpic ] && extra="$extra\\nxpic_order = $order"
       runouts=
+      gws=
       for k in $shifts; do
         dir=$out/${problem}_${tr}_${tag}_$h
         [ "$shifts" = 0 ] || dir=${dir}_s$k
@@ -138,7 +143,12 @@ EOF
 )
         echo "$row"
         runouts="$runouts $(echo "$row" | awk '{ print $5 }')"
+        gws="$gws $(/usr/bin/python3 -c 'import json, sys
+print(json.load(open(sys.argv[1]))["stages"][-1]["gravity_work"])' "$dir/summary.json" 2> /dev/null || echo nan)"
       done
+      # The size's values for Richardson's extrapolation below (the means over the shifts).
+      tips="$tips $h=$(echo $runouts | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.9g", s / NF }')"
+      works="$works $h=$(echo $gws | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.9g", s / NF }')"
       # Several shifts: the mean runout at this size, its half-range, the mean's change per size.
       if [ "$shifts" != 0 ]; then
         mean=$(echo $runouts | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.6g", s / NF }')
@@ -153,6 +163,12 @@ EOF
         before=$mean
       fi
     done
+    # Three sizes or more: Richardson's extrapolation of the runout (the mean over the shifts) and
+    # of the gravity work over the three finest (skred extrapolate; Celik et al. 2008).
+    if [ "$(echo $sizes | wc -w)" -ge 3 ]; then
+      "$skred" extrapolate $tips --name "$problem $tr runout" --unit m 2>&1 | head -n 1 || true
+      "$skred" extrapolate $works --name "$problem $tr gravity work" --unit J/m 2>&1 | head -n 1 || true
+    fi
     fronts="$fronts
 $(/usr/bin/python3 "$here/scripts/deposit_front.py" "$height" $dirs)"
   done

@@ -16,6 +16,7 @@
 #include "app/post_cli.hpp"
 #include "app/scenario_cli.hpp"
 #include "io/checkpoint.hpp"
+#include "post/extrapolation_text.hpp"
 #include "run/bench.hpp"
 #include "run/checkpointing.hpp"
 #include "run/output_folder.hpp"
@@ -238,6 +239,19 @@ int main(int argc, char** argv) {
   fos->add_flag("--overwrite", overwrite, "Replace an earlier study in OUTDIR (removes its files first)");
   fos->add_flag("--force", force, "Run scenarios that need more memory than the machine has");
 
+  std::vector<std::string> measured;
+  std::string quantity = "value", unit;
+  auto* extrapolate = app.add_subcommand(
+      "extrapolate",
+      "Richardson's extrapolation of a value measured at three cell sizes or more (Celik et al. 2008)");
+  extrapolate
+      ->add_option(
+          "values", measured,
+          "CELL=VALUE per cell size, e.g. 0.5=3.753 0.25=4.123 0.125=4.238 (the three finest are used)")
+      ->required();
+  extrapolate->add_option("--name", quantity, "What the value is, for the verdict (default \"value\")");
+  extrapolate->add_option("--unit", unit, "Its unit, e.g. m");
+
   skred::BenchOptions bo;
   std::string interp = "gimp", scheme = "averaged", transfer = "flip";
   auto* bench = app.add_subcommand("bench", "Measure particle-updates per second");
@@ -304,6 +318,14 @@ int main(int argc, char** argv) {
       if (!fos_range.empty()) fo.low = fos_range[0], fo.high = fos_range[1];
       if (!force) fo.check = [](const skred::AnyScenario& s) { skred::require_fits_machine(s); };
       return cmd_fos(scenario, outdir, fo, threads, overwrite);
+    }
+    if (*extrapolate) {
+      try {
+        fmt::print("{}", skred::extrapolate_text(measured, quantity, unit));
+      } catch (const std::invalid_argument& e) {
+        throw CLI::ValidationError("extrapolate", e.what());
+      }
+      return code::kSuccess;
     }
     if (*bench) {
       if (bo.dim == 3 && bo.problem != "column") {

@@ -9,6 +9,7 @@
 #include <variant>
 
 #include "io/atomic_file.hpp"
+#include "post/extrapolation_text.hpp"
 #include "post/grid_convergence.hpp"
 #include "run/simulation.hpp"
 #include "run/table_text.hpp"
@@ -47,38 +48,6 @@ constexpr Measure kMeasures[] = {
     {"gravity_work", "gravity work (the energy released)", "",
      [](const StageMeasures& m) { return m.gravity_work; }},
 };
-
-std::string percent(double v) { return fmt::format("{:+.1f} %", 100.0 * v); }
-
-// One line on a measure's extrapolation (Celik et al. 2008), for the verdict.
-std::string extrapolation_line(const RefineExtrapolation& e, const Measure& m) {
-  const GridConvergence& g = e.estimate;
-  const std::string head = fmt::format("{} over h = {}, {}, {} m:", m.words, num(4.0 * e.cell_size),
-                                       num(2.0 * e.cell_size), num(e.cell_size));
-  switch (g.kind) {
-    case ConvergenceKind::unchanged:
-      return fmt::format("{} the two finest agree exactly ({:.6g}{})\n", head, e.fine, m.unit);
-    case ConvergenceKind::diverging:
-      return fmt::format(
-          "{} the last halving moved it by {:+.4g}{}, the one before by {:+.4g}{} (R = {}): the changes do "
-          "not shrink, so these cells are not yet in the asymptotic range and nothing is extrapolated; "
-          "refine further\n",
-          head, e.fine - e.medium, m.unit, e.medium - e.coarse, m.unit,
-          std::isfinite(g.ratio) ? fmt::format("{:.3g}", g.ratio) : std::string("inf"));
-    case ConvergenceKind::monotone:
-    case ConvergenceKind::oscillatory: break;
-  }
-  const std::string how = g.kind == ConvergenceKind::monotone
-                              ? std::string("converges monotonically")
-                              : fmt::format("oscillates (R = {:.3g}; extrapolate with care)", g.ratio);
-  if (!std::isfinite(g.extrapolated))
-    return fmt::format("{} {}, but no apparent order could be found\n", head, how);
-  return fmt::format(
-      "{} {} with apparent order p = {:.2f} towards {:.6g}{} as h -> 0; GCI of the finest {:.2f} %, and "
-      "one more halving would move it by about {}\n",
-      head, how, g.order, g.extrapolated, m.unit, 100.0 * g.gci_fine,
-      e.fine != 0.0 ? percent(g.next_change / e.fine) : fmt::format("{:+.3g}{}", g.next_change, m.unit));
-}
 
 }  // namespace
 
@@ -238,7 +207,9 @@ std::string refine_verdict(const std::vector<RefineRow>& rows) {
                    "extrapolation.csv):\n");
   for (const RefineExtrapolation& e : ex) {
     const Measure& m = e.quantity == "runout" ? kMeasures[0] : kMeasures[1];
-    fmt::format_to(out, "{}: {}", label(e.transfer), extrapolation_line(e, m));
+    const ThreeGrids v{{e.cell_size, 2.0 * e.cell_size, 4.0 * e.cell_size}, {e.fine, e.medium, e.coarse}};
+    fmt::format_to(out, "{}: {}", label(e.transfer),
+                   extrapolation_line(m.words, m.unit, v, e.estimate, " m"));
   }
   if (finest.size() > 1) {
     double lo = INFINITY, hi = -INFINITY;
