@@ -38,6 +38,10 @@
 #                               moved k h / 5 along +x against the grid: where the material's
 #                               edges fall in their cells; the rows read h+k, and a line per size
 #                               gives the mean runout, its half-range and the mean's change)
+#   HALF=1 PROBLEMS=column ...   (the column's symmetric half: the grid from its axis, x = 0 to
+#                               20 m, with the roller side at the axis; half the points and time,
+#                               the same tips to 0.3 % at h/4: docs/method.md, "One halving further";
+#                               deposit_front.py's gravity work is then the half's)
 set -e
 skred=${1:-build/skred}
 [ $# -gt 0 ] && shift
@@ -55,6 +59,11 @@ restm=${REST_MEASURE:-}
 ppc=${PPC:-}
 order=${XPIC_ORDER:-}
 shifts=${SHIFTS:-0}
+half=${HALF:-0}
+if [ "$half" = 1 ] && { [ "$shifts" != 0 ] || [ "$problems" != column ]; }; then
+  echo "HALF=1 takes PROBLEMS=column and no SHIFTS (a shifted column is not symmetric about the axis)" >&2
+  exit 4
+fi
 tag=$volumetric
 splitexpr='s/^$//'  # (nothing)
 if [ "$split" = 1 ]; then
@@ -64,6 +73,7 @@ fi
 tag=$tag${period:+_p$period}
 [ "$dtf" = 1 ] || tag=${tag}_dt$dtf
 tag=$tag${interp:+_$interp}${thick:+_t$thick}${ppc:+_ppc$ppc}${order:+_m$order}${restm:+_r$restm}
+[ "$half" = 1 ] && tag=${tag}_half
 # moved PROBLEM H K > sed expression: the column's sides, or the slope's toe and crest vertices,
 # moved by K H / 5 along +x (K = 0: unchanged).
 moved() {
@@ -120,6 +130,14 @@ for tr in $transfers; do
         [ "$shifts" = 0 ] || dir=${dir}_s$k
         dirs="$dirs $dir"
         scenario "$file" "$h" "$dt" "$tr" "$extra" > "$dir.toml"
+        if [ "$half" = 1 ]; then
+          sed -i -e 's/^size = \[40.0, 7.5\]/size = [20.0, 7.5]/' -e 's/^min = \[15.0, 0.0\]/min = [0.0, 0.0]/' \
+            -e 's/^max = \[25.0, 5.0\]/max = [5.0, 5.0]/' "$dir.toml"
+          if [ "$(scenario "$file" "$h" "$dt" "$tr" "$extra" | diff - "$dir.toml" | grep -c '^>' || true)" != 3 ]; then
+            echo "HALF: $file's grid and column are not where the script looks for them" >&2
+            exit 4
+          fi
+        fi
         if [ "$k" != 0 ]; then
           # A pattern that no longer matches the example would run another body: the column's
           # min and max lines, or the slope's vertices line, must each have changed.
