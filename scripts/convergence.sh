@@ -83,6 +83,12 @@ moved() {
     else if (p == "slope") printf "s/\\[30.28, 4.0\\], \\[16.0, 14.0\\]/[%.9g, 4.0], [%.9g, 14.0]/", 30.28 + d, 16 + d
     else printf "s/\\[151.4, 20.0\\], \\[80.0, 70.0\\]/[%.9g, 20.0], [%.9g, 70.0]/", 151.4 + d, 80 + d }'
 }
+# mean_of FORMAT VALUES... > their mean, printed with FORMAT.
+mean_of() {
+  f=$1
+  shift
+  echo "$@" | awk -v f="$f" '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf f, s / NF }'
+}
 here=$(cd "$(dirname "$0")/.." && pwd)
 mkdir -p "$out"
 
@@ -165,11 +171,11 @@ EOF
 print(json.load(open(sys.argv[1]))["stages"][-1]["gravity_work"])' "$dir/summary.json" 2> /dev/null || echo nan)"
       done
       # The size's values for Richardson's extrapolation below (the means over the shifts).
-      tips="$tips $h=$(echo $runouts | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.9g", s / NF }')"
-      works="$works $h=$(echo $gws | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.9g", s / NF }')"
+      tips="$tips $h=$(mean_of %.9g $runouts)"
+      works="$works $h=$(mean_of %.9g $gws)"
       # Several shifts: the mean runout at this size, its half-range, the mean's change per size.
       if [ "$shifts" != 0 ]; then
-        mean=$(echo $runouts | awk '{ s = 0; for (i = 1; i <= NF; i++) s += $i; printf "%.6g", s / NF }')
+        mean=$(mean_of %.6g $runouts)
         echo $runouts | awk -v p="$problem" -v t="$tr" -v h="$h" -v m="$mean" -v b="$before" '{
           lo = $1; hi = $1
           for (i = 2; i <= NF; i++) { if ($i < lo) lo = $i; if ($i > hi) hi = $i }

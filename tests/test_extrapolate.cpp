@@ -1,4 +1,4 @@
-// `skred extrapolate` (post/extrapolation_text.hpp): Celik et al.'s procedure applied to values a
+// `skred extrapolate` (run/extrapolation_text.hpp): Celik et al.'s procedure applied to values a
 // user measured at three cell sizes or more, given as CELL=VALUE in any order; checked against
 // Celik et al. (2008)'s Table 1 and a known error expansion, and its refusals of bad input, in
 // the library and through the command line (exit code 4, README "Exit codes").
@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "io_test_util.hpp"
-#include "post/extrapolation_text.hpp"
+#include "run/extrapolation_text.hpp"
 
 using namespace skred;
 

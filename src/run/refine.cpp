@@ -9,8 +9,8 @@
 #include <variant>
 
 #include "io/atomic_file.hpp"
-#include "post/extrapolation_text.hpp"
 #include "post/grid_convergence.hpp"
+#include "run/extrapolation_text.hpp"
 #include "run/simulation.hpp"
 #include "run/table_text.hpp"
 #include "scenario/scenario.hpp"

@@ -1,4 +1,4 @@
-#include "post/extrapolation_text.hpp"
+#include "run/extrapolation_text.hpp"
 
 #include <fmt/format.h>
 
@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <utility>
 
+#include "run/table_text.hpp"
+
 namespace skred {
 
 namespace {
@@ -15,16 +17,6 @@ namespace {
 // The apparent orders an extrapolation is believed within (Celik et al. 2008 ask for a check
 // that p is reasonable, not a range; this one is skred's).
 constexpr double kLowestOrder = 0.5, kHighestOrder = 4.0;
-
-std::string num(double v) { return std::isfinite(v) ? fmt::format("{:.12g}", v) : std::string("nan"); }
-
-// A CSV field, quoted (RFC 4180) when it holds a comma, quote or line break.
-std::string field(const std::string& s) {
-  if (s.find_first_of(",\"\r\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
 
 double parse_number(const std::string& pair, const std::string& text, const char* what) {
   double v = 0.0;
@@ -114,9 +106,11 @@ std::string extrapolate_text(const std::vector<std::string>& pairs, const std::s
   const GridConvergence g = grid_convergence(v.phi[0], v.phi[1], v.phi[2], v.h[1] / v.h[0], v.h[2] / v.h[1]);
   std::string text = extrapolation_line(name, unit.empty() ? unit : " " + unit, v, g);
   text += "quantity,h1,h2,h3,phi1,phi2,phi3,kind,ratio,order,extrapolated,gci_fine,next_change\n";
-  text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", field(name), num(v.h[0]), num(v.h[1]),
-                      num(v.h[2]), num(v.phi[0]), num(v.phi[1]), num(v.phi[2]), convergence_kind_name(g.kind),
-                      num(g.ratio), num(g.order), num(g.extrapolated), num(g.gci_fine), num(g.next_change));
+  text += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{}\n", table_text(name), table_number(v.h[0]),
+                      table_number(v.h[1]), table_number(v.h[2]), table_number(v.phi[0]),
+                      table_number(v.phi[1]), table_number(v.phi[2]), convergence_kind_name(g.kind),
+                      table_number(g.ratio), table_number(g.order), table_number(g.extrapolated),
+                      table_number(g.gci_fine), table_number(g.next_change));
   return text;
 }
 
