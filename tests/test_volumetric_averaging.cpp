@@ -4,6 +4,7 @@
 // the stress power then equals the work of the nodal forces and the energy balance closes.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
 
@@ -18,15 +19,25 @@ namespace fs = std::filesystem;
 using namespace skred;
 using namespace skred::test;
 
+namespace {
+
+// The unit tests' grid: 4 x 3 cells of 0.5 m from the origin.
+GridGeometry<2> four_by_three_cells() {
+  GridGeometry<2> g;
+  g.h = 0.5;
+  g.cells = {4, 3};
+  return g;
+}
+
+}  // namespace
+
 // Random points in a 4 x 3 cell grid, summed as the solver sums them: in every cell the
 // corrections keep the cell's volume change, sum V_p (div_c - div_p) = 0, the stress power of
 // the corrected strain equals the work of the corrected pressure (the B-bar pairing,
 // sum V m_p (div_c - div_p) = sum V (m_c - m_p) div_p), and a cell whose points share one
 // divergence and one pressure is left as it is.
 TEST(VolumetricAveraging, CellMeansKeepVolumeChangeAndPairWithPressure) {
-  GridGeometry<2> g;
-  g.h = 0.5;
-  g.cells = {4, 3};
+  const GridGeometry<2> g = four_by_three_cells();
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> u(0.0, 1.0);
   const std::size_t n = 200;
@@ -63,6 +74,51 @@ TEST(VolumetricAveraging, CellMeansKeepVolumeChangeAndPairWithPressure) {
   for (std::size_t c = 0; c < kept.size(); ++c) {
     EXPECT_NEAR(kept[c], 0.0, 1e-15) << c;
     EXPECT_NEAR(power[c], work[c], 1e-12 * scale[c]) << c;
+  }
+}
+
+// The cell sums by chunks of points (the solver's cell_sums): each chunk's runs of points in one
+// cell, added in chunk order, give every cell the sum a plain loop over the points gives (to
+// rounding), whether the points are sorted by cell, scattered, or a cell's points lie in several
+// chunks; a cell the runs touch starts from zero whatever it held.
+TEST(VolumetricAveraging, RunsByChunkSumEveryCell) {
+  const GridGeometry<2> g = four_by_three_cells();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const std::size_t n = 3 * VolumetricAveraging<2>::kSumChunk + 100;  // four chunks, the last short
+  VolumetricAveraging<2> A;
+  A.resize(g, n);
+  std::vector<double> volume(n), value(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const Vec<2> x(2.0 * u(rng), 1.5 * u(rng));
+    A.cell[p] = VolumetricAveraging<2>::cell_of(g, x);
+    volume[p] = 0.01 + 0.02 * u(rng);
+    value[p] = u(rng) - 0.5;
+  }
+  // the first half sorted by cell (mostly one run per cell and chunk), the rest scattered
+  std::sort(A.cell.begin(), A.cell.begin() + static_cast<long>(n / 2));
+  std::vector<double> sum(g.node_count(), 99.0), weight(g.node_count(), 99.0);
+  std::vector<double> want(g.node_count(), 0.0), want_weight(g.node_count(), 0.0);
+  const long chunks = VolumetricAveraging<2>::chunk_count(n);
+  ASSERT_EQ(chunks, 4);
+  for (long c = 0; c < chunks; ++c) {
+    long last = -1;
+    for (long p = c * VolumetricAveraging<2>::kSumChunk;
+         p < std::min(static_cast<long>(n), (c + 1) * VolumetricAveraging<2>::kSumChunk); ++p) {
+      A.add_to_runs(c, last, A.cell[p], volume[p], value[p]);
+      want[A.cell[p]] += volume[p] * value[p];
+      want_weight[A.cell[p]] += volume[p];
+    }
+    A.run_count[c] = last + 1;
+    if (c == 0) {
+      EXPECT_LE(A.run_count[c], 12) << "a chunk of points sorted by cell: one run per cell";
+    }
+  }
+  A.add_runs(chunks, sum.data(), weight.data());
+  for (std::size_t i = 0; i < sum.size(); ++i) {
+    if (want_weight[i] == 0.0) continue;  // not a cell's low node, or an empty cell
+    EXPECT_NEAR(sum[i], want[i], 1e-12) << i;
+    EXPECT_NEAR(weight[i], want_weight[i], 1e-12) << i;
   }
 }
 
@@ -113,8 +169,9 @@ TEST(VolumetricAveraging, SoilColumnBalanceClosesAndTheColumnComesDownFurther) {
   EXPECT_LT(std::abs(avg.balance), 5e-4);
   EXPECT_NEAR(avg.stage.runout_x_min, avg.stage.runout_x_max, 1e-3);
   EXPECT_GT(avg.gravity_work, point.gravity_work);
-  // The cell sums are made in point order, not by atomic adds in whatever order the threads
-  // come: two runs on two threads are the same bit for bit (as a restart needs).
+  // The cell sums are made per fixed chunk of points and added in chunk order, not by atomic adds
+  // in whatever order the threads come: two runs on two threads are the same bit for bit (as a
+  // restart needs).
   const ColumnRun one = column(0.5, "cell-average", 0.2, 2), two = column(0.5, "cell-average", 0.2, 2);
   EXPECT_EQ(one.gravity_work, two.gravity_work);
   EXPECT_EQ(one.balance, two.balance);

@@ -241,6 +241,8 @@ class ExplicitSolver {
   void cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel);  // volumetric_averaging_impl.hpp
   template <class Sel>
   void cell_pressure(Sel sel);  // volumetric_averaging_impl.hpp
+  template <class Sel>
+  void cell_sums(Sel sel, const double* value, double* sum, double* weight);  // volumetric_averaging_impl.hpp
   template <class K>
   void internal_force(const K& kernel);          // eq. 2.51
   void grid_update();                            // eq. 2.49, 5.8-5.11

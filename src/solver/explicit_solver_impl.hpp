@@ -369,7 +369,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           if (!sel(p)) continue;
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
-          Mat<D> grad_v = gather_gradient(sh, strides, vnew);
+          Mat<D> grad_v = averaging ? A.grad[p] : gather_gradient(sh, strides, vnew);  // (cell_divergence's)
           if (averaging) grad_v.diagonal().array() += A.correction(static_cast<std::size_t>(p));
           const Vec<D> vmove = gather(sh, strides, vel);
           const auto r = S.update(p, grad_v, dt_stress);
