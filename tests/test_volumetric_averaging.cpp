@@ -14,6 +14,7 @@
 #include "support.hpp"
 #include "temp_dir.hpp"
 #include "text_run.hpp"
+#include "transfer/point_selection.hpp"
 
 namespace fs = std::filesystem;
 using namespace skred;
@@ -88,11 +89,11 @@ TEST(VolumetricAveraging, RunsByChunkSumEveryCell) {
   const std::size_t n = 3 * VolumetricAveraging<2>::kSumChunk + 100;  // four chunks, the last short
   VolumetricAveraging<2> A;
   A.resize(g, n);
-  std::vector<double> volume(n), value(n);
+  std::vector<double> value(n);
   for (std::size_t p = 0; p < n; ++p) {
     const Vec<2> x(2.0 * u(rng), 1.5 * u(rng));
     A.cell[p] = VolumetricAveraging<2>::cell_of(g, x);
-    volume[p] = 0.01 + 0.02 * u(rng);
+    A.volume[p] = 0.01 + 0.02 * u(rng);
     value[p] = u(rng) - 0.5;
   }
   // the first half sorted by cell (mostly one run per cell and chunk), the rest scattered
@@ -101,19 +102,12 @@ TEST(VolumetricAveraging, RunsByChunkSumEveryCell) {
   std::vector<double> want(g.node_count(), 0.0), want_weight(g.node_count(), 0.0);
   const long chunks = VolumetricAveraging<2>::chunk_count(n);
   ASSERT_EQ(chunks, 4);
-  for (long c = 0; c < chunks; ++c) {
-    long last = -1;
-    for (long p = c * VolumetricAveraging<2>::kSumChunk;
-         p < std::min(static_cast<long>(n), (c + 1) * VolumetricAveraging<2>::kSumChunk); ++p) {
-      A.add_to_runs(c, last, A.cell[p], volume[p], value[p]);
-      want[A.cell[p]] += volume[p] * value[p];
-      want_weight[A.cell[p]] += volume[p];
-    }
-    A.run_count[c] = last + 1;
-    if (c == 0) {
-      EXPECT_LE(A.run_count[c], 12) << "a chunk of points sorted by cell: one run per cell";
-    }
+  for (std::size_t p = 0; p < n; ++p) {
+    want[A.cell[p]] += A.volume[p] * value[p];
+    want_weight[A.cell[p]] += A.volume[p];
   }
+  for (long c = 0; c < chunks; ++c) A.sum_chunk(c, static_cast<long>(n), AllPoints{}, value.data());
+  EXPECT_LE(A.run_count[0], 12) << "a chunk of points sorted by cell: one run per cell";
   A.add_runs(chunks, sum.data(), weight.data());
   for (std::size_t i = 0; i < sum.size(); ++i) {
     if (want_weight[i] == 0.0) continue;  // not a cell's low node, or an empty cell

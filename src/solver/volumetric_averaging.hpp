@@ -7,6 +7,7 @@
 // sum V_p m_p (div_c - div_p) = sum V_p (m_c - m_p) div_p). m = tr(sigma)/d over the d in-plane
 // axes: in plane strain the in-plane trace is the volumetric strain.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -55,17 +56,22 @@ struct VolumetricAveraging {
   static long chunk_count(std::size_t points) {
     return (static_cast<long>(points) + kSumChunk - 1) / kSumChunk;
   }
-  // A point of cell c with volume V adds V value and V to chunk's runs, in point order; last is
-  // the index of the chunk's last run (-1 before its first), and run_count[chunk] = last + 1 once
-  // the chunk's points are done.
-  void add_to_runs(long chunk, long& last, std::uint32_t c, double V, double value) {
-    Run* out = runs.data() + chunk * kSumChunk;
-    if (last >= 0 && out[last].cell == c) {
-      out[last].value += V * value;
-      out[last].volume += V;
-    } else {
-      out[++last] = Run{c, V * value, V};
+  // Chunk c's runs of the selected points among the first n (cell and volume as held here):
+  // V value and V summed over each run of consecutive points in one cell, in point order.
+  template <class Sel>
+  void sum_chunk(long c, long n, Sel sel, const double* value) {
+    Run* out = runs.data() + c * kSumChunk;
+    long last = -1;
+    for (long p = c * kSumChunk, p1 = std::min(n, p + kSumChunk); p < p1; ++p) {
+      if (!sel(p)) continue;
+      if (last >= 0 && out[last].cell == cell[p]) {
+        out[last].value += volume[p] * value[p];
+        out[last].volume += volume[p];
+      } else {
+        out[++last] = Run{cell[p], volume[p] * value[p], volume[p]};
+      }
     }
+    run_count[c] = last + 1;
   }
   // Each cell a run of the chunks touches gets the sum of its runs' V value in sum and of their V
   // in weight, added in chunk order.

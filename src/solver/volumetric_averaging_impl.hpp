@@ -14,16 +14,10 @@ template <int D>
 template <class Sel>
 void ExplicitSolver<D>::cell_sums(Sel sel, const double* value, double* sum, double* weight) {
   VolumetricAveraging<D>& A = volumetric_;
-  constexpr long chunk = VolumetricAveraging<D>::kSumChunk;
   const long n = static_cast<long>(particles_.size());
   const long chunks = A.chunk_count(particles_.size());
 #pragma omp parallel for num_threads(threads()) schedule(static)
-  for (long c = 0; c < chunks; ++c) {
-    long last = -1;
-    for (long p = c * chunk, p1 = std::min(n, p + chunk); p < p1; ++p)
-      if (sel(p)) A.add_to_runs(c, last, A.cell[p], A.volume[p], value[p]);
-    A.run_count[c] = last + 1;
-  }
+  for (long c = 0; c < chunks; ++c) A.sum_chunk(c, n, sel, value);
   A.add_runs(chunks, sum, weight);
 }
 
