@@ -3,6 +3,7 @@
 // flown off or a voxel sheared into a needle cannot move the front.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <string>
 
 #include "run/slide_measures.hpp"
@@ -44,7 +45,7 @@ TEST(SlideMeasures, ADetachedPointOrANeedleDoesNotMoveTheFront) {
   const double width = 0.1;
   const int bins = 100;  // columns over [0, 10]
   const Particles<2> start = block(2.0);
-  const SurfaceProfile before = surface_profile(start, 0.0, width, bins);
+  const SurfaceProfile before = start_profile(start, 0.0, width, bins, 0.5 * width);
   const auto runout = [&](const Particles<2>& P) { return runout_of(before, P, 0.0, width, 0.5 * width); };
   // The block spread to 3 m: the front advanced 1 m.
   Particles<2> spread = block(3.0);
@@ -79,7 +80,7 @@ TEST(SlideMeasures, ADetachedPointOrANeedleDoesNotMoveTheFront) {
 // toe the block's side, 2 m, so the runout is 0.34 m (not a whole number of 0.1 m columns).
 TEST(SlideMeasures, RunoutIsTheFrontEdgeMinusTheToeEdge) {
   const double width = 0.1;
-  const SurfaceProfile before = surface_profile(block(2.0), 0.0, width, 100);
+  const SurfaceProfile before = start_profile(block(2.0), 0.0, width, 100, 0.5 * width);
   Particles<2> after = block(2.0);
   after.add(Vec<2>(2.1, 0.1), Vec<2>::Zero(), 1.0, 0.04, Vec<2>::Constant(0.1), 0, 0);
   after.add(Vec<2>(2.27, 0.07), Vec<2>::Zero(), 1.0, 0.02, Vec<2>::Constant(0.07), 0, 0);
@@ -99,7 +100,8 @@ TEST(SlideMeasures, RunoutIsTheFrontEdgeMinusTheToeEdge) {
       Q.add(Vec<2>(10.0 - src.x[p][0], src.x[p][1]), Vec<2>::Zero(), 1.0, 0.01, src.half0[p], 0, 0);
     if (moved) Q.F[Q.size() - 1] = src.F[src.size() - 1];
   }
-  const Runout m = runout_of(surface_profile(left, 0.0, width, 100), left_after, 0.0, width, 0.5 * width);
+  const Runout m =
+      runout_of(start_profile(left, 0.0, width, 100, 0.5 * width), left_after, 0.0, width, 0.5 * width);
   EXPECT_NEAR(m.x_min, 0.27, 1e-12);
   EXPECT_EQ(m.x_max, 0.0);
 }
@@ -107,13 +109,15 @@ TEST(SlideMeasures, RunoutIsTheFrontEdgeMinusTheToeEdge) {
 // A slope by hand (1 m columns, points 0.9 m wide so no point touches a neighbour): ground
 // 1 m deep everywhere, the surface 4, 3, 2 m high over the first three columns, then 1 m.
 // A deposit point [x - 0.25, x + 0.25] x [1, 1.8] stands 0.8 m above the ground (threshold
-// 0.5 m). The toe is where the original surface, joined between column centres (2.5, 2)
-// and (3.5, 1), comes down to 1 + 0.5 m: x = 3. The runout is x + 0.25 - 3, continuous as
-// the point moves by fractions of a column, across a column boundary.
+// 0.5 m). The toe is the outer edge of the original material standing higher than 1 + 0.5 m,
+// the point [2.05, 2.95] x [1, 2]: x = 2.95 (by the front's own rule; the column tops joined
+// between column centres, (2.5, 2) and (3.5, 1), would put it at 3). The runout is
+// x + 0.25 - 2.95, continuous as the point moves by fractions of a column, across a column
+// boundary.
 TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
   const double width = 1.0;
   const Particles<2> slope = hand_made_slope();
-  const SurfaceProfile before = surface_profile(slope, 0.0, width, 20);
+  const SurfaceProfile before = start_profile(slope, 0.0, width, 20, 0.5);
   ASSERT_EQ(before.top[2], 2.0);
   ASSERT_EQ(before.top[3], 1.0);
   EXPECT_EQ(runout_of(before, slope, 0.0, width, 0.5).x_max, 0.0);  // nothing moved
@@ -123,7 +127,7 @@ TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
     Particles<2> after = slope;
     add(after, x, 1.4, 0.25, 0.4);
     const double r = runout_of(before, after, 0.0, width, 0.5).x_max;
-    EXPECT_NEAR(r, x + 0.25 - 3.0, 1e-12) << "front point at " << x;
+    EXPECT_NEAR(r, x + 0.25 - 2.95, 1e-12) << "front point at " << x;
     if (k > 0) {
       EXPECT_NEAR(r - previous, 0.05, 1e-12);
     }
@@ -133,7 +137,37 @@ TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
   Particles<2> after = slope;
   add(after, 5.35, 1.4, 0.25, 0.4);
   add(after, 9.5, 1.2, 0.3, 0.2);
-  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 2.6, 1e-12);
+  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 2.65, 1e-12);
+}
+
+// A slope as skred builds one: 3 x 3 points per 0.5 m cell on the lattice, a base layer 1 m deep
+// on [0, 20] and above it a slope 5 m high whose face runs from (2 + shift, 5) down to (8 + shift,
+// 1). The slope above the base layer is moved by d along +x, rigidly: the material's edge at every
+// level moves by d, and so must the runout (front and toe at the same level, half a cell above
+// the base layer), wherever the face falls in its cells. The column tops joined between column
+// centres had put the toe 0.5-0.8 of a cell beyond the material's edge, since a column's top is
+// its uphill point's (on the 50 m slope, docs/method.md, "The runout measure").
+TEST(SlideMeasures, ASlopeMovedRigidlyRunsOutByTheDistanceItMoved) {
+  const double h = 0.5, q = h / 3;
+  for (const double shift : {0.0, 0.1, 0.23, 0.37}) {
+    const auto slope = [&](double d) {
+      Particles<2> P;
+      for (int i = 0; i < 120; ++i)
+        for (int j = 0; j < 30; ++j) {
+          const double x = (i + 0.5) * q, y = (j + 0.5) * q;
+          const double surface = std::min(5.0, 1.0 + 4.0 * (8.0 + shift - x) / 6.0);
+          if (y > 1.0 && y >= surface) continue;
+          add(P, x + (y > 1.0 ? d : 0.0), y, 0.5 * q, 0.5 * q);
+        }
+      return P;
+    };
+    const SurfaceProfile before = start_profile(slope(0.0), 0.0, h, 40, 0.5 * h);
+    for (const double d : {0.5, 0.77, 1.0, 2.31}) {
+      const Runout r = runout_of(before, slope(d), 0.0, h, 0.5 * h);
+      EXPECT_NEAR(r.x_max, d, 1e-12) << "face shifted by " << shift << " m, slope moved by " << d << " m";
+      EXPECT_EQ(r.x_min, 0.0);
+    }
+  }
 }
 
 // Over a base layer every column holds material, so the deposit is also cut where the slide left
@@ -144,29 +178,29 @@ TEST(SlideMeasures, SlopeRunoutIsContinuousAsTheFrontMoves) {
 TEST(SlideMeasures, AClumpBeyondBareGroundOnABaseLayerDoesNotMoveTheFront) {
   const double width = 1.0;
   const Particles<2> slope = hand_made_slope();
-  const SurfaceProfile before = surface_profile(slope, 0.0, width, 20);
+  const SurfaceProfile before = start_profile(slope, 0.0, width, 20, 0.5);
   Particles<2> after = slope;
   for (int k = 3; k <= 6; ++k) add(after, k + 0.5, 1.4, 0.45, 0.4);  // the deposit, 0.8 m thick
-  // Its front 6.95 m, the toe where the original surface comes down to 1.5 m: x = 3.0.
-  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 3.95, 1e-12);
+  // Its front 6.95 m, the toe the edge of the material that stood above 1.5 m: x = 2.95.
+  EXPECT_NEAR(runout_of(before, after, 0.0, width, 0.5).x_max, 4.0, 1e-12);
   Particles<2> clump = after;
   add(clump, 9.5, 1.6, 0.45, 0.6);  // 1.2 m thick, beyond the bare columns 7 and 8
-  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 3.95, 1e-12);
+  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 4.0, 1e-12);
   // Joined to the deposit by material raising the columns between, it is the front.
   for (int k = 7; k <= 8; ++k) add(clump, k + 0.5, 1.35, 0.45, 0.35);
-  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 9.95 - 3.0, 1e-12);
+  EXPECT_NEAR(runout_of(before, clump, 0.0, width, 0.5).x_max, 9.95 - 2.95, 1e-12);
   // A wider clump beyond the gap is the deposit, as the wider of two runs.
   Particles<2> wide = after;
   for (int k = 9; k <= 13; ++k) add(wide, k + 0.5, 1.4, 0.45, 0.4);
-  EXPECT_NEAR(runout_of(before, wide, 0.0, width, 0.5).x_max, 13.95 - 3.0, 1e-12);
+  EXPECT_NEAR(runout_of(before, wide, 0.0, width, 0.5).x_max, 13.95 - 2.95, 1e-12);
 }
 
 // The stage's runout_thickness (metres) is the level the runout's front must stand above the
 // original surface, in place of half a cell. On the slope of the test above, a point lying on
 // the ground 0.4 m thick, its outer edge at 9.8 m, joined to the front point at 5.35 m by a sheet
-// 0.35 m thick, is the front at 0.3 m: the toe is where the original surface comes down to 1.3 m,
-// between (2.5, 2) and (3.5, 1): x = 3.2, so the runout is 9.8 - 3.2 = 6.6 m; at half a cell
-// (0.5 m) neither the sheet nor the point is, and the runout stays 2.6 m.
+// 0.35 m thick, is the front at 0.3 m: the toe is the edge of the material that stood above
+// 1.3 m, the point [2.05, 2.95] x [1, 2], so the runout is 9.8 - 2.95 = 6.85 m; at half a cell
+// (0.5 m) neither the sheet nor the point is, and the runout stays 2.65 m.
 TEST(SlideMeasures, TheStagesRunoutThicknessSetsTheFrontsLevel) {
   const auto text = [](const std::string& slide_extra) {
     return std::string(R"(
@@ -210,8 +244,8 @@ duration = 0.1
   add(after, 9.5, 1.2, 0.3, 0.2);
   const StageTracker<2> at_half_cell("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.0);
   const StageTracker<2> at_thickness("slide", slope, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0, 20.0, 0.3);
-  EXPECT_NEAR(at_half_cell.runout(after), 2.6, 1e-12);
-  EXPECT_NEAR(at_thickness.runout(after), 6.6, 1e-12);
+  EXPECT_NEAR(at_half_cell.runout(after), 2.65, 1e-12);
+  EXPECT_NEAR(at_thickness.runout(after), 6.85, 1e-12);
 
   // On bare ground (the block of the first test on the floor y = 0, 0.1 m columns), a column
   // that held no material counts any material by default, and with a thickness set its

@@ -129,7 +129,7 @@ BenchResult run_column(const BenchOptions& opt) {
     st.xpic_period = opt.xpic_period * stable_time_step(s);  // seconds
     st.volumetric_averaging = opt.volumetric_averaging;
     ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
-    const SurfaceProfile before = surface_profile(P, 0.0, s.cell_size, s.cells[0]);
+    const SurfaceProfile before = start_profile(P, 0.0, s.cell_size, s.cells[0], 0.5 * s.cell_size);
     const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 namespace skred {
 
@@ -14,6 +15,26 @@ template <int D>
 Vec<D> half_size(const Particles<D>& P, std::size_t p) {
   const double J = P.F[p].determinant();
   return P.half0[p] * std::pow(std::max(J, 0.0), 1.0 / D);
+}
+
+// Point p in the columns of a profile: the columns [first, last] its domain reaches along
+// `axis`, its top and its edges along the axis.
+struct PointSpan {
+  int first, last;
+  double top, lo, hi;
+};
+template <int D>
+PointSpan point_span(const Particles<D>& P, std::size_t p, double x0, double width, int bins, int axis) {
+  const Vec<D> r = half_size(P, p);
+  const double lo = P.x[p][axis] - r[axis], hi = P.x[p][axis] + r[axis];
+  return {std::max(0, static_cast<int>(std::floor((lo - x0) / width))),
+          std::min(bins - 1, static_cast<int>(std::floor((hi - x0) / width))), P.x[p][1] + r[1], lo, hi};
+}
+
+// The level a column's deposit must stand above: its surface at the start (`floor` where it held
+// no material) plus `threshold`.
+double column_level(const SurfaceProfile& s, std::size_t b, double threshold, double floor) {
+  return (std::isfinite(s.top[b]) ? s.top[b] : floor) + threshold;
 }
 
 }  // namespace
@@ -54,8 +75,8 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
       length_(length),
       z0_(z0),
       z_length_(z_length) {
-  profile_ = surface_profile(P, x0_, width_, bins());
-  if constexpr (D == 3) profile_z_ = surface_profile(P, z0_, width_, bins_z(), 2);
+  profile_ = start_profile(P, x0_, width_, bins(), threshold_, 0, floor_);
+  if constexpr (D == 3) profile_z_ = start_profile(P, z0_, width_, bins_z(), threshold_, 2, floor_);
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
@@ -124,21 +145,65 @@ template <int D>
 SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis,
                                const std::vector<double>& above) {
   const auto n = static_cast<std::size_t>(bins);
-  SurfaceProfile s{std::vector<double>(n, -INFINITY), std::vector<double>(n, INFINITY),
-                   std::vector<double>(n, -INFINITY)};
-  const int a = axis;
+  SurfaceProfile s;
+  s.top.assign(n, -INFINITY);
+  s.lo.assign(n, INFINITY);
+  s.hi.assign(n, -INFINITY);
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Vec<D> r = half_size(P, p);
-    const double top = P.x[p][1] + r[1], lo = P.x[p][a] - r[a], hi = P.x[p][a] + r[a];
-    const int first = std::max(0, static_cast<int>(std::floor((lo - x0) / width)));
-    const int last = std::min(bins - 1, static_cast<int>(std::floor((hi - x0) / width)));
-    for (int b = first; b <= last; ++b) {
+    const PointSpan q = point_span(P, p, x0, width, bins, axis);
+    for (int b = q.first; b <= q.last; ++b) {
       const auto k = static_cast<std::size_t>(b);
-      s.top[k] = std::max(s.top[k], top);
-      if (!above.empty() && !(top > above[k])) continue;
-      s.lo[k] = std::min(s.lo[k], lo);
-      s.hi[k] = std::max(s.hi[k], hi);
+      s.top[k] = std::max(s.top[k], q.top);
+      if (!above.empty() && !(q.top > above[k])) continue;
+      s.lo[k] = std::min(s.lo[k], q.lo);
+      s.hi[k] = std::max(s.hi[k], q.hi);
     }
+  }
+  return s;
+}
+
+template <int D>
+SurfaceProfile start_profile(const Particles<D>& P, double x0, double width, int bins, double threshold,
+                             int axis, double floor) {
+  SurfaceProfile s = surface_profile(P, x0, width, bins, axis);
+  const auto n = static_cast<std::size_t>(bins);
+  const auto level = [&](int t) { return column_level(s, static_cast<std::size_t>(t), threshold, floor); };
+  s.toe_hi.assign(n, -INFINITY);
+  s.toe_lo.assign(n, INFINITY);
+  // Per side (0: towards +x, 1: towards -x), the tips whose toe column is b: tips[first[b] ...
+  // first[b + 1]) (a tip without a toe column is in none).
+  std::vector<int> first[2], tips[2];
+  for (int side = 0; side < 2; ++side) {
+    const int dir = side == 0 ? 1 : -1;
+    std::vector<int> toe(n, -1);
+    first[side].assign(n + 1, 0);
+    for (int t = 0; t < bins; ++t)
+      for (int b = t - dir; b >= 0 && b < bins; b -= dir)
+        if (s.top[static_cast<std::size_t>(b)] > level(t)) {
+          toe[static_cast<std::size_t>(t)] = b;
+          ++first[side][static_cast<std::size_t>(b) + 1];
+          break;
+        }
+    for (std::size_t b = 0; b < n; ++b) first[side][b + 1] += first[side][b];
+    tips[side].resize(static_cast<std::size_t>(first[side][n]));
+    std::vector<int> fill(first[side].begin(), first[side].end() - 1);
+    for (int t = 0; t < bins; ++t)
+      if (const int b = toe[static_cast<std::size_t>(t)]; b >= 0)
+        tips[side][static_cast<std::size_t>(fill[static_cast<std::size_t>(b)]++)] = t;
+  }
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const PointSpan q = point_span(P, p, x0, width, bins, axis);
+    for (int b = q.first; b <= q.last; ++b)
+      for (int side = 0; side < 2; ++side) {
+        const auto k = static_cast<std::size_t>(b);
+        for (int i = first[side][k]; i < first[side][k + 1]; ++i) {
+          const int t = tips[side][static_cast<std::size_t>(i)];
+          if (!(q.top > level(t))) continue;
+          double& toe =
+              side == 0 ? s.toe_hi[static_cast<std::size_t>(t)] : s.toe_lo[static_cast<std::size_t>(t)];
+          toe = side == 0 ? std::max(toe, q.hi) : std::min(toe, q.lo);
+        }
+      }
   }
   return s;
 }
@@ -147,9 +212,11 @@ template <int D>
 Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
                  double threshold, int axis, double floor) {
   const int n = static_cast<int>(before.top.size());
+  if (before.toe_hi.size() != before.top.size() || before.toe_lo.size() != before.top.size())
+    throw std::invalid_argument(
+        "runout_of: the profile at the start has no toes (make it with start_profile)");
   std::vector<double> level(before.top.size());
-  for (std::size_t b = 0; b < level.size(); ++b)
-    level[b] = (std::isfinite(before.top[b]) ? before.top[b] : floor) + threshold;
+  for (std::size_t b = 0; b < level.size(); ++b) level[b] = column_level(before, b, threshold, floor);
   // after.lo/hi: the edges of the points that raise their column by more than `threshold`.
   const SurfaceProfile after = surface_profile(P, x0, width, n, axis, level);
   Runout r;
@@ -183,29 +250,12 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
   for (int dir : {+1, -1}) {
     const int tip = tips[dir > 0 ? 0 : 1];
     if (tip < 0) continue;
-    // Toe: the outermost column, inward of the tip, whose original surface stood above the
-    // original surface at the tip.
-    int toe = tip;
-    for (int b = tip; b >= 0 && b < n; b -= dir)
-      if (before.top[b] > level[tip]) {
-        toe = b;
-        break;
-      }
-    if (toe == tip) continue;
+    // Toe (start_profile): where the material stood higher than level[tip] at the start.
+    const double toe_x = (dir > 0 ? before.toe_hi : before.toe_lo)[static_cast<std::size_t>(tip)];
+    if (!std::isfinite(toe_x)) continue;  // nothing stood that high inward of the tip
     // Front: the outermost edge of the points raising the tip column (a point reaching it
     // lies wholly in the connected deposit).
     const double front = dir > 0 ? after.hi[tip] : after.lo[tip];
-    // Toe position: where nothing stood beyond the toe column, the original material edge
-    // there (a column's side); else where the original surface, its column tops joined by
-    // straight lines between the column centres, comes down to level[tip].
-    const int next = toe + dir;
-    double toe_x;
-    if (!std::isfinite(before.top[next])) {
-      toe_x = dir > 0 ? before.hi[toe] : before.lo[toe];
-    } else {
-      const double s = (before.top[toe] - level[tip]) / (before.top[toe] - before.top[next]);
-      toe_x = x0 + (toe + 0.5 + dir * s) * width;
-    }
     (dir > 0 ? r.x_max : r.x_min) = std::max(0.0, dir * (front - toe_x));
   }
   return r;
@@ -262,6 +312,8 @@ template SurfaceProfile surface_profile<2>(const Particles<2>&, double, double, 
                                            const std::vector<double>&);
 template SurfaceProfile surface_profile<3>(const Particles<3>&, double, double, int, int,
                                            const std::vector<double>&);
+template SurfaceProfile start_profile<2>(const Particles<2>&, double, double, int, double, int, double);
+template SurfaceProfile start_profile<3>(const Particles<3>&, double, double, int, double, int, double);
 template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int, double);
 template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int, double);
 template class StageTracker<2>;

@@ -28,28 +28,42 @@ MaterialExtent material_extent(const Particles<D>& P);
 // over those of them whose top stands higher than above[column] (all of them if `above` is
 // empty; +inf and -inf where there is none). In 3D a column is a slice across the whole
 // domain (for axis 0, every z; for axis 2, every x).
+// `toe_hi`, `toe_lo` (start_profile): per column t taken as the deposit's tip towards +x, -x, the
+// toe (runout_of), or -inf, +inf where there is none.
 struct SurfaceProfile {
   std::vector<double> top, lo, hi;
+  std::vector<double> toe_hi, toe_lo;
 };
 template <int D>
 SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis = 0,
                                const std::vector<double>& above = {});
 
-// Runout towards +x and -x (or z) from the profile `before`, at the stage start, and the points
-// now. The connected deposit lies in the run of non-empty columns around the highest one; per
-// side, it is the widest run of columns raised by more than `threshold` that reaches that side
-// of the highest (of equal ones the outer: over a base layer, where every column holds
-// material, a clump resting beyond a column the slide left unraised is not the deposit); its
-// tip the outer end of that run; the toe
-// column the outermost column inward of the tip whose original surface stood higher than
-// the original surface at the tip plus `threshold`. The runout is continuous, not counted
-// in columns: front - toe, where the front is the outermost edge x_p +- l_p of the points
-// that raise the tip column, and the toe the original material edge in the toe column if
-// nothing stood beyond it (a column's side), else the point where the original surface,
-// its column tops joined by straight lines between column centres, comes down to the
-// original surface at the tip plus `threshold`, the level the front's points stand above (a
-// slope's toe). Never negative. A column that held no material has no original surface: any
-// material raises it, unless `floor` is finite, which then stands for its surface.
+// The profile at a stage's start that runout_of measures from: surface_profile, and for each
+// column t as the tip the toe, found from the points then. The toe column is the outermost
+// column inward of t whose surface stood higher than level(t) = the surface at t (`floor` where
+// t held no material) plus `threshold`; the toe is the outermost edge x_p + l_p (towards -x:
+// x_p - l_p) of the points that reach the toe column and stand higher than level(t): where the
+// material stood that high, by the rule that finds the front now. (Until 2026-11-30 a slope's
+// toe was where its column tops, joined between column centres, came down to level(t): a
+// column's top is its highest point's, which on a face lies at the column's uphill side, so
+// that toe lay 0.5-0.8 of a cell beyond the material's edge; docs/method.md, "The runout
+// measure".)
+template <int D>
+SurfaceProfile start_profile(const Particles<D>& P, double x0, double width, int bins, double threshold,
+                             int axis = 0, double floor = -INFINITY);
+
+// Runout towards +x and -x (or z) from the profile `before` (start_profile, with the same
+// `threshold` and `floor`) and the points now. The connected deposit lies in the run of
+// non-empty columns around the highest one; per side, it is the widest run of columns raised by
+// more than `threshold` that reaches that side of the highest (of equal ones the outer: over a
+// base layer, where every column holds material, a clump resting beyond a column the slide left
+// unraised is not the deposit); its tip the outer end of that run. The runout is continuous, not
+// counted in columns: front - toe, where the front is the outermost edge x_p +- l_p of the
+// points that raise the tip column, i.e. stand higher than level(tip), and the toe
+// (start_profile) the outermost edge of the points that stood that high at the start, in the
+// toe column: the distance the material's edge at that level moved. Never negative. A column
+// that held no material has no original surface: any material raises it, unless `floor` is
+// finite, which then stands for its surface.
 struct Runout {
   double x_min = 0.0, x_max = 0.0;
 };
@@ -155,6 +169,8 @@ class StageTracker {
       a(s->top);
       a(s->lo);
       a(s->hi);
+      a(s->toe_hi);
+      a(s->toe_lo);
     }
     a(quiet_since_);
     a(samples_);
