@@ -1,6 +1,7 @@
 // Helpers for the simulation tests: material points filling rectangles, a solver built
 // around them, and small measurements on time series.
 #pragma once
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -76,6 +77,25 @@ inline GridGeometry<2> grid2(double h, int nx, int ny) {
 }
 
 inline BoundarySide side(BoundaryKind k, double mu = 0.0) { return BoundarySide{k, mu}; }
+
+// Step by step, what the wall and contact rules took (ExplicitSolver::wall_step, contact_step):
+// the smallest energy a step's rules took from the trial velocities (>= 0 when no rule creates
+// energy), and the booked work the clipping of negative terms dropped over the run (the
+// friction work's O(dt^2) dips: a rule's work over the step's mean velocity can dip below zero
+// where the slip reverses within the step).
+struct RuleWork {
+  double min_rule = INFINITY;
+  double dropped = 0.0;
+  double friction = 0.0;  // booked: the walls' work and the contact's friction work
+  template <int D>
+  void add(const ExplicitSolver<D>& solver) {
+    const WallEnergy& w = solver.wall_step();
+    const ContactLoss& c = solver.contact_step();
+    min_rule = std::min(min_rule, w.rule_dissipation + c.rule_dissipation);
+    dropped += (w.work - w.work_sum) + (c.friction - c.friction_sum);
+    friction += w.work + c.friction;
+  }
+};
 
 // Every row of a run's series.csv as column name -> value (.at() on a missing name throws,
 // which fails the test).

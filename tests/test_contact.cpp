@@ -58,7 +58,7 @@ double gap(const Particles<2>& P) {
 
 struct DiscRun {
   double e0 = 0, e_end = 0, max_momentum = 0, contact_work = 0, rebound = 0, gap_end = 0;
-  double min_step_work = 0;  // most negative friction work of a step
+  RuleWork rules;            // what the contact and wall rules took, step by step
   double transfer_loss = 0;  // what the velocity transfer took (APIC, XPIC)
 };
 
@@ -84,7 +84,7 @@ DiscRun run_discs(StressScheme scheme, bool contact, VelocityTransfer transfer =
     const StepStatus status = solver.step();
     EXPECT_TRUE(status.ok) << status.reason;
     if (!status.ok) break;
-    r.min_step_work = std::min(r.min_step_work, solver.contact_step().friction);
+    r.rules.add(solver);
     r.max_momentum = std::max(r.max_momentum, solver.totals().momentum.norm());
   }
   r.e_end = solver.totals().kinetic_energy + solver.energy().strain_energy;
@@ -113,7 +113,8 @@ static void check_discs(StressScheme scheme) {
   EXPECT_LT(r.max_momentum, 1e-12 * 125.66 * 0.1);  // momentum to round-off
   EXPECT_LT(r.rebound, -0.05);                      // disc 0 moves back
   EXPECT_GT(r.gap_end, 0.1);                        // the discs have parted
-  EXPECT_GE(r.min_step_work, 0.0);                  // friction never creates energy
+  EXPECT_GE(r.rules.min_rule, 0.0);                 // the contact rule only stops motion
+  EXPECT_LT(r.rules.dropped, 1e-4 * r.e0);
   EXPECT_LT(std::abs(change), 0.01);
   EXPECT_LT(std::abs(r.contact_work), 0.005 * r.e0);
 }
@@ -139,7 +140,8 @@ TEST(ContactDiscs, FrictionlessDiscsCollideAndPartApicXpic) {
     EXPECT_LT(r.max_momentum, 1e-12 * 125.66 * 0.1);
     EXPECT_LT(r.rebound, -0.05);
     EXPECT_GT(r.gap_end, 0.05);  // h
-    EXPECT_GE(r.min_step_work, 0.0);
+    EXPECT_GE(r.rules.min_rule, 0.0);
+    EXPECT_LT(r.rules.dropped, 1e-4 * r.e0);
     EXPECT_LE(change, 0.0);  // no energy from nowhere
   }
 }
@@ -179,15 +181,22 @@ LayerRun block_on_layer(double theta_deg, double mu, double time, StressScheme s
   st.contact.rigid[0] = rigid;
   ExplicitSolver<2> solver(grid2(h, 42, 8), P, {m}, st, 1);
   const long steps = std::lround(time / st.dt);
-  double worst = 0.0;  // most negative friction work of a step (walls and contact)
+  RuleWork rules;  // what the walls and the contact took, step by step
   for (long s = 0; s < steps; ++s) {
-    const double w = solver.energy().friction_work;
     const auto status = solver.step();
     EXPECT_TRUE(status.ok) << status.reason;
     if (!status.ok) break;
-    worst = std::min({worst, solver.energy().friction_work - w, solver.contact_step().friction});
+    rules.add(solver);
   }
-  EXPECT_GE(worst, 0.0);  // friction never creates energy
+  EXPECT_GE(rules.min_rule, 0.0);  // the rules only stop motion
+  // what clipping the friction work's negative dips drops, against the friction's own work
+  // What clipping the friction work's negative dips drops, against the friction work or, where
+  // the block sticks and friction takes almost nothing, against its weight over a cell (measured
+  // under 3e-5 and 3e-6 of them).
+  const double block = 2000.0 * 0.4 * H * g * h;
+  std::printf("layer, mu %.2f: friction work booked %.3e J/m, its negative dips dropped %.3e J/m\n", mu,
+              rules.friction, rules.dropped);
+  EXPECT_LT(rules.dropped, 1e-3 * std::max(rules.friction, block));
   double u = 0, mass = 0;
   long n = 0;
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -263,11 +272,12 @@ TEST(ContactStack, ThreeBodiesStackedDoNotInterpenetrate) {
     ExplicitSolver<2> solver(grid2(h, 30, 24), P, {m}, st, 2);
     const Vec<2> p0 = solver.totals().momentum;
     const double scale = solver.totals().mass * 0.6;
-    double worst_p = 0.0, worst_overlap = -INFINITY, min_work = 0.0;
+    double worst_p = 0.0, worst_overlap = -INFINITY;
+    RuleWork rules;
     const long steps = std::lround(0.4 / st.dt);
     for (long s = 0; s < steps; ++s) {
       ASSERT_TRUE(solver.step().ok);
-      min_work = std::min(min_work, solver.contact_step().friction);
+      rules.add(solver);
       worst_p = std::max(worst_p, (solver.totals().momentum - p0).norm());
       if (s % 10 == 0)
         worst_overlap = std::max({worst_overlap, overlap(P, 0, 1, 0.5 * h), overlap(P, 1, 2, 0.5 * h)});
@@ -281,9 +291,12 @@ TEST(ContactStack, ThreeBodiesStackedDoNotInterpenetrate) {
         solver.energy().contact_work);
     EXPECT_LT(worst_p, 1e-12 * scale);
     EXPECT_LT(worst_overlap, 0.0);
-    EXPECT_GE(min_work, 0.0);
-    EXPECT_LT(v0, 0.0);  // the bottom slab bounced back down
-    EXPECT_GT(v2, 0.0);  // the top slab back up
+    EXPECT_GE(rules.min_rule, 0.0);
+    std::printf("three slabs: friction work booked %.3e J/m, its negative dips dropped %.3e J/m\n",
+                rules.friction, rules.dropped);
+    EXPECT_LT(rules.dropped, 1e-2 * rules.friction);  // measured 0.39 and 0.40 %
+    EXPECT_LT(v0, 0.0);                               // the bottom slab bounced back down
+    EXPECT_GT(v2, 0.0);                               // the top slab back up
   }
 }
 

@@ -27,15 +27,18 @@ namespace {
 
 struct DiscEnergy {
   double e0 = 0, e_end = 0, transfer = 0, max_momentum = 0, mass = 0, ke_before = 0, ke_after = 0;
+  double max_momentum_change = 0;  // |P(t) - P(0)|, largest over the run
 };
 
 // R3 (tests/test_discs.cpp): colliding elastic discs, 3000 steps of 1 ms; XPIC once per
-// `xpic_period` seconds if it is set.
-DiscEnergy discs(VelocityTransfer t, StressScheme scheme, int steps = 3000, double xpic_period = 0.0) {
+// `xpic_period` seconds if it is set. `v0` is disc 0's velocity (R3's, (0.1, 0.1), makes the two
+// discs mirror images and the total momentum zero by symmetry alone).
+DiscEnergy discs(VelocityTransfer t, StressScheme scheme, int steps = 3000, double xpic_period = 0.0,
+                 Vec<2> v0 = Vec<2>(0.1, 0.1)) {
   const Material m = elastic(1000.0, 1000.0, 0.3);
   const double h = 0.05;
   Particles<2> P;
-  fill_disc(P, m, h, 2, Vec<2>(0.2, 0.2), 0.2, 1.0, Vec<2>(0.1, 0.1), 0);
+  fill_disc(P, m, h, 2, Vec<2>(0.2, 0.2), 0.2, 1.0, v0, 0);
   fill_disc(P, m, h, 2, Vec<2>(0.8, 0.8), 0.2, 1.0, Vec<2>(-0.1, -0.1), 1);
   SolverSettings<2> st;
   st.scheme = scheme;
@@ -47,10 +50,12 @@ DiscEnergy discs(VelocityTransfer t, StressScheme scheme, int steps = 3000, doub
   DiscEnergy r;
   r.mass = solver.totals().mass;
   r.e0 = r.ke_before = solver.totals().kinetic_energy;
+  const Vec<2> p0 = solver.totals().momentum;
   for (int s = 0; s < steps; ++s) {
     EXPECT_TRUE(solver.step().ok);
     const auto tot = solver.totals();
     r.max_momentum = std::max(r.max_momentum, tot.momentum.norm());
+    r.max_momentum_change = std::max(r.max_momentum_change, (tot.momentum - p0).norm());
   }
   r.ke_after = solver.totals().kinetic_energy;
   r.e_end = r.ke_after + solver.energy().strain_energy;
@@ -95,12 +100,18 @@ TEST(VelocityTransfer, VibratingBlockBalanceWithThePicShareAndXpicLossBooked) {
   }
 }
 
+// R3's discs are mirror images of each other through the square's centre, so their total
+// momentum stays zero by symmetry whatever a transfer does to it. Here disc 0 comes at 1.5
+// times disc 1's speed: the total momentum, M/2 (0.05, 0.05), must stay as it is (every map and
+// update sums to it: partition of unity, and sum_i N_ip (x_i - x_p) = 0 for APIC's affine part).
 TEST(VelocityTransfer, MomentumIsConservedToRoundOffByEveryTransferAndScheme) {
   for (VelocityTransfer t :
        {VelocityTransfer::Flip, VelocityTransfer::Xpic, VelocityTransfer::Apic, VelocityTransfer::Aflip})
     for (StressScheme s : {StressScheme::USF, StressScheme::USL, StressScheme::Averaged}) {
-      const DiscEnergy r = discs(t, s, 2000);  // through the first contact (t = 1.586 s)
-      EXPECT_LT(r.max_momentum, 1e-12 * r.mass * 0.1) << to_string(t) << " " << to_string(s);
+      // through the first contact (t = 1.27 s) and the rebound
+      const DiscEnergy r = discs(t, s, 2000, 0.0, Vec<2>(0.15, 0.15));
+      EXPECT_GT(r.max_momentum, 0.02 * r.mass);
+      EXPECT_LT(r.max_momentum_change, 1e-12 * r.mass * 0.1) << to_string(t) << " " << to_string(s);
     }
 }
 
@@ -168,14 +179,17 @@ TEST(VelocityTransfer, AffineFlipTakesFlipsVelocityAndApicsAffineVelocity) {
 
 namespace {
 
-// examples/soil_column.toml (Thesis §5.1) for 3 s with the velocity transfer t and, if given,
+// examples/soil_column.toml (Thesis §5.1) for 3 s with the velocity transfer t (empty: the
+// example as it is, XPIC once per 2 h/c, for its 6 s) and, if given,
 // the base `wall` in place of its frictional one, on two threads: the run and the last
 // series.csv row (total_energy, gravity_work, ...).
 using ColumnRun = TextRun;
 ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/soil_column.toml");
-  text.replace(text.find("duration = 6.0"), 14, "duration = 3.0");
-  text = with_transfer(text, "velocity_transfer = \"" + t + "\"");
+  if (!t.empty()) {  // (the example's own transfer: its whole 6 s)
+    text.replace(text.find("duration = 6.0"), 14, "duration = 3.0");
+    text = with_transfer(text, "velocity_transfer = \"" + t + "\"");
+  }
   const std::string friction_base = "y_min = { type = \"friction\", friction = 0.6 }";
   if (!wall.empty()) text.replace(text.find(friction_base), friction_base.size(), "y_min = \"" + wall + "\"");
   return run_text(text, 2);
@@ -184,8 +198,11 @@ ColumnRun soil_column(const std::string& t, const std::string& wall = "") {
 }  // namespace
 
 TEST(VelocityTransfer, SoilColumnComesToRest) {
-  // the mean speed of eq. 5.12 against the example's rest speed, 0.005 m/s
-  for (const char* t : {"xpic", "apic"}) {  // flip: SoilColumnCollapsesSymmetricallyAndComesToRest
+  // The mean speed of eq. 5.12 against the example's rest speed, 0.005 m/s: the example's own
+  // transfer (XPIC once per 2 h/c) and APIC. (FLIP: SoilColumnCollapsesSymmetricallyAndComesToRest.
+  // XPIC at every step, with this example's point strain, still creeps at 0.1 m/s at 3 s and
+  // rests only at 6 s: "Runout under refinement".)
+  for (const char* t : {"", "apic"}) {
     const ColumnRun c = soil_column(t);
     ASSERT_TRUE(c.result.completed) << c.result.message;
     const double balance = c.balance();
@@ -193,14 +210,13 @@ TEST(VelocityTransfer, SoilColumnComesToRest) {
     std::printf(
         "soil column, %s: ended by %s at %.2f s, final mean speed %.4f m/s, runout %.2f m, energy "
         "balance %+.2f %% of the gravity work\n",
-        t, m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout, 100 * balance);
-    if (std::string(t) == "apic") {
-      EXPECT_EQ(m.ended_by, "rest");
-      // issue 12: closes within 1 % with the transfer's loss (measured +0.88 %). XPIC's balance
-      // misses by +2.9 % here (+1.4 % at dt / 2): the step's error on the frictional base
-      // (docs/method.md, "The walls' share of the lumped mass's loss").
-      EXPECT_LT(std::abs(balance), 0.01);
-    }
+        *t ? t : "the example's xpic per 2 h/c", m.ended_by.c_str(), m.end_time, m.final_mean_speed, m.runout,
+        100 * balance);
+    EXPECT_EQ(m.ended_by, "rest") << t;
+    // issue 12: closes within 1 % with the transfer's loss (APIC measured +0.88 %). (XPIC at every
+    // step misses it by +2.9 % at 3 s, +1.4 % at dt / 2: the step's error on the frictional base,
+    // docs/method.md, "The walls' share of the lumped mass's loss".)
+    EXPECT_LT(std::abs(balance), 0.01) << t;
   }
 }
 

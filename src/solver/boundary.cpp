@@ -109,11 +109,11 @@ void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity, const NodeBo
 
 template <int D>
 WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const {
-  double work = 0.0, loss_end = 0.0, loss_change = 0.0;
+  double work = 0.0, rule = 0.0, loss_end = 0.0, loss_change = 0.0;
   double stopped_energy[2 * D] = {}, energy[2 * D] = {};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
   const long rows = box_rows(box);
 #pragma omp parallel for num_threads(threads_) schedule(static) if (parallel()) \
-    reduction(+ : work, loss_end, loss_change, stopped_energy[:2 * D], energy[:2 * D])
+    reduction(+ : work, rule, loss_end, loss_change, stopped_energy[:2 * D], energy[:2 * D])
   for (long r = 0; r < rows; ++r) {
     const auto [k0, k1] = span_in(box, r);
     for (std::size_t k = k0; k < k1; ++k) {
@@ -135,6 +135,7 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, 
       for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(walls_[b.walls[w]], vnew);
       // Each wall rule only stops motion (coulomb_friction.hpp).
       assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
+      rule += 0.5 * m * (trial.squaredNorm() - vnew.squaredNorm());
       // Energy the walls took: the node's kinetic energy change less the work of the forces
       // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
       // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
@@ -169,6 +170,8 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, 
   }
   WallEnergy e;
   e.work = std::max(work, 0.0);
+  e.work_sum = work;
+  e.rule_dissipation = rule;
   e.update_loss_end = loss_end;
   e.update_loss_change = loss_change;
   // A side stops something when the energy of its stopped motion is not nil against its nodes'

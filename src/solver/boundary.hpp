@@ -31,10 +31,15 @@ struct BoundaryNode {
 
 // What the walls did to the grid's energy in one step.
 struct WallEnergy {
-  // Energy the walls took, >= 0 in every step: the nodes' kinetic energy change less the
-  // forces' work over the points' mean velocity (v^k + v^{k+1}) / 2. Coulomb friction (eq.
-  // 5.8-5.11), the no-slip of fixed walls and the stopped normal motion.
+  // Energy the walls took, booked: the nodes' kinetic energy change less the forces' work over
+  // the points' mean velocity (v^k + v^{k+1}) / 2, summed over the wall nodes (`work_sum`), and
+  // nothing for a step whose sum is negative. Coulomb friction (eq. 5.8-5.11), the no-slip of
+  // fixed walls and the stopped normal motion.
   double work = 0.0;
+  double work_sum = 0.0;
+  // What the wall rules themselves took from the trial velocities, sum (1/2) m (|v_trial|^2 -
+  // |v^{k+1}|^2): >= 0 at every node by coulomb_contact's construction.
+  double rule_dissipation = 0.0;
   // The nodes' halves of the walls' share of the lumped mass's loss in the particle update,
   // over the boundary nodes, with s_i = GridFields::stopped_acceleration: (1/2) dt^2 sum_i m_i
   // s_i . a_i (the form paired with FLIP and APIC) and (1/2) dt sum_i m_i s_i . v_i^{k+1} (with the

@@ -282,6 +282,8 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
         const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu, Vec<D>(v0[k] - v0[j]));
         sum.normal += loss.normal;
         sum.friction += loss.friction;
+        sum.friction_sum += loss.friction_sum;
+        sum.rule_dissipation += loss.rule_dissipation;
       }
       upper += grad[k];
     }
@@ -292,11 +294,15 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     double* s = &contact_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())];
     s[0] += sum.normal;
     s[1] += sum.friction;
+    s[2] += sum.friction_sum;
+    s[3] += sum.rule_dissipation;
   });
   ContactLoss total;
   for (std::size_t t = 0; t < contact_sums_.size(); t += kPad) {
     total.normal += contact_sums_[t];
     total.friction += contact_sums_[t + 1];
+    total.friction_sum += contact_sums_[t + 2];
+    total.rule_dissipation += contact_sums_[t + 3];
   }
   return total;
 }

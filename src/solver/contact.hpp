@@ -84,7 +84,12 @@ struct ContactSettings {
 // resting contact (w^k = w^{k+1} = 0) it is zero, however large the contact force.
 struct ContactLoss {
   double normal = 0.0;    // the stop of the approach
-  double friction = 0.0;  // friction: the tangential impulse times the mean slip
+  double friction = 0.0;  // friction: the tangential impulse times the mean slip, >= 0 per pair
+  // The friction term before a pair's negative one is counted as no work (friction_sum - the
+  // clipped friction is what that drops), and the kinetic energy of the relative motion the
+  // rule took, (1/2) m_r (|w|^2 - |w^{k+1}|^2) >= 0 per pair by construction.
+  double friction_sum = 0.0;
+  double rule_dissipation = 0.0;
 };
 
 // Coulomb contact between continua a (higher in the hierarchy) and b at one node (Paper III
@@ -121,8 +126,10 @@ inline ContactLoss resolve_pair(Vec<D>& v_a, double m_a, Vec<D>& v_b, double m_b
     loss.normal = 0.5 * m_r * wn * w_start.dot(n);
     // Where the slip reverses within the step (w^k opposite to the trial slip) the rule's one
     // friction direction per step would make this slightly negative; counted as no work.
-    loss.friction = std::max(0.0, 0.5 * m_r * s * (wt.dot(w_start) + (1.0 - s) * st * st));
+    loss.friction_sum = 0.5 * m_r * s * (wt.dot(w_start) + (1.0 - s) * st * st);
+    loss.friction = std::max(0.0, loss.friction_sum);
   }
+  loss.rule_dissipation = 0.5 * m_r * (w.squaredNorm() - (w + dw).squaredNorm());
   // Impulse on b: m_r dw; on a: the opposite (a rigid body's infinite mass takes it unmoved).
   v_b += (m_r / m_b) * dw;
   v_a -= (m_r / m_a) * dw;

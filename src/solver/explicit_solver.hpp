@@ -159,6 +159,9 @@ class ExplicitSolver {
   bool contact_on() const { return settings_.contact.enabled(); }
   // The contact work of the last step, normal and friction parts (ContactLoss).
   const ContactLoss& contact_step() const { return contact_step_; }
+  // What the walls took in the last step, over every continuum (WallEnergy's work, work_sum and
+  // rule_dissipation; the rest of it is not summed).
+  const WallEnergy& wall_step() const { return wall_step_; }
   const SolverSettings<D>& settings() const { return settings_; }
   int threads() const { return transfer_.threads(); }
   // Seconds spent in each phase since the solver was made.
@@ -327,6 +330,7 @@ class ExplicitSolver {
   // Per body: the outline normal at each node of a fixed rigid body with an outline (else empty)
   std::vector<std::vector<Vec<D>>> outline_normals_;
   ContactLoss contact_step_;  // the last step's contact work
+  WallEnergy wall_step_;      // the last step's wall work (wall_step)
   PhaseTimer timer_;
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.

@@ -63,7 +63,8 @@ void ExplicitSolver<D>::clear_mass_momentum() {
 template <int D>
 void ExplicitSolver<D>::grid_update() {
   timer_.time(Phase::GridUpdate, [&] {
-    stopping_walls_ = {};                         // gathered over the continua (continuum_grid_update)
+    stopping_walls_ = {};  // gathered over the continua (continuum_grid_update)
+    wall_step_ = {};
     if (contact_on()) return body_grid_update();  // each body its own (contact.cpp)
     continuum_grid_update(fields_);
   });
@@ -86,8 +87,10 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
       f.velocity_move[i] = f.velocity[i] + half_dt * a;
     });
   const WallEnergy walls = boundaries_.constrain_end_of_step(f, dt, transfer_.box());
-  assert(walls.work >= 0.0);  // friction never creates energy
   energy_.friction_work += walls.work;
+  wall_step_.work += walls.work;
+  wall_step_.work_sum += walls.work_sum;
+  wall_step_.rule_dissipation += walls.rule_dissipation;
   // USF: the walls' share of the lumped mass's loss, its nodal half (the points': wall_update_loss)
   if (settings_.scheme == StressScheme::USF)
     energy_.transfer_dissipation += update_from_flip() ? walls.update_loss_change : walls.update_loss_end;
