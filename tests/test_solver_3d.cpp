@@ -83,9 +83,11 @@ TEST(Solver3D, CollidingBlocksConserveMassMomentumAndEnergy) {
   const Material m = elastic(1000.0, 1000.0, 0.3);
   const double h = 0.05;
   Particles<3> P;
-  // Head-on along x, the second block offset by a cell in y and z.
+  // Head-on along x, the second block offset by a cell in y and z and slower: at equal speeds
+  // the two would be mirror images through the domain's centre, and their total momentum zero
+  // by symmetry alone.
   fill_box(P, m, h, 2, Vec<3>(0.2, 0.1, 0.1), Vec<3>(0.4, 0.3, 0.3), Vec<3>(0.1, 0.0, 0.0), 0);
-  fill_box(P, m, h, 2, Vec<3>(0.55, 0.15, 0.15), Vec<3>(0.75, 0.35, 0.35), Vec<3>(-0.1, 0.0, 0.0), 1);
+  fill_box(P, m, h, 2, Vec<3>(0.55, 0.15, 0.15), Vec<3>(0.75, 0.35, 0.35), Vec<3>(-0.06, 0.0, 0.0), 1);
   SolverSettings<3> st;
   st.interpolation = Interpolation::Gimp;
   st.scheme = StressScheme::Averaged;
@@ -96,7 +98,7 @@ TEST(Solver3D, CollidingBlocksConserveMassMomentumAndEnergy) {
   for (int s = 0; s < 2500; ++s) {
     ASSERT_TRUE(solver.step().ok);
     const auto t = solver.totals();
-    worst_p = std::max(worst_p, t.momentum.norm());
+    worst_p = std::max(worst_p, (t.momentum - t0.momentum).norm());
     worst_m = std::max(worst_m, std::abs(t.mass - t0.mass));
     max_drift =
         std::max(max_drift, std::abs(t.kinetic_energy + solver.energy().strain_energy - t0.kinetic_energy) /
@@ -109,10 +111,11 @@ TEST(Solver3D, CollidingBlocksConserveMassMomentumAndEnergy) {
       m0 += P.mass[p];
     }
   std::printf(
-      "3D blocks: |momentum| <= %.2e, mass change %.2e, energy drift <= %.3f %%, block 0 "
+      "3D blocks: momentum change <= %.2e of %.2e, mass change %.2e, energy drift <= %.3f %%, block 0 "
       "vx %.4f (was 0.1)\n",
-      worst_p, worst_m, 100 * max_drift, vx0 / m0);
-  EXPECT_LT(worst_p, 1e-14);
+      worst_p, t0.momentum.norm(), worst_m, 100 * max_drift, vx0 / m0);
+  EXPECT_GT(t0.momentum.norm(), 0.01 * t0.mass);
+  EXPECT_LT(worst_p, 1e-12 * t0.mass * 0.1);
   EXPECT_EQ(worst_m, 0.0);
   EXPECT_LT(max_drift, 0.01);
   EXPECT_LT(vx0 / m0, 0.0);
