@@ -105,9 +105,8 @@ TEST(Slides, DrySlopesFailWhenSteeperThanPhiAndStandWhenGentler) {
   }
   const StageMeasures& stable = results[0].second;
   EXPECT_EQ(stable.ended_by, "rest");
-  EXPECT_LT(stable.runout, 0.2);  // less than one cell
-  EXPECT_LT(stable.max_displacement, 0.05);
-  EXPECT_LT(stable.final_mean_speed, 0.002);
+  EXPECT_LT(stable.runout, 0.2);             // less than one cell
+  EXPECT_LT(stable.max_displacement, 0.05);  // (its final mean speed is under the rest speed by "rest")
   const StageMeasures& weak = results[1].second;
   const StageMeasures& weaker = results[2].second;
   // Its deposit front passes the original slope at the level of the threshold (half a cell
