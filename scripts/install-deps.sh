@@ -5,10 +5,11 @@ set -euo pipefail
 # chromium: the test that opens the HTML report headless; clang-format: the test that the
 # sources follow .clang-format; zlib1g-dev: the compressed VTK frames; python3-pip,
 # python3-setuptools, python3-wheel: installing python/ (skred_post) offline with
-# `pip install --no-build-isolation ./python` (and its test).
+# `pip install --no-build-isolation ./python` (and its test); libpetsc-real-dev, pkg-config: the
+# implicit integrator's Newton and linear solves (PETSc's SNES and KSP, src/implicit).
 pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev libgtest-dev zlib1g-dev
       python3-numpy python3-matplotlib python3-pil chromium clang-format
-      python3-pip python3-setuptools python3-wheel)
+      python3-pip python3-setuptools python3-wheel libpetsc-real-dev pkg-config)
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 # VTK for Python: Debian's python3-vtk9, or the VTK of ParaView's python3-paraview, which
 # replaces python3-vtk9 (installing python3-vtk9 would remove ParaView's). Either will do.

@@ -43,8 +43,20 @@ void print_check(const ScenarioOf<D>& s, bool force) {
   else
     fmt::print("particles: about {:.3g} (estimated from the shapes)\n", z.points);
   const double dt = scenario_time_step(s);
-  fmt::print("time step: {:.6g} s ({:.0f} steps; stable step {:.4g} s)\n", dt, z.steps, stable_time_step(s));
-  if (dt > stable_time_step(s))
+  double explicit_steps = 0.0;  // of the explicit stages (the implicit ones' steps are above)
+  bool any_explicit = false;
+  for (const Stage& st : s.stages)
+    if (st.integrator == IntegratorKind::Explicit) {
+      any_explicit = true;
+      explicit_steps += std::ceil(st.duration / dt - 1e-9);
+    }
+  if (!any_explicit)
+    fmt::print("time step: the implicit stages' own (above; the stable explicit step is {:.4g} s)\n",
+               stable_time_step(s));
+  else
+    fmt::print("time step{}: {:.6g} s ({:.0f} steps; stable step {:.4g} s)\n",
+               s.any_implicit() ? " of the explicit stages" : "", dt, explicit_steps, stable_time_step(s));
+  if (any_explicit && dt > stable_time_step(s))
     fmt::print("warning: the time step exceeds the stable step (allow_unstable_time_step = true)\n");
   fmt::print("grid nodes: {:.0f}\nmemory: about {} (this machine offers {})\n", z.nodes,
              gigabytes(z.memory_bytes), gigabytes(available_memory_bytes()));

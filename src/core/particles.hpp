@@ -77,6 +77,12 @@ struct Particles {
   // the StageTracker); stored only while a stage uses it.
   std::vector<Vec<D>> x_rest;
 
+  // The implicit integrator's (src/implicit): the points' acceleration a_p of Newmark's rule
+  // (Acosta eq. 8-10, 41), stored only while a dynamic implicit stage runs; and in axisymmetric
+  // geometry the hoop stretch F_theta_theta = r / r_0 (App. A1), stored only there. Empty: zero
+  // and one.
+  std::vector<Vec<D>> acceleration;
+  std::vector<double> hoop;
   // The field list: every per-point array, once, with the value of a new point.
   static constexpr auto fields() {
     using Pt = Particles;
@@ -102,6 +108,9 @@ struct Particles {
         ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
         ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); }, true},
         ParticleField<Pt, Vec<D>>{"x_rest", &Pt::x_rest, +[] { return Vec<D>(Vec<D>::Zero()); }, true},
+        ParticleField<Pt, Vec<D>>{"acceleration", &Pt::acceleration, +[] { return Vec<D>(Vec<D>::Zero()); },
+                                  true},
+        ParticleField<Pt, double>{"hoop", &Pt::hoop, +[] { return 1.0; }, true},
     };
   }
 
@@ -323,8 +332,10 @@ struct Particles {
     splits.assign(size(), 0);
   }
 
-  // Current volume V_p = det(F_p) V_p^0.
-  double volume(std::size_t p) const { return F[p].determinant() * volume0[p]; }
+  // Current volume V_p = det(F_p) V_p^0 (axisymmetric: per radian, times the hoop stretch).
+  double volume(std::size_t p) const {
+    return F[p].determinant() * volume0[p] * (hoop.empty() ? 1.0 : hoop[p]);
+  }
 
  private:
   // Scratch of reorder() and sort_by_cell(), kept between calls (not per-point fields).

@@ -42,7 +42,8 @@ void SeriesWriter::add(const SeriesRow& r) {
 
 void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
   const double total = r.kinetic_energy + r.strain_energy + r.plastic_dissipation + r.friction_work +
-                       r.transfer_dissipation + r.contact_work + r.damping_work - r.gravity_work;
+                       r.transfer_dissipation + r.contact_work + r.damping_work - r.gravity_work -
+                       r.load_work;
   // "{}" is the shortest representation that reads back to the same double.
   fmt::format_to(std::back_inserter(out), "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}", r.step,
                  r.time, r.kinetic_energy, r.strain_energy, r.gravity_work, r.plastic_dissipation,
@@ -52,6 +53,8 @@ void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
   if (extra_.contact_work) fmt::format_to(std::back_inserter(out), ",{}", r.contact_work);
   if (extra_.damping_work) fmt::format_to(std::back_inserter(out), ",{}", r.damping_work);
   if (extra_.material_speed) fmt::format_to(std::back_inserter(out), ",{}", r.material_speed);
+  if (extra_.implicit)
+    fmt::format_to(std::back_inserter(out), ",{},{},{}", r.iterations, r.residual, r.load_work);
   out += '\n';
 }
 
@@ -98,7 +101,8 @@ void SeriesWriter::flush() {
     const std::string h = header();
     os << h.substr(0, h.size() - 1) << (extra_.momentum_z ? ",momentum_z" : "")
        << (extra_.contact_work ? ",contact_work" : "") << (extra_.damping_work ? ",damping_work" : "")
-       << (extra_.material_speed ? ",material_speed" : "") << '\n';
+       << (extra_.material_speed ? ",material_speed" : "")
+       << (extra_.implicit ? ",iterations,residual,load_work" : "") << '\n';
     os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   });
   started_ = true;

@@ -27,6 +27,9 @@ struct SeriesRow {
   double contact_work = 0.0;    // runs with contact only (Paper III §C.2.7)
   double damping_work = 0.0;    // runs with local damping only
   double material_speed = 0.0;  // runs with a stage that rests on it only (Stage::rest_measure)
+  int iterations = 0;           // runs with an implicit stage only: Newton iterations of the step
+  double residual = 0.0;        // ... and its final out-of-balance force over the force scale
+  double load_work = 0.0;       // ... and the work of the boundary pressures (EnergyTotals)
 };
 
 // The columns only some runs have, in their order after yielding_points.
@@ -35,6 +38,7 @@ struct SeriesColumns {
   bool contact_work = false;    // runs with contact
   bool damping_work = false;    // runs with a locally damped stage
   bool material_speed = false;  // runs with a stage whose rest test reads the material's speed
+  bool implicit = false;        // runs with an implicit stage: iterations, residual, load_work
 };
 
 // Collects rows in memory (for checkpoints). The first flush() writes the file atomically;
@@ -45,12 +49,16 @@ struct SeriesColumns {
 //   transfer_dissipation,total_energy,mean_speed,max_speed,momentum_x,momentum_y,
 //   num_particles,stage,runout,yielding_points
 // with total_energy = kinetic_energy + strain_energy + plastic_dissipation + friction_work +
-// transfer_dissipation + contact_work + damping_work - gravity_work (the energy balance;
+// transfer_dissipation + contact_work + damping_work - gravity_work - load_work (the energy balance;
 // constant up to the time integration's error). 3D runs add a column momentum_z, runs with
 // contact a column contact_work (the energy the contact phase took out: friction between
 // bodies and the inelastic stop of approaching bodies), runs with a locally damped stage a
 // column damping_work (the work of that damping), runs with a stage whose rest test reads
-// the material's speed a last column material_speed (ExplicitSolver::material_mean_speed).
+// the material's speed a column material_speed (ExplicitSolver::material_mean_speed), runs
+// with an implicit stage the last columns iterations, residual (the Newton iterations of the
+// row's step and its final out-of-balance force relative to the step's force scale; 0 in
+// explicit stages) and load_work (the work of the boundary pressures, subtracted in
+// total_energy like the gravity work).
 // Gravity work, strain energy
 // (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is
 // written as the shortest decimal that reads back to the identical double.

@@ -133,6 +133,18 @@ std::string limit_equilibrium_json(const Summary& s) {
                      json_number(c[2]), json_number(c[3]), json_number(c[4]));
 }
 
+std::string implicit_json(const Summary& s) {
+  if (!s.implicit) return "";
+  const Summary::Implicit& m = *s.implicit;
+  return fmt::format(
+      "  \"implicit\": {{\"geometry\": {}, \"analysis\": {}, \"iteration\": {}, \"linear_solver\": {}, "
+      "\"steps\": {}, \"iterations\": {}, \"factorisations\": {}, \"cut_steps\": {}, \"max_unknowns\": {}, "
+      "\"max_factor_bytes\": {}}},\n",
+      json_string(m.geometry), json_string(m.analysis), json_string(m.iteration),
+      json_string(m.linear_solver), m.steps, m.iterations, m.factorisations, m.cut_steps, m.max_unknowns,
+      json_number(m.max_factor_bytes));
+}
+
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
@@ -151,7 +163,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
       "  \"scheme\": {},\n{}{}"
-      "  \"time_step\": {},\n"
+      "  \"time_step\": {},\n{}"
       "  \"phase_seconds\": {{{}}},\n"
       "  \"stages\": [{}],\n"
       "  \"version\": {},\n"
@@ -162,7 +174,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
       json_number(s.wall_seconds), json_number(s.particle_updates_per_second), s.threads,
       json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
-      limit_equilibrium_json(s), json_number(s.time_step), phases_json(s.phase_seconds),
+      limit_equilibrium_json(s), json_number(s.time_step), implicit_json(s), phases_json(s.phase_seconds),
       stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }

@@ -43,7 +43,8 @@ struct StageMeasures {
 };
 
 struct Summary {
-  std::string status;  // "completed", "unstable", "interrupted" (SIGINT/SIGTERM) or "error"
+  std::string status;  // "completed", "unstable", "left_grid", "not_converged" (an implicit step),
+                       // "interrupted" (SIGINT/SIGTERM) or "error"
   std::string message;
   long steps;
   double simulated_time;
@@ -72,6 +73,17 @@ struct Summary {
   // after the transfer as "limit_equilibrium" and "slip_circle" when finite: 2D slopes of one soil.
   double limit_equilibrium = NAN;
   std::array<double, 5> slip_circle = {NAN, NAN, NAN, NAN, NAN};
+  // Runs with an implicit stage (written after time_step as the object "implicit"): the geometry,
+  // the analysis and iteration of the last implicit stage, its linear solver (PETSc's KSP + PC),
+  // and the totals over the implicit steps: steps, Newton iterations (linear solves),
+  // factorisations, steps that were cut, the largest number of unknowns and the largest factor's
+  // memory [bytes] (0 when unknown).
+  struct Implicit {
+    std::string geometry, analysis, iteration, linear_solver;
+    long steps = 0, iterations = 0, factorisations = 0, cut_steps = 0, max_unknowns = 0;
+    double max_factor_bytes = 0.0;
+  };
+  std::optional<Implicit> implicit = {};
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

@@ -6,7 +6,8 @@
 // (the one the explicit solver inlines through update_stress), run on copies, so there is one
 // implementation of each return; the tangent is computed beside it in the model's folder.
 // The Voigt convention of the tangent is documented in material/law_result.hpp. The implicit
-// MPM (Acosta eq. 5, 10-11) assembles K from this tangent.
+// integrator's Newton-Raphson iteration assembles K from this tangent (Acosta eq. 5 and 10-11
+// with D_p replaced by it; the seed's own iteration keeps the elastic D_p).
 #pragma once
 #include "material/elastic/law.hpp"
 #include "material/law_result.hpp"

@@ -14,9 +14,11 @@
 // gives d sigma_zz, and columns 2, 4, 5 (out-of-plane strains) are not used.
 //
 // The tangent is the consistent (algorithmic) one: the exact derivative of the discrete update
-// sigma^{k+1}(sigma^k, d_eps, state) by d_eps, as Newton's method in the implicit MPM needs it
-// (Acosta eq. 5 and 10 with D_p the algorithmic stiffness). It is defined where the update is
-// differentiable, i.e. away from the boundaries between return regions.
+// sigma^{k+1}(sigma^k, d_eps, state) by d_eps, which the implicit integrator's Newton-Raphson
+// iteration assembles (src/implicit). Acosta's own iteration (eq. 5 and 10-11) uses the
+// elastic D_p instead and re-applies the out-of-balance force; skred offers both
+// (implicit.iteration). It is defined where the update is differentiable, i.e. away from the
+// boundaries between return regions.
 #pragma once
 #include "core/types.hpp"
 #include "material/state.hpp"

@@ -48,6 +48,9 @@ void archive_row(A& a, SeriesRow& r) {
   a(r.contact_work);
   a(r.damping_work);
   a(r.material_speed);
+  a(r.iterations);
+  a(r.residual);
+  a(r.load_work);
 }
 
 // The run's state besides the particles, in payload order.
@@ -64,6 +67,7 @@ void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
   a(c.energy.friction_work);
   a(c.energy.transfer_dissipation);
   a(c.energy.damping_work);
+  a(c.energy.load_work);
   a(at.stage);
   a(at.in_stage);
   a(at.stage_first_step);
@@ -122,7 +126,7 @@ Checkpointing<D>::~Checkpointing() {
 }
 
 template <int D>
-void Checkpointing<D>::write(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+void Checkpointing<D>::write(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                              const SeriesWriter& series) {
   std::ostringstream os(std::ios::binary);
   ByteWriter w{os};
@@ -156,7 +160,7 @@ void load_checkpoint(const fs::path& file, const ScenarioOf<D>& s, Particles<D>&
 }
 
 template <int D>
-bool Checkpointing<D>::restore(Particles<D>& P, ExplicitSolver<D>& solver, RunProgress<D>& at,
+bool Checkpointing<D>::restore(Particles<D>& P, Integrator<D>& solver, RunProgress<D>& at,
                                SeriesWriter& series, PvdWriter& particles_pvd, PvdWriter& grid_pvd) {
   if (restart_.empty()) return false;
   SolverClock c;
@@ -174,7 +178,7 @@ bool Checkpointing<D>::restore(Particles<D>& P, ExplicitSolver<D>& solver, RunPr
 }
 
 template <int D>
-bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+bool Checkpointing<D>::after_step(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                                   const SeriesWriter& series) {
   if (g_stop_requested || solver.steps() == stop_at_) {
     write(P, solver, at, series);
@@ -185,7 +189,7 @@ bool Checkpointing<D>::after_step(const Particles<D>& P, const ExplicitSolver<D>
 }
 
 template <int D>
-void Checkpointing<D>::at_end(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+void Checkpointing<D>::at_end(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                               const SeriesWriter& series) {
   if (every_ > 0) write(P, solver, at, series);
 }

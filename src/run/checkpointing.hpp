@@ -58,17 +58,17 @@ class Checkpointing {
   // When opt.restart is set: reads it into the particles, the solver (clock and the current
   // stage's materials), the progress and the output indexes and series; returns true. Throws
   // CheckpointError for a checkpoint that cannot be used.
-  bool restore(Particles<D>& P, ExplicitSolver<D>& solver, RunProgress<D>& at, SeriesWriter& series,
+  bool restore(Particles<D>& P, Integrator<D>& solver, RunProgress<D>& at, SeriesWriter& series,
                PvdWriter& particles_pvd, PvdWriter& grid_pvd);
   // After a step: writes the periodic checkpoint when one is due; when a signal arrived (or
   // the step is opt.stop_at_step) writes one and returns true: the run stops.
-  bool after_step(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+  bool after_step(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                   const SeriesWriter& series);
   // At the end of a completed run (when checkpoints are enabled).
-  void at_end(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+  void at_end(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
               const SeriesWriter& series);
   // Writes the checkpoint now (recording the checkpoint period in `at`).
-  void write(const Particles<D>& P, const ExplicitSolver<D>& solver, RunProgress<D>& at,
+  void write(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
              const SeriesWriter& series);
 
  private:

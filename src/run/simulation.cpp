@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <fstream>
+#include <memory>
 #include <sstream>
 
 #include "io/atomic_file.hpp"
@@ -28,6 +29,7 @@
 #include "scenario/build.hpp"
 #include "scenario/estimate.hpp"
 #include "scenario/initial_stress.hpp"
+#include "solver/explicit_integrator.hpp"
 
 namespace skred {
 
@@ -79,6 +81,26 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
 }
 
 template <int D>
+ImplicitModel<D> implicit_model(const ScenarioOf<D>& s) {
+  ImplicitModel<D> m;
+  m.grid = scenario_grid(s);
+  m.interpolation = s.interpolation;
+  m.quadrature_points = s.quadrature_points;
+  m.gravity = s.gravity;
+  m.boundaries = s.boundaries;
+  m.geometry = s.geometry;
+  m.pressures = s.pressures;
+  return m;
+}
+
+template <int D>
+double stage_time_step(const ScenarioOf<D>& s, const Stage& st) {
+  if (st.integrator == IntegratorKind::Explicit) return scenario_time_step(s);
+  if (st.implicit.analysis == ImplicitAnalysis::Dynamic) return implicit_time_step(s, st);
+  return st.duration / std::max(1, st.implicit.load_steps);
+}
+
+template <int D>
 GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
   GridGeometry<D> grid;
   grid.origin = s.origin;
@@ -107,7 +129,7 @@ std::string hms(double seconds) {
 }
 
 template <int D>
-SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t, long particles, int stage,
+SeriesRow series_row(const Integrator<D>& solver, const ParticleTotals<D>& t, long particles, int stage,
                      double runout) {
   const auto& e = solver.energy();
   SeriesRow r{};
@@ -130,6 +152,9 @@ SeriesRow series_row(const ExplicitSolver<D>& solver, const ParticleTotals<D>& t
   r.yielding_points = t.yielding;
   r.contact_work = e.contact_work;
   if constexpr (D == 3) r.momentum_z = t.momentum[2];
+  r.iterations = solver.last_step().iterations;
+  r.residual = solver.last_step().residual;
+  r.load_work = e.load_work;
   return r;
 }
 
@@ -147,7 +172,7 @@ void copy_scenario(const std::string& source, const fs::path& outdir) {
 // The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
 // smoothed_stress() call, and its entry in grid.pvd (post).
 template <int D>
-void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, int frame, PvdWriter& index,
+void write_grid_frame(const Integrator<D>& solver, const fs::path& outdir, int frame, PvdWriter& index,
                       bool compress) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
   write_grid_vtr(outdir / name, solver.grid(),
@@ -156,14 +181,64 @@ void write_grid_frame(const ExplicitSolver<D>& solver, const fs::path& outdir, i
   index.add(solver.time(), name);
 }
 
+// The run's integrators, made when a stage first needs one; the current one advances the points.
+// A stage of the other kind takes the clock (time, steps, gravity ramp, energies) over from it.
+template <int D>
+class Integrators {
+ public:
+  Integrators(const ScenarioOf<D>& s, Particles<D>& P, int threads) : s_(s), P_(P), threads_(threads) {}
+  Integrator<D>& current() { return *current_; }
+  ImplicitSolver<D>* implicit() { return implicit_.get(); }
+  ExplicitSolver<D>* explicit_solver() { return explicit_ ? &explicit_->solver() : nullptr; }
+  bool is_explicit() const { return current_ == explicit_.get(); }
+  // The integrator of stage `st` (its materials at hand-over: the stage's).
+  Integrator<D>& use(const Stage& st) {
+    Integrator<D>* next = nullptr;
+    if (st.integrator == IntegratorKind::Explicit) {
+      if (!explicit_)
+        explicit_ = std::make_unique<ExplicitIntegrator<D>>(scenario_grid(s_), P_, stage_materials(s_, st),
+                                                            solver_settings(s_), threads_);
+      next = explicit_.get();
+    } else {
+      if (!implicit_)
+        implicit_ =
+            std::make_unique<ImplicitSolver<D>>(implicit_model(s_), P_, stage_materials(s_, st), threads_);
+      next = implicit_.get();
+    }
+    if (current_ && next != current_) {
+      next->restore(current_->clock(), stage_materials(s_, st));
+      next->particles_changed();
+    }
+    current_ = next;
+    return *current_;
+  }
+  // Wall seconds per phase of every integrator that ran.
+  std::vector<std::pair<std::string, double>> phase_seconds() const {
+    std::vector<std::pair<std::string, double>> r;
+    for (const Integrator<D>* i : {static_cast<const Integrator<D>*>(explicit_.get()),
+                                   static_cast<const Integrator<D>*>(implicit_.get())})
+      if (i)
+        for (auto& ph : i->phase_seconds()) r.push_back(ph);
+    return r;
+  }
+
+ private:
+  const ScenarioOf<D>& s_;
+  Particles<D>& P_;
+  int threads_;
+  std::unique_ptr<ExplicitIntegrator<D>> explicit_;
+  std::unique_ptr<ImplicitSolver<D>> implicit_;
+  Integrator<D>* current_ = nullptr;
+};
+
 }  // namespace
 
 template <int D>
 RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt) {
   Particles<D> particles = build_particles(s);
   apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
-  ExplicitSolver<D> solver(scenario_grid(s), particles, stage_materials(s, s.stages.front()),
-                           solver_settings(s), opt.threads);
+  Integrators<D> integrators(s, particles, opt.threads);
+  Integrator<D>* solver = &integrators.use(s.stages.front());
 
   fs::create_directories(outdir);
   PvdWriter pvd(outdir);
@@ -181,21 +256,23 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     return rest_measure_of(s, st) == Stage::RestMeasure::Material;
   });
   SeriesWriter series(outdir / "series.csv", {.momentum_z = D == 3,
-                                              .contact_work = solver.contact_on(),
+                                              .contact_work = solver_settings(s).contact.enabled(),
                                               .damping_work = damped,
-                                              .material_speed = material_speed});
+                                              .material_speed = material_speed,
+                                              .implicit = s.any_implicit()});
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
-  checkpoints.restore(particles, solver, at, series, pvd, grid_pvd);
+  checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd);
   std::vector<Sym3> smoothed;
   const VtuOptions vtu_options{s.output_fields, s.output_compression};
   const bool wants_split = std::ranges::any_of(
       s.output_fields, [](const std::string& f) { return f == "Fe" || f == "Fp" || f == "stress_from_Fe"; });
   auto write_frame = [&]() {
     const int frame = static_cast<int>(at.frame_times.size());
-    at.frame_times.push_back(solver.time());
-    solver.smoothed_stress(smoothed);
-    write_grid_frame(solver, outdir, frame, grid_pvd, s.output_compression);  // post: after smoothed_stress()
+    at.frame_times.push_back(solver->time());
+    solver->smoothed_stress(smoothed);
+    write_grid_frame(*solver, outdir, frame, grid_pvd,
+                     s.output_compression);  // post: after smoothed_stress()
     const std::string name = fmt::format("particles_{:06}.vtu", frame);
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
@@ -205,7 +282,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       stress_from_Fe.resize(particles.size());
       for (std::size_t p = 0; p < particles.size(); ++p) {
         elastic_F[p] = embed3<D>(particles.Fe[p], 1.0);
-        const auto& mat = solver.materials()[static_cast<std::size_t>(particles.material[p])];
+        const auto& mat = solver->materials()[static_cast<std::size_t>(particles.material[p])];
         stress_from_Fe[p] = stress_from_elastic_F(full_stress<D>(particles.reference_stress(p)), elastic_F[p],
                                                   mat.elastic_constants);
       }
@@ -213,21 +290,23 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       extra.stress_from_elastic_F = &stress_from_Fe;
     }
     write_particles_vtu(outdir / name, particles, extra, vtu_options);
-    pvd.add(solver.time(), name);
+    pvd.add(solver->time(), name);
     series.flush();
   };
 
   const DilationContinua dilation(s);  // Paper III §C.3.2 (empty without dilated continua)
-  const double dt = solver.dt();
+  // The explicit stages' time step; an implicit stage takes its own (stage_time_step).
+  const double explicit_dt = scenario_time_step(s);
   // The instability detector (run/stability.hpp): a step above the stable limit stops the run
   // before it starts; afterwards every series row and every frame is checked.
-  StabilityWatch<D> watch(s, dt, solver.totals().mass);
+  StabilityWatch<D> watch(s, explicit_dt, solver->totals().mass);
   StepStatus unstable;     // ok, or the point and reason found by the detector
   long unstable_step = 0;  // the step after which it was found
   bool left_grid = false;
+  bool not_converged = false;  // an implicit step did not converge (after its cuts)
   auto stop_unstable = [&](std::string reason, long p) {
     unstable = {false, p, std::move(reason)};
-    unstable_step = solver.steps();
+    unstable_step = solver->steps();
   };
   if (std::string why = watch.unusable_step(); !why.empty())  // name a point if one is the cause
     stop_unstable(std::move(why), watch.initial_speed_finite() ? -1 : offending_point(particles));
@@ -235,7 +314,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     stop_unstable(std::move(above), -1);
   long total_steps = 0;  // upper bound: every stage to its full duration
   if (unstable.ok)
-    for (const Stage& st : s.stages) total_steps += stage_step_count(st.duration, dt);
+    for (const Stage& st : s.stages) total_steps += stage_step_count(st.duration, stage_time_step(s, st));
   const bool tty = isatty(fileno(stderr));
   RunResult res;
 
@@ -251,18 +330,25 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     Stage as_plastic = st;
     as_plastic.elastic = false;
     strength = material_strengths(stage_materials(s, as_plastic));
+    const double dt = stage_time_step(s, st);
     const long stage_steps = stage_step_count(st.duration, dt);
     const bool begins = !at.in_stage;  // false for the stage a restart continues
     const Stage::RestMeasure measure = rest_measure_of(s, st);
-    solver.set_local_damping(st.local_damping);
+    solver = &integrators.use(st);
+    const bool implicit = st.integrator == IntegratorKind::Implicit;
+    // A quasi-static stage's points are at rest by construction: it ends with its load steps.
+    const bool rests = !(implicit && st.implicit.analysis == ImplicitAnalysis::QuasiStatic);
+    const double stage_end = (begins ? solver->time() : at.stage_start) + st.duration;
+    if (implicit) integrators.implicit()->set_stage(st.implicit, dt, stage_end);
+    solver->set_local_damping(st.local_damping);
     if (begins) {
-      solver.begin_stage(stage_materials(s, st), st.gravity_ramp_time);
+      solver->begin_stage(stage_materials(s, st), st.gravity_ramp_time);
       at.stage = k;
       at.in_stage = true;
-      at.stage_first_step = solver.steps();
-      at.stage_start = solver.time();
+      at.stage_first_step = solver->steps();
+      at.stage_start = solver->time();
       at.tracker =
-          StageTracker<D>(st.name, particles, at.stage_start, solver.totals().kinetic_energy, st.rest_speed,
+          StageTracker<D>(st.name, particles, at.stage_start, solver->totals().kinetic_energy, st.rest_speed,
                           st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
                           st.runout_thickness, s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
       if (measure != Stage::RestMeasure::Displacement) particles.x_rest = {};  // (its first row starts one)
@@ -273,22 +359,22 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     DensityTrigger density(s, k);  // Paper III §C.3 trigger
     watch.begin_stage(tracker.kinetic_start());
     auto sample = [&]() {
-      const ParticleTotals<D> t = solver.totals();
-      SeriesRow row = series_row(solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
+      const ParticleTotals<D> t = solver->totals();
+      SeriesRow row = series_row(*solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
                                  tracker.runout(particles));
-      if (material_speed) row.material_speed = solver.material_mean_speed();
+      if (material_speed) row.material_speed = solver->material_mean_speed();
       series.add(row);
-      if (std::string why = watch.check(t, solver.energy()); !why.empty())
+      if (std::string why = watch.check(t, solver->energy()); !why.empty())
         stop_unstable(std::move(why), offending_point(particles));
       else if (watch.observe_dilation(particles))  // once, when the limit is first passed
-        fmt::print(stderr, "{}warning at t = {:.4g} s: {}\n", tty ? "\n" : "", solver.time(),
+        fmt::print(stderr, "{}warning at t = {:.4g} s: {}\n", tty ? "\n" : "", solver->time(),
                    watch.dilation_note());
-      const bool ramping = solver.time() - stage_start < 0.5 * st.gravity_ramp_time ||
-                           solver.time() - stage_start < density.ramp_end();
+      const bool ramping = solver->time() - stage_start < 0.5 * st.gravity_ramp_time ||
+                           solver->time() - stage_start < density.ramp_end();
       const bool rest =
           measure == Stage::RestMeasure::Displacement
-              ? tracker.observe_window(particles, solver.time(), t.mean_speed)
-              : tracker.observe(solver.time(), t.mean_speed,
+              ? tracker.observe_window(particles, solver->time(), t.mean_speed)
+              : tracker.observe(solver->time(), t.mean_speed,
                                 measure == Stage::RestMeasure::Material ? row.material_speed : t.mean_speed);
       return rest && !ramping;
     };
@@ -299,36 +385,44 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       at.next_series = s.series_interval;
     }
     std::string ended_by = unstable.ok ? "duration" : "unstable";
-    while (unstable.ok && solver.steps() - first_step < stage_steps) {
+    // Explicit stages run their count of steps; implicit ones until their end time (a cut step
+    // covers less).
+    auto stage_done = [&]() {
+      return implicit ? solver->time() >= stage_end - 1e-9 * dt : solver->steps() - first_step >= stage_steps;
+    };
+    while (unstable.ok && !stage_done()) {
       // Point order and point changes between steps (docs/method.md, "Point order").
-      if (opt.sort_every > 0 && solver.steps() % opt.sort_every == 0 &&
-          particles.sort_by_cell(solver.grid(), solver.sort_by_nearest_node(), solver.threads()))
-        solver.particles_changed();
+      if (opt.sort_every > 0 && solver->steps() % opt.sort_every == 0 &&
+          particles.sort_by_cell(solver->grid(), solver->sort_by_nearest_node(), solver->threads()))
+        solver->particles_changed();
       if constexpr (D == 2)  // the test hook that adds and removes points (2D runs)
-        if (opt.edit_points && opt.edit_points(particles, solver)) solver.particles_changed();
-      if (!density.empty() && density.apply(particles, solver.time() - stage_start))
-        solver.particles_changed();
+        if (opt.edit_points && integrators.is_explicit() &&
+            opt.edit_points(particles, *integrators.explicit_solver()))
+          solver->particles_changed();
+      if (!density.empty() && density.apply(particles, solver->time() - stage_start))
+        solver->particles_changed();
       if (!dilation.empty())  // Paper III §C.3.2: dilated points join the new continuum
-        if (const long moved = dilation.apply(particles, solver.threads()); moved > 0) {
-          tracker.dilated(moved, solver.time());
-          solver.particles_changed();
+        if (const long moved = dilation.apply(particles, solver->threads()); moved > 0) {
+          tracker.dilated(moved, solver->time());
+          solver->particles_changed();
         }
       if (!s.splitting.body_splits.empty() && split_points(particles, s.splitting) > 0)
-        solver.particles_changed();  // Thesis §3.4
+        solver->particles_changed();  // Thesis §3.4
       const auto t0 = Clock::now();
-      status = solver.step();
+      status = solver->step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       if (!status.ok) {
-        left_grid = left_the_grid(particles, status.particle, solver.grid(), watch.speed_bound());
-        ended_by = left_grid ? "left_grid" : "unstable";
+        left_grid = left_the_grid(particles, status.particle, solver->grid(), watch.speed_bound());
+        not_converged = implicit && status.particle < 0;
+        ended_by = left_grid ? "left_grid" : not_converged ? "not_converged" : "unstable";
         break;
       }
       computed_updates += static_cast<long>(particles.size());
-      const double t = solver.time();
-      const bool last = solver.steps() - first_step == stage_steps;
+      const double t = solver->time();
+      const bool last = stage_done();
       bool at_rest = false;
       if (t >= at.next_series - 0.5 * dt || last) {
-        at_rest = sample();
+        at_rest = sample() && rests;
         while (at.next_series <= t + 0.5 * dt) at.next_series += s.series_interval;
         moved = static_cast<int>(k) == opt.stop_stage &&
                 tracker.max_displacement(particles) > opt.stop_moved * tracker.height_start();
@@ -350,27 +444,32 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
           (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest || moved)) {
         last_report = now;
         const double elapsed = std::chrono::duration<double>(now - start).count();
-        const double frac = static_cast<double>(solver.steps()) / total_steps;
+        const double frac = std::min(1.0, static_cast<double>(solver->steps()) / total_steps);
         const double pups = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
-        fmt::print(stderr,
-                   "{}stage {} ({})  step {}  t = {:.4g} s  {:5.1f} %  ETA {}  {:.2f} M particle-updates/s{}",
-                   tty ? "\r" : "", k + 1, st.name, solver.steps(), t, 100 * frac,
-                   hms(elapsed / frac - elapsed), pups / 1e6, tty && !(last || at_rest || moved) ? "" : "\n");
+        const StepReport rep = solver->last_step();
+        const std::string newton =
+            implicit ? fmt::format("  {} iterations (residual {:.1e}){}", rep.iterations, rep.residual,
+                                   rep.cuts > 0 ? fmt::format(", cut {}x", rep.cuts) : "")
+                     : fmt::format("  {:.2f} M particle-updates/s", pups / 1e6);
+        fmt::print(stderr, "{}stage {} ({}{})  {} {}  t = {:.4g} s  {:5.1f} %  ETA {}{}{}", tty ? "\r" : "",
+                   k + 1, st.name, implicit ? ", implicit" : "", implicit ? "load step" : "step",
+                   solver->steps(), t, 100 * frac, hms(elapsed / frac - elapsed), newton,
+                   tty && !(last || at_rest || moved) ? "" : "\n");
         std::fflush(stderr);
       }
       if (at_rest || moved) {
         ended_by = moved ? "moved" : "rest";
         break;
       }
-      if (checkpoints.after_step(particles, solver, at, series)) {  // periodic; stop on a signal
+      if (checkpoints.after_step(particles, *solver, at, series)) {  // periodic; stop on a signal
         stopped = true;
         break;
       }
     }
     if (stopped) break;
-    const ParticleTotals<D> t = solver.totals();
-    const EnergyTotals& e = solver.energy();
-    at.finished.push_back(tracker.finish(particles, solver.time(), solver.steps() - first_step,
+    const ParticleTotals<D> t = solver->totals();
+    const EnergyTotals& e = solver->energy();
+    at.finished.push_back(tracker.finish(particles, solver->time(), solver->steps() - first_step,
                                          t.kinetic_energy, e.gravity_work, e.strain_energy,
                                          e.plastic_dissipation, ended_by));
     at.finished.back().rest_measure = to_string(measure);
@@ -381,10 +480,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const long n = static_cast<long>(particles.size());
   res.particles = n;
   res.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
-  res.steps = solver.steps();
-  res.simulated_time = solver.time();
+  res.steps = solver->steps();
+  res.simulated_time = solver->time();
   res.particle_updates_per_second = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
-  if (!status.ok) unstable_step = solver.steps() + 1;  // the step that failed
+  if (!status.ok) unstable_step = solver->steps() + 1;  // the step that failed
   if (status.ok) status = unstable;
   res.completed = status.ok && !stopped;
   res.interrupted = stopped;
@@ -397,25 +496,31 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
               : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
                             s.bodies[particles.body[p]].name, particles.x[p][0], particles.x[p][1],
                             D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "");
-    res.message = left_grid
+    res.message = not_converged ? fmt::format("stopped at step {} (t = {:.6g} s): {}", unstable_step,
+                                              solver->time(), status.reason)
+                  : left_grid
                       ? fmt::format(
                             "stopped at step {} (t = {:.6g} s){} left the grid (its state is "
                             "sound: enlarge the grid or close its sides)",
-                            unstable_step, solver.time(), where)
+                            unstable_step, solver->time(), where)
                       : fmt::format("unstable at step {} (t = {:.6g} s){}: {}{}", unstable_step,
-                                    solver.time(), where, status.reason, note.empty() ? "" : "; " + note);
+                                    solver->time(), where, status.reason, note.empty() ? "" : "; " + note);
     write_frame();  // the last state, for diagnosis
   } else if (stopped) {
     res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",
-                              solver.steps(), solver.time(), outdir.string());
+                              solver->steps(), solver->time(), outdir.string());
     write_frame();  // the state at the checkpoint
   } else {
-    checkpoints.at_end(particles, solver, at, series);
+    checkpoints.at_end(particles, *solver, at, series);
   }
   series.flush();
 
   Summary sum{};
-  sum.status = stopped ? "interrupted" : status.ok ? "completed" : left_grid ? "left_grid" : "unstable";
+  sum.status = stopped         ? "interrupted"
+               : status.ok     ? "completed"
+               : left_grid     ? "left_grid"
+               : not_converged ? "not_converged"
+                               : "unstable";
   sum.message = res.message;
   sum.steps = res.steps;
   sum.simulated_time = res.simulated_time;
@@ -425,7 +530,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.dimension = D;
   sum.wall_seconds = res.wall_seconds;
   sum.particle_updates_per_second = res.particle_updates_per_second;
-  sum.threads = solver.threads();
+  sum.threads = solver->threads();
   sum.scenario = s.source;
   sum.interpolation = to_string(s.interpolation);
   sum.scheme = to_string(s.scheme);
@@ -445,9 +550,25 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         sum.slip_circle = {c.xc, c.yc, c.radius, le.critical.x_from, le.critical.x_to};
       }
     }
-  sum.time_step = dt;
+  sum.time_step = explicit_dt;
+  if (ImplicitSolver<D>* im = integrators.implicit()) {
+    const ImplicitTotals& t = im->implicit_totals();
+    const Stage* last = nullptr;
+    for (const Stage& st : s.stages)
+      if (st.integrator == IntegratorKind::Implicit) last = &st;
+    sum.implicit = Summary::Implicit{to_string(s.geometry),
+                                     to_string(last->implicit.analysis),
+                                     to_string(last->implicit.iteration),
+                                     t.linear_solver,
+                                     t.steps,
+                                     t.iterations,
+                                     t.factorisations,
+                                     t.cut_steps,
+                                     t.max_unknowns,
+                                     t.max_factor_bytes};
+  }
   sum.stages = at.finished;
-  sum.phase_seconds = solver.phase_times().report();
+  sum.phase_seconds = integrators.phase_seconds();
   sum.version = version();
   sum.git_commit = git_commit();
   write_summary_json(outdir / "summary.json", sum);
@@ -461,6 +582,10 @@ RunResult run_simulation(const AnyScenario& s, const fs::path& outdir, const Run
 
 template SolverSettings<2> solver_settings<2>(const Scenario&);
 template SolverSettings<3> solver_settings<3>(const Scenario3&);
+template ImplicitModel<2> implicit_model<2>(const Scenario&);
+template ImplicitModel<3> implicit_model<3>(const Scenario3&);
+template double stage_time_step<2>(const Scenario&, const Stage&);
+template double stage_time_step<3>(const Scenario3&, const Stage&);
 template GridGeometry<2> scenario_grid<2>(const Scenario&);
 template GridGeometry<3> scenario_grid<3>(const Scenario3&);
 template RunResult run_simulation<2>(const Scenario&, const fs::path&, const RunOptions&);

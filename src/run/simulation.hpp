@@ -5,10 +5,12 @@
 #include <functional>
 #include <string>
 
+#include "implicit/implicit_solver.hpp"
 #include "io/summary_writer.hpp"
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 #include "solver/explicit_solver.hpp"
+#include "solver/integrator.hpp"
 
 namespace skred {
 
@@ -50,6 +52,14 @@ struct RunResult {
 
 template <int D>
 SolverSettings<D> solver_settings(const ScenarioOf<D>& s);
+
+// What the implicit integrator takes from a scenario (grid, kernel, gravity, walls, geometry,
+// pressures), and the step of a stage: the explicit time step, an implicit dynamic stage's
+// time step, or a quasi-static stage's duration over its load steps.
+template <int D>
+ImplicitModel<D> implicit_model(const ScenarioOf<D>& s);
+template <int D>
+double stage_time_step(const ScenarioOf<D>& s, const Stage& st);
 
 // The background grid of a scenario (origin, cell size, cells per axis).
 template <int D>

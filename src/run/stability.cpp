@@ -95,9 +95,10 @@ std::string StabilityWatch<D>::check(const ParticleTotals<D>& t, const EnergyTot
   if (t.max_speed > speed_bound_)
     return fmt::format("speed {:.4g} m/s above the bound {:.4g} m/s (wave speed + initial speed + free fall)",
                        t.max_speed, speed_bound_);
-  max_gravity_work_ = std::max(max_gravity_work_, std::abs(e.gravity_work));
+  max_gravity_work_ = std::max(max_gravity_work_, std::abs(e.gravity_work + e.load_work));
   max_released_ = std::max(max_released_, -e.strain_energy);
-  const double gained = t.kinetic_energy - k0_ + e.strain_energy + e.plastic_dissipation - e.gravity_work;
+  const double gained =
+      t.kinetic_energy - k0_ + e.strain_energy + e.plastic_dissipation - e.gravity_work - e.load_work;
   const double supplied = k0_ + max_gravity_work_ + max_released_;
   if (gained <= kEnergyGrowthTolerance * supplied + floor_) return {};
   return fmt::format(

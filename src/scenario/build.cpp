@@ -103,7 +103,11 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
       const SineVelocityOf<D>& sv = b.velocity_sine;
       if (sv.wavelength > 0.0)
         v += sv.amplitude * std::sin(2.0 * M_PI * (x[sv.axis] - sv.origin) / sv.wavelength);
-      p.add(x, v, mat.density * volume, volume, half, b.material, static_cast<int>(i));
+      // Axisymmetric (2D): per radian, the sub-cell's area times its radius r_p = x_p.
+      double vol = volume;
+      if constexpr (D == 2)
+        if (s.geometry == Geometry::Axisymmetric) vol *= x[0];
+      p.add(x, v, mat.density * vol, vol, half, b.material, static_cast<int>(i));
       return true;
     });
   }

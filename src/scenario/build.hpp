@@ -12,7 +12,8 @@ namespace skred {
 // Fills every body with n^D material points per grid cell (n = particles_per_cell): each
 // cell is split into n^D sub-cells of side h/n and a sub-cell's centre becomes a point if it
 // lies inside the body's shape. Mass = density (h/n)^D (in 2D plane strain, per unit
-// thickness), volume0 = (h/n)^D, half0 = h/2n on every axis. Bodies are filled in order,
+// thickness), volume0 = (h/n)^D, half0 = h/2n on every axis. In axisymmetric geometry
+// (2D) mass and volume0 are per radian: (h/n)^2 times the point's radius x_p. Bodies are filled in order,
 // cells in row-major order (x fastest, then y, then z), and the sub-cells of a cell in the
 // same order. Throws ScenarioError if a body receives no point.
 template <int D>

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "scenario/build.hpp"
+#include "scenario/estimate.hpp"
 
 namespace skred {
 namespace {
@@ -30,6 +31,28 @@ std::string strength_summary(const Material& m) {
                          m.von_mises.softening_modulus);
   }
   return "";
+}
+
+std::string bytes_text(double bytes) {
+  if (bytes >= 1e9) return fmt::format("{:.3g} GB", bytes / 1e9);
+  if (bytes >= 1e6) return fmt::format("{:.3g} MB", bytes / 1e6);
+  return fmt::format("{:.3g} kB", bytes / 1e3);
+}
+
+// The integrator of a stage; `auto_step`: a dynamic implicit stage's time step when its
+// implicit.time_step is 0.
+std::string integrator_summary(const Stage& st, double auto_step) {
+  if (st.integrator == IntegratorKind::Explicit) return ", explicit integrator";
+  const ImplicitSettings& im = st.implicit;
+  std::string t = fmt::format(", implicit integrator ({}", to_string(im.analysis));
+  if (im.analysis == ImplicitAnalysis::QuasiStatic)
+    t += fmt::format(" in {} load step{}", im.load_steps, im.load_steps == 1 ? "" : "s");
+  else if (im.time_step > 0.0)
+    t += fmt::format(", time step {} s", im.time_step);
+  else
+    t += fmt::format(", time step {:.4g} s ({:g} x the stable explicit step)", auto_step, kAutoImplicitSteps);
+  t += fmt::format(", {} iteration, {} linear solver)", to_string(im.iteration), to_string(im.linear_solver));
+  return t;
 }
 
 std::string stage_summary(const ScenarioCommon& s, const Stage& st) {
@@ -120,6 +143,8 @@ std::string describe(const ScenarioOf<D>& s) {
   }
   line(fmt::format("grid{}: {} cells of {} m, origin {}, extent {} m", D == 3 ? " (3D)" : "", cells,
                    s.cell_size, vec(s.origin), extent));
+  if (s.geometry == Geometry::Axisymmetric)
+    line("geometry: axisymmetric (x is the radius r, y the axis; masses and volumes per radian)");
   line(fmt::format("materials ({}):", s.materials.size()));
   for (const auto& m : s.materials)
     line(fmt::format("  {}: {}, density {} kg/m^3, young {} Pa, poisson {}{}", m.name, to_string(m.model),
@@ -152,8 +177,41 @@ std::string describe(const ScenarioOf<D>& s) {
       line(fmt::format("initial stress: K0 = {} from the overburden", s.initial_stress.k0));
       break;
   }
+  for (const BoundaryPressure& p : s.pressures) {
+    static const char* const faces[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+    line(fmt::format("pressure: {} Pa on the {} face of body {}{}", p.pressure, faces[p.side],
+                     s.bodies[static_cast<std::size_t>(p.body)].name,
+                     p.ramp_time > 0.0 ? fmt::format(", ramped over {} s", p.ramp_time) : ""));
+  }
   line(fmt::format("stages ({}):", s.stages.size()));
-  for (const auto& st : s.stages) line(stage_summary(s, st));
+  for (const auto& st : s.stages)
+    line(stage_summary(s, st) +
+         integrator_summary(st, st.integrator == IntegratorKind::Implicit ? implicit_time_step(s, st) : 0.0));
+  if (s.any_implicit()) {
+    const ImplicitSystemSize z = estimate_implicit_system(s);
+    line(
+        fmt::format("implicit system: about {:.3g} unknowns ({} per grid node of the cells the bodies' "
+                    "bounding boxes cover; an estimate)",
+                    z.unknowns, D));
+    bool direct = false;
+    for (const Stage& st : s.stages)
+      direct = direct || (st.integrator == IntegratorKind::Implicit &&
+                          st.implicit.linear_solver == LinearSolverKind::Direct);
+    if (direct) {
+      const std::string how =
+          D == 2 ? fmt::format(
+                       "a banded factorisation, unknowns x bandwidth 2 x {:.0f} nodes per row x {} x 8 B",
+                       z.row_nodes, D)
+                 : std::string("nested dissection, unknowns^(5/3) x 8 B");
+      line(fmt::format("  direct solver: about {} for the factorisation (an estimate: {}){}",
+                       bytes_text(z.direct_bytes), how,
+                       z.direct_bytes > 0.8 * available_memory_bytes()
+                           ? fmt::format("; more than this machine offers ({}): use linear_solver = "
+                                         "\"iterative\"",
+                                         bytes_text(available_memory_bytes()))
+                           : ""));
+    }
+  }
   static const char* const names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   std::string sides;
   for (int k = 0; k < 2 * D; ++k)
@@ -165,8 +223,14 @@ std::string describe(const ScenarioOf<D>& s) {
     interp += fmt::format(" ({} points per direction)", s.quadrature_points);
   const std::string step = s.time_step > 0.0 ? fmt::format("time step {} s", s.time_step)
                                              : fmt::format("time step from CFL {}", s.cfl);
-  line(fmt::format("solver: {} interpolation, {} scheme, end time {} s, {}", interp, to_string(s.scheme),
-                   s.end_time, step));
+  bool explicit_stages = false, implicit_stages = false;
+  for (const Stage& st : s.stages)
+    (st.integrator == IntegratorKind::Explicit ? explicit_stages : implicit_stages) = true;
+  line(fmt::format("solver: {} interpolation, {} scheme, end time {} s{}", interp, to_string(s.scheme),
+                   s.end_time,
+                   !explicit_stages  ? ""
+                   : implicit_stages ? ", " + step + " (explicit stages)"
+                                     : ", " + step));
   std::string transfer = to_string(s.velocity_transfer);
   if (s.velocity_transfer == VelocityTransfer::Xpic) {
     transfer += fmt::format("({})", s.xpic_order);

@@ -4,10 +4,12 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <fstream>
 #include <type_traits>
 #include <variant>
+#include <vector>
 
 #include "core/particles.hpp"
 #include "scenario/build.hpp"
@@ -100,6 +102,90 @@ ScenarioSize estimate_size(const ScenarioOf<D>& s) {
   return z;
 }
 
+template <int D>
+double implicit_time_step(const ScenarioOf<D>& s, const Stage& st) {
+  if (st.implicit.time_step > 0.0) return st.implicit.time_step;
+  return kAutoImplicitSteps * stable_time_step(s);
+}
+
+template <int D>
+ImplicitSystemSize estimate_implicit_system(const ScenarioOf<D>& s) {
+  // Each body's grid nodes as a half-open box of node indices [lo, hi) per axis: the nodes of
+  // the cells its bounding box covers.
+  using Box = std::array<std::array<long, 2>, D>;
+  std::vector<Box> boxes;
+  for (const BodyOf<D>& b : s.bodies) {
+    if (b.dilated_from >= 0) continue;  // its points are its parent's
+    const ShapeBox<D> bb = bounding_box(b.shape);
+    Box box;
+    for (int d = 0; d < D; ++d) {
+      const double cells = s.cells[static_cast<std::size_t>(d)];
+      const double lo = std::floor((bb.lo[d] - s.origin[d]) / s.cell_size);
+      const double hi = std::ceil((bb.hi[d] - s.origin[d]) / s.cell_size);
+      box[d] = {static_cast<long>(std::clamp(lo, 0.0, cells)),
+                static_cast<long>(std::clamp(hi, 0.0, cells)) + 1};
+    }
+    boxes.push_back(box);
+  }
+  ImplicitSystemSize z;
+  if (boxes.empty()) return z;
+  // The union's nodes: the boxes' corners cut each axis into intervals, and each product of
+  // intervals lies inside a box or outside all (exact; a bound above a few hundred bodies).
+  const double k = static_cast<double>(boxes.size());
+  if (std::pow(2.0 * k, D) * k <= 1e8) {
+    std::array<std::vector<long>, D> cuts;
+    for (const Box& b : boxes)
+      for (int d = 0; d < D; ++d) cuts[d].insert(cuts[d].end(), {b[d][0], b[d][1]});
+    std::array<std::size_t, D> n{};
+    for (int d = 0; d < D; ++d) {
+      std::sort(cuts[d].begin(), cuts[d].end());
+      cuts[d].erase(std::unique(cuts[d].begin(), cuts[d].end()), cuts[d].end());
+      n[d] = cuts[d].size() - 1;
+    }
+    std::size_t total = 1;
+    for (int d = 0; d < D; ++d) total *= n[d];
+    for (std::size_t flat = 0; flat < total; ++flat) {
+      std::array<long, D> lo{};
+      double volume = 1.0;
+      std::size_t rest = flat;
+      for (int d = 0; d < D; ++d) {
+        const std::size_t i = rest % n[d];
+        rest /= n[d];
+        lo[d] = cuts[d][i];
+        volume *= static_cast<double>(cuts[d][i + 1] - lo[d]);
+      }
+      for (const Box& b : boxes) {
+        bool inside = true;
+        for (int d = 0; d < D; ++d) inside = inside && b[d][0] <= lo[d] && lo[d] < b[d][1];
+        if (inside) {
+          z.nodes += volume;
+          break;
+        }
+      }
+    }
+  } else {
+    for (const Box& b : boxes) {
+      double nodes = 1.0;
+      for (int d = 0; d < D; ++d) nodes *= static_cast<double>(b[d][1] - b[d][0]);
+      z.nodes += nodes;
+    }
+    double grid = 1.0;
+    for (int c : s.cells) grid *= c + 1.0;
+    z.nodes = std::min(z.nodes, grid);
+  }
+  z.unknowns = D * z.nodes;
+  if constexpr (D == 2) {
+    long lo = boxes[0][0][0], hi = boxes[0][0][1];
+    for (const Box& b : boxes) lo = std::min(lo, b[0][0]), hi = std::max(hi, b[0][1]);
+    z.row_nodes = static_cast<double>(hi - lo);
+    z.bandwidth = 2.0 * z.row_nodes * D;
+    z.direct_bytes = z.unknowns * z.bandwidth * 8.0;
+  } else {
+    z.direct_bytes = std::pow(z.unknowns, 5.0 / 3.0) * 8.0;
+  }
+  return z;
+}
+
 double available_memory_bytes() {
   double bytes = static_cast<double>(sysconf(_SC_PHYS_PAGES)) * static_cast<double>(sysconf(_SC_PAGESIZE));
   std::ifstream cg("/sys/fs/cgroup/memory.max");
@@ -114,5 +200,9 @@ template double stable_time_step<2>(const Scenario&);
 template double stable_time_step<3>(const Scenario3&);
 template ScenarioSize estimate_size<2>(const Scenario&);
 template ScenarioSize estimate_size<3>(const Scenario3&);
+template double implicit_time_step<2>(const Scenario&, const Stage&);
+template double implicit_time_step<3>(const Scenario3&, const Stage&);
+template ImplicitSystemSize estimate_implicit_system<2>(const Scenario&);
+template ImplicitSystemSize estimate_implicit_system<3>(const Scenario3&);
 
 }  // namespace skred

@@ -29,6 +29,25 @@ struct ScenarioSize {
 template <int D>
 ScenarioSize estimate_size(const ScenarioOf<D>& s);
 
+// The time step of a dynamic implicit stage: its implicit.time_step, or 0 there:
+// kAutoImplicitSteps times the stable explicit step (ImplicitSettings::time_step).
+inline constexpr double kAutoImplicitSteps = 10.0;
+template <int D>
+double implicit_time_step(const ScenarioOf<D>& s, const Stage& st);
+
+// The implicit integrator's linear system, estimated from the grid and the bodies' bounding
+// boxes (the active nodes are those the points weight, numbered row by row): D unknowns per
+// grid node of the cells the bounding boxes cover, and what a direct factorisation stores.
+struct ImplicitSystemSize {
+  double nodes = 0;         // grid nodes of the cells the bodies' bounding boxes cover (their union)
+  double unknowns = 0;      // D per such node
+  double row_nodes = 0;     // 2D: nodes per grid row across those boxes (at most the grid's row)
+  double bandwidth = 0;     // 2D: 2 x row_nodes x D, the band of a row-by-row numbering
+  double direct_bytes = 0;  // 2D: unknowns x bandwidth x 8 (banded); 3D: unknowns^(5/3) x 8
+};
+template <int D>
+ImplicitSystemSize estimate_implicit_system(const ScenarioOf<D>& s);
+
 // Memory this machine offers a process: physical memory, or the cgroup limit when lower.
 double available_memory_bytes();
 

@@ -55,6 +55,8 @@ void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P) {
       for (std::size_t p : m) {
         double w = P.mass[p] * g;  // weight per unit width (2D) or area (3D)
         for (int h = 0; h < H; ++h) w /= 2.0 * P.half0[p][axis[h]];
+        if constexpr (D == 2)  // axisymmetric: the mass is per radian, m = rho A r
+          if (s.geometry == Geometry::Axisymmetric) w /= P.x[p][0];
         const bool own = column(0, P.x[p][0]) == cx && (H == 1 || column(1, P.x[p][axis[1]]) == cz);
         if (own) overburden[p] = above + 0.5 * w;  // the point's own column
         above += w;

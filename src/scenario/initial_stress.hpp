@@ -11,7 +11,9 @@ namespace skred {
 // sigma_yy = -|g_y| (weight per unit width (2D) or area (3D) of the material above the point,
 // plus half its own), sigma_xx = sigma_zz = K0 sigma_yy, no shear. The weight above a point
 // is summed over the points of every body whose voxel covers its x (3D: x and z) position,
-// so layered bodies of different densities are handled. Does nothing when the rule is None.
+// so layered bodies of different densities are handled (axisymmetric: each point's mass per
+// radian divided by its radius, so the stresses are those of plane strain). Does nothing when
+// the rule is None.
 template <int D>
 void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P);
 

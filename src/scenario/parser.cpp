@@ -179,6 +179,7 @@ void parse_solver(const TableReader& root, ScenarioCommon& s, bool slide) {
     t.fail_at("allow_unstable_time_step", "only meaningful with a fixed solver.time_step");
   s.pic_fraction = t.number("pic_fraction");
   scenario_detail::parse_velocity_transfer(t, s, slide);
+  scenario_detail::parse_integrator(root, t, s);
 }
 
 void parse_initial_stress(const TableReader& root, ScenarioCommon& s) {
@@ -239,6 +240,8 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
     st.name = "run";
     st.duration = s.end_time;
     st.gravity_ramp_time = s.gravity_ramp_time;
+    st.integrator = s.integrator;
+    st.implicit = s.implicit;
     s.stages.push_back(st);
     return;
   }
@@ -273,6 +276,12 @@ void parse_stages(const TableReader& root, ScenarioCommon& s) {
                                                    Stage::RestMeasure::Auto);
     st.local_damping = t.number("local_damping");
     st.runout_thickness = t.number_or("runout_thickness", 0.0);
+    st.integrator = t.choice<IntegratorKind>(
+        "integrator", {{"explicit", IntegratorKind::Explicit}, {"implicit", IntegratorKind::Implicit}},
+        s.integrator);
+    st.implicit = s.implicit;  // with the stage's [stage.implicit] over it
+    if (const auto im = t.table("implicit", false))
+      scenario_detail::parse_implicit_settings(im->follows("implicit"), st.implicit);
     s.end_time += st.duration;
     s.stages.push_back(std::move(st));
   }
@@ -441,10 +450,20 @@ void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
 constexpr double kMaxSteps = 1e9;
 
 // The time step against the stable explicit step (Thesis §2.2: dt <= h / c) and the number
-// of steps it gives.
+// of steps the explicit stages take at it; the steps of each dynamic implicit stage.
 template <int D>
 void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
   const auto solver = root.table("solver", false);
+  const auto stages = root.array_of_tables("stage");  // none: one stage
+  double explicit_time = 0.0;                         // the explicit stages' durations
+  std::size_t last_explicit = 0;
+  for (std::size_t k = 0; k < s.stages.size(); ++k)
+    if (s.stages[k].integrator == IntegratorKind::Explicit)
+      explicit_time += s.stages[k].duration, last_explicit = k;
+  if (s.time_step > 0.0 && explicit_time == 0.0)
+    solver->fail_at("time_step",
+                    "every stage runs the implicit integrator, which does not read solver.time_step; a "
+                    "dynamic implicit stage takes implicit.time_step");
   const double stable = stable_time_step(s);
   if (s.time_step > stable && !s.allow_unstable_time_step)
     solver->fail_at("time_step",
@@ -454,17 +473,34 @@ void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
                                 "set allow_unstable_time_step = true",
                                 s.time_step, stable, s.cell_size, s.cell_size / stable));
   const double dt = scenario_time_step(s);
-  const double steps = s.end_time / dt;
+  const double steps = explicit_time / dt;
   if (!(steps <= kMaxSteps)) {
     const std::string why = fmt::format(
         "the run would take {:.3g} time steps of {:.4g} s over {} s; "
         "at most {:.0e} are allowed",
-        steps, dt, s.end_time, kMaxSteps);
+        steps, dt, explicit_time, kMaxSteps);
     if (s.time_step > 0) solver->fail_at("time_step", why);
-    if (root.has("stage")) {
-      const auto stages = root.array_of_tables("stage");
-      stages.back().fail_at("duration", why);
+    if (last_explicit < stages.size()) stages[last_explicit].fail_at("duration", why);
+    solver->fail_at("end_time", why);
+  }
+  const auto implicit = root.table("implicit", false);
+  for (std::size_t k = 0; k < s.stages.size(); ++k) {
+    const Stage& st = s.stages[k];
+    if (st.integrator != IntegratorKind::Implicit || st.implicit.analysis != ImplicitAnalysis::Dynamic)
+      continue;
+    const double idt = implicit_time_step(s, st);
+    if (st.duration / idt <= kMaxSteps) continue;
+    const std::string why = fmt::format(
+        "stage \"{}\" would take {:.3g} implicit time steps of {:.4g} s over {} s; at most {:.0e} are "
+        "allowed",
+        st.name, st.duration / idt, idt, st.duration, kMaxSteps);
+    if (st.implicit.time_step > 0.0) {
+      if (k < stages.size())
+        if (const auto own = stages[k].table("implicit", false); own && own->has("time_step"))
+          own->follows("implicit").fail_at("time_step", why);
+      if (implicit) implicit->fail_at("time_step", why);
     }
+    if (k < stages.size()) stages[k].fail_at("duration", why);
     solver->fail_at("end_time", why);
   }
 }
@@ -495,6 +531,7 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
                  return !b.rigid && s.materials[static_cast<std::size_t>(b.material)].plastic();
                }));
   parse_stages(root, s);
+  scenario_detail::check_integrators<D>(root, s);
   parse_output(root, s);
   check_time_step(root, s);
   return s;

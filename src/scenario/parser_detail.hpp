@@ -74,6 +74,17 @@ void parse_contacts(const TableReader& root, ScenarioOf<D>& s);
 template <int D>
 void add_dilation_continua(const TableReader& root, ScenarioOf<D>& s);
 
+// The implicit integrator's tables (parser_implicit.cpp). The keys of an [implicit] or
+// [stage.implicit] table over `settings` (keys it does not set keep their value).
+void parse_implicit_settings(const TableReader& t, ImplicitSettings& settings);
+// solver.integrator's stages and [implicit] (before the stages, which start from them).
+void parse_integrator(const TableReader& root, const TableReader& solver, ScenarioCommon& s);
+// After the stages: the [[pressure]] tables, and what the stages' integrators refuse (an
+// [implicit] table no stage reads, axisymmetric explicit stages, contact, rigid bodies,
+// frictional walls, splitting or dilated continua with an implicit stage, ...).
+template <int D>
+void check_integrators(const TableReader& root, ScenarioOf<D>& s);
+
 // Layered ground (parser_ground.cpp): the [ground] surface, a "layer" body's profiles, and
 // the check that no two bodies claim the same points (unless the later one wins).
 void parse_ground(const TableReader& root, Scenario& s);

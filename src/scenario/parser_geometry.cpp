@@ -108,6 +108,20 @@ void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
     s.cells[static_cast<std::size_t>(d)] = static_cast<int>(n);
   }
   s.cell_size = h;
+  if constexpr (D == 3) {
+    if (g.has("geometry"))
+      g.fail_at("geometry",
+                "2D only: a 3D grid ([grid] size with 3 components) is neither plane strain nor "
+                "axisymmetric");
+  } else {
+    s.geometry = g.choice<Geometry>(
+        "geometry", {{"plane-strain", Geometry::PlaneStrain}, {"axisymmetric", Geometry::Axisymmetric}},
+        Geometry::PlaneStrain);
+    if (s.geometry == Geometry::Axisymmetric && s.origin[0] < 0.0)
+      g.fail_at("origin", fmt::format("in axisymmetric geometry x is the radius r: the grid must start at "
+                                      "x >= 0, got origin x = {}",
+                                      s.origin[0]));
+  }
 }
 
 template <int D>
@@ -140,6 +154,11 @@ void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
                                      "sub-cell centre (spacing {} m); enlarge it, refine the grid "
                                      "or raise particles_per_cell",
                                      b.name, s.cell_size / b.particles_per_cell));
+    if constexpr (D == 2)  // inside the grid, which starts at r >= 0 (parse_grid)
+      if (s.geometry == Geometry::Axisymmetric && bounding_box(b.shape).lo[0] < -grid_tolerance(s))
+        t.fail_at("shape", fmt::format("body \"{}\" reaches x = {} < 0; in axisymmetric geometry x is the "
+                                       "radius r >= 0",
+                                       b.name, bounding_box(b.shape).lo[0]));
     s.bodies.push_back(std::move(b));
   }
 }

@@ -15,6 +15,7 @@
 #include "scenario/output_fields.hpp"
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
+#include "solver/implicit_settings.hpp"
 #include "solver/scheme.hpp"
 #include "solver/splitting.hpp"
 #include "solver/velocity_transfer.hpp"
@@ -152,6 +153,10 @@ struct Stage {
   double runout_thickness = 0.0;
   // Local (non-viscous, Cundall type) damping alpha of the stage's grid update (0: off).
   double local_damping = 0.0;
+  // Which integrator advances the stage (stage.integrator, else solver.integrator), and the
+  // implicit integrator's settings for it ([implicit] with [stage.implicit] over it).
+  IntegratorKind integrator = IntegratorKind::Explicit;
+  ImplicitSettings implicit;
 };
 
 // Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies and the
@@ -206,6 +211,19 @@ struct ScenarioCommon {
   double xpic_period = 0.0;           // solver.xpic_period, in crossing times h / (c + v0); 0: every step
   bool volumetric_averaging = false;  // solver.volumetric_strain = "cell-average"
   bool centre_shear = false;          // solver.shear_strain = "cell-centre" (Thesis §4.5)
+  // solver.integrator: the stages' integrator unless a stage sets its own; [implicit]: the
+  // implicit integrator's settings unless a stage's [stage.implicit] overrides them.
+  IntegratorKind integrator = IntegratorKind::Explicit;
+  ImplicitSettings implicit;
+  // grid.geometry: plane strain, or axisymmetric (x the radius, y the axis; 2D only).
+  Geometry geometry = Geometry::PlaneStrain;
+  // [[pressure]]: pressures on bodies' faces that move with the material (implicit stages).
+  std::vector<BoundaryPressure> pressures;
+  bool any_implicit() const {
+    for (const Stage& st : stages)
+      if (st.integrator == IntegratorKind::Implicit) return true;
+    return false;
+  }
 
   double output_interval = 0.0;  // simulated time between particle frames
   double series_interval = 0.0;  // simulated time between rows of series.csv

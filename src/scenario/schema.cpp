@@ -69,10 +69,18 @@ void add_model_sections(std::vector<Section>& s) {
            {.name = "initial_stress", .type = Type::Table, .def = none(), .doc = "K0 initial stress"},
            {.name = "gravity", .type = Type::Table, .def = none(), .doc = "no gravity without it"},
            {.name = "boundary", .type = Type::Table, .def = none(), .doc = "all sides free without it"},
+           {.name = "pressure",
+            .type = Type::Tables,
+            .def = none(),
+            .doc = "pressures on faces of bodies that move with the material (implicit stages only)"},
            {.name = "solver",
             .type = Type::Table,
             .def = derived("required without [[stage]]"),
-            .doc = "interpolation, scheme, time step"},
+            .doc = "interpolation, scheme, time step, integrator"},
+           {.name = "implicit",
+            .type = Type::Table,
+            .def = none(),
+            .doc = "the implicit integrator's settings (stages with integrator = \"implicit\")"},
            {.name = "stage", .type = Type::Tables, .def = none(), .doc = "a staged analysis"},
            {.name = "output", .type = Type::Table, .def = none(), .doc = "output intervals"},
        }});
@@ -94,6 +102,12 @@ void add_model_sections(std::vector<Section>& s) {
                     .unit = "m",
                     .range = Range::closed(kMinCell, kMaxLength),
                     .doc = "h: cells are squares (cubes in 3D); see below"},
+                   {.name = "geometry",
+                    .type = Type::Choice,
+                    .def = derived("\"plane-strain\""),
+                    .choices = "plane-strain|axisymmetric",
+                    .doc = "2D only: \"axisymmetric\" makes x the radius r (origin x >= 0) and y the axis; "
+                           "masses and volumes are per radian; every stage needs integrator = \"implicit\""},
                }});
   s.push_back({"material", "material",
                concat(

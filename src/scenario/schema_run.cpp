@@ -67,9 +67,36 @@ void add_run_sections(std::vector<Section>& s) {
             .doc = "the coefficient mu; only with type = \"friction\""},
        }});
   s.push_back(
+      {"pressure",
+       "pressure",
+       {
+           {.name = "body", .type = Type::String, .doc = "the `name` of a [[body]]"},
+           {.name = "side",
+            .type = Type::Choice,
+            .choices = "x_min|x_max|y_min|y_max|z_min|z_max",
+            .doc = "the body's face: on each row of its points the outermost one towards this side of "
+                   "the grid carries the pressure on the edge of its domain (z_min, z_max in 3D only)"},
+           {.name = "value",
+            .unit = "Pa",
+            .range = Range::closed(-1e12, 1e12),
+            .doc = "the pressure at the end of the ramp; positive pushes into the body"},
+           {.name = "ramp_time",
+            .unit = "s",
+            .def = value(0),
+            .range = Range::non_negative(kMaxTime),
+            .doc = "linear ramp from the start of the run (t = 0); 0: the full pressure at once"},
+       }});
+  s.push_back(
       {"solver",
        "solver",
        {
+           {.name = "integrator",
+            .type = Type::Choice,
+            .def = derived("\"explicit\""),
+            .choices = "explicit|implicit",
+            .doc = "how every stage without its own `integrator` is advanced: \"explicit\", the central "
+                   "difference update of Thesis §2.2, or \"implicit\", Newton iterations on the grid's "
+                   "equilibrium equations (González Acosta et al. 2020; [implicit] below)"},
            {.name = "interpolation",
             .type = Type::Choice,
             .def = derived("\"gimp\""),
@@ -168,6 +195,73 @@ void add_run_sections(std::vector<Section>& s) {
                    "v_i^{k+1}; 0 is the force-based update of Thesis eq. 2.56; \"flip\" only"},
        }});
   s.push_back(
+      {"implicit",
+       "implicit",
+       {
+           {.name = "analysis",
+            .type = Type::Choice,
+            .def = derived("\"quasi-static\""),
+            .choices = "quasi-static|dynamic",
+            .doc = "\"quasi-static\": equilibrium without inertia, the stage's loads applied in "
+                   "`load_steps` steps; \"dynamic\": Newmark's trapezoidal rule (beta = 1/4, gamma = 1/2; "
+                   "Acosta eq. 8-10) with `time_step`"},
+           {.name = "time_step",
+            .unit = "s",
+            .def = value(0),
+            .range = Range::non_negative(kMaxTimeStep),
+            .doc = "\"dynamic\" only: the time step; 0: 10 times the stable explicit step h / (c + v0)"},
+           {.name = "load_steps",
+            .type = Type::Integer,
+            .def = value(1),
+            .range = Range::closed(1, 1e6),
+            .doc = "\"quasi-static\" only: the stage's duration in this many equal steps, its gravity "
+                   "ramp and pressure ramps followed over that pseudo-time"},
+           {.name = "iteration",
+            .type = Type::Choice,
+            .def = derived("\"newton\""),
+            .choices = "newton|elastic",
+            .doc = "\"newton\": Newton-Raphson with the materials' consistent tangent; \"elastic\": the "
+                   "elastic matrix, factorised once per step, the out-of-balance force re-applied until it "
+                   "vanishes (Acosta §2)"},
+           {.name = "residual_tolerance",
+            .unit = "-",
+            .def = value(1e-8),
+            .range = Range{0.0, 1.0, true, true},
+            .doc = "a step has converged when the out-of-balance force's norm is below this times the "
+                   "step's force scale (external plus inertial forces)"},
+           {.name = "displacement_tolerance",
+            .unit = "-",
+            .def = value(1e-10),
+            .range = Range{0.0, 1.0, true, true},
+            .doc = "... or when the iteration's displacement correction is below this times the step's "
+                   "displacement increment"},
+           {.name = "max_iterations",
+            .type = Type::Integer,
+            .def = value(25),
+            .range = Range::closed(1, 1000),
+            .doc = "iterations per step before the step is cut"},
+           {.name = "line_search",
+            .type = Type::Boolean,
+            .def = derived("true"),
+            .doc = "a backtracking line search on the residual (PETSc's \"bt\")"},
+           {.name = "max_cuts",
+            .type = Type::Integer,
+            .def = value(8),
+            .range = Range::closed(0, 30),
+            .doc = "a step that does not converge is halved at most this often"},
+           {.name = "linear_solver",
+            .type = Type::Choice,
+            .def = derived("\"direct\""),
+            .choices = "direct|iterative",
+            .doc = "\"direct\": a sparse factorisation (Cholesky where the tangent is symmetric, LU "
+                   "otherwise); \"iterative\": a Krylov solver with algebraic multigrid, for systems too "
+                   "large to factorise (`skred check` estimates the factorisation's memory)"},
+           {.name = "petsc_options",
+            .type = Type::String,
+            .def = derived("\"\""),
+            .doc = "extra PETSc options, e.g. \"-ksp_type gmres\", for experts"},
+       }});
+  s.push_back(
       {"stage",
        "stage",
        {
@@ -230,7 +324,17 @@ void add_run_sections(std::vector<Section>& s) {
             .doc = "0: off; Cundall-type local damping alpha for an equilibrium stage: each node feels "
                    "-alpha |f| sign(v) per component (f its unbalanced force); its work is the "
                    "series.csv column `damping_work`; with contact, on each body's nodes except the "
-                   "interface's"},
+                   "interface's; explicit stages only"},
+           {.name = "integrator",
+            .type = Type::Choice,
+            .def = derived("solver.integrator"),
+            .choices = "explicit|implicit",
+            .doc = "the stage's integrator"},
+           {.name = "implicit",
+            .type = Type::Table,
+            .def = none("[implicit]'s"),
+            .doc = "changes to [implicit] for this stage, any of its keys (`[stage.implicit]` after the "
+                   "`[[stage]]`); implicit stages only"},
        }});
   s.push_back({"stage.material",
                "stage-material",

@@ -80,6 +80,9 @@ struct EnergyTotals {
   // Work of the local (Cundall) damping of an equilibrium stage, per step
   // -dt sum_i f_i^damp . (v_i^k + v_i^{k+1}) / 2 (grid_update); zero when it is off.
   double damping_work = 0.0;
+  // Work of the boundary pressures (implicit stages, [[pressure]]), per step
+  // sum_i (f_i^t + f_i^{t+dt}) / 2 . du_i: energy supplied, like the gravity work.
+  double load_work = 0.0;
 };
 
 // The solver's state between two steps beyond the particles and the scenario, for a

@@ -29,7 +29,8 @@ struct GridFields {
   GridArray<Vec<D>> velocity_next;
   // XPIC(m): a scratch array (allocated only for XPIC; v*_i is formed in velocity_next).
   GridArray<Vec<D>> xpic_work;
-  // The double mapping of USL and the averaged scheme (Thesis §4.4 step 6): the updated
+  // The momentum remap of USL and the averaged scheme (Thesis §4.4 step 6; not Acosta's
+  // double mapping of stresses, eq. 12-13): the updated
   // particle momenta mapped back, p~_i = sum N_ip m_p v_p^{k+1}, and v~_i = p~_i / m_i, which
   // the second stress update reads (allocated only for those schemes).
   GridArray<Vec<D>> momentum_remap;

@@ -26,7 +26,7 @@ void ExplicitSolver<D>::nodal_velocity() {
   });
 }
 
-// v~_i = p~_i / m_i from the double mapping (USL, averaged), under the velocity boundary
+// v~_i = p~_i / m_i from the momentum remap (USL, averaged), under the velocity boundary
 // conditions. m_i, p_i and p~_i are used up: they are cleared behind, ready for the next
 // step's map.
 template <int D>

@@ -31,7 +31,8 @@ struct UpdateStressFirst {
 };
 
 // Update stress last: forces from sigma^k, the momentum update, the updated particle momenta
-// mapped back to the grid (double mapping), and the stress update from those velocities.
+// mapped back to the grid (the momentum remap; Acosta's "double mapping" is another thing, of
+// stresses), and the stress update from those velocities.
 struct UpdateStressLast {
   template <class Solver, class K>
   static bool advance(Solver& s, const K& kernel) {

@@ -1,7 +1,7 @@
 // Every point's weighting functions N_ip and gradients (Thesis eq. 2.46-2.47, 3.14-3.15) of
 // the current step, evaluated once by the map that starts the step and read by every later
-// transfer of the step (explicit phases, and an implicit solver's stiffness and double
-// mapping). The stored form follows the kernel (K::Packed).
+// transfer of the step (the explicit phases; the implicit integrator keeps its own,
+// implicit/point_stencils.hpp). The stored form follows the kernel (K::Packed).
 #pragma once
 #include <cstddef>
 #include <variant>

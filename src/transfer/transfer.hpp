@@ -1,7 +1,8 @@
 // The transfer layer's state for one background grid: the geometry, the box of nodes the
 // points reach, the per-thread scatter buffers and the points' stored weighting functions.
-// The explicit solver owns one; an implicit solver can own another and use the same maps
-// (transfers.hpp) and weights to assemble its stiffness and to map twice (double mapping).
+// The explicit solver owns one. (The implicit integrator, src/implicit, keeps its own weights
+// per step; the "remap" of USL and the averaged scheme here is not Acosta's double mapping,
+// which maps stresses to the grid and back.)
 #pragma once
 #include <algorithm>
 #include <climits>

@@ -1,7 +1,7 @@
 // Particle-to-grid (p2g) and grid-to-particle (g2p) maps over (particle arrays, stored
 // weights, grid arrays), parallel and lock-free. The explicit phases fuse some of them point
 // by point (map_point below); the whole-array forms serve everything else (the start of a
-// run, per-body fields for contact, an implicit solver's double mapping).
+// run, per-body fields for contact, the momentum remap of USL and the averaged scheme).
 #pragma once
 #include <omp.h>
 

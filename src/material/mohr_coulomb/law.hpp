@@ -1,6 +1,6 @@
 // Mohr-Coulomb and Tresca as a const law with the consistent tangent (Thesis eq. 5.1-5.4 after
-// Clausen et al.; Acosta eq. 5 and 10 need the tangent). The update is mohr_coulomb_update (the
-// solver's own return mapping, run on copies); the tangent is computed beside it.
+// Clausen et al.; the implicit Newton-Raphson iteration assembles the tangent). The update is
+// mohr_coulomb_update (the solver's own return mapping, run on copies); the tangent is computed beside it.
 //
 // Tangent. The return works on the ordered principal values lambda of the trial stress
 // sigma^tr = sigma^k + C : d_eps and keeps the trial's principal directions v_i:

@@ -1,6 +1,6 @@
 // Von Mises with linear softening as a const law with the consistent tangent (Acosta §3.2;
-// Acosta eq. 5 and 10 need the tangent). The update is von_mises_update (the solver's own
-// radial return, run on copies); the tangent is computed beside it.
+// the implicit Newton-Raphson iteration assembles the tangent). The update is von_mises_update (the solver's
+// own radial return, run on copies); the tangent is computed beside it.
 //
 // Tangent. With s^tr the trial deviator, q = sqrt(J2(s^tr)) and the radial return
 // sigma = p^tr 1 + beta s^tr, beta = 1 - G dl / q (von_mises.cpp),

@@ -1,0 +1,146 @@
+// The unknowns of an implicit step: D displacement components at every node that carries mass
+// (the active nodes, numbered in flat-index order), and the compressed-row pattern of the
+// stiffness matrix from the points' stencils, exact (two nodes are coupled when a point weights
+// both). A component held by a wall (Dirichlet condition) keeps its row as an identity row with
+// a zero right-hand side, so the matrix keeps the symmetry of the tangent and a node's D
+// unknowns stay together (PETSc's block size, the multigrid's near null space).
+#pragma once
+#include <omp.h>
+
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "implicit/linear_system.hpp"
+#include "implicit/point_stencils.hpp"
+
+namespace skred {
+
+template <int D>
+class DofMap {
+ public:
+  // `mass` per grid node (its active nodes: mass > 0), `held` per grid node the bits c of its
+  // components held by a wall.
+  void build(const PointStencils<D>& st, int S, const GridGeometry<D>& g, const std::vector<double>& mass,
+             const std::vector<std::uint8_t>& held, int threads) {
+    S_ = S;
+    W_ = 2 * S - 1;
+    int box = 1;
+    for (int d = 0; d < D; ++d) box *= W_;
+    words_ = (box + 63) / 64;
+    // Active nodes in flat order.
+    active_.assign(mass.size(), -1);
+    nodes_.clear();
+    for (std::size_t i = 0; i < mass.size(); ++i)
+      if (mass[i] > 0.0) {
+        active_[i] = static_cast<std::int32_t>(nodes_.size());
+        nodes_.push_back(static_cast<std::int64_t>(i));
+      }
+    held_.assign(nodes_.size(), 0);
+    for (std::size_t a = 0; a < nodes_.size(); ++a) held_[a] = held[static_cast<std::size_t>(nodes_[a])];
+    // Offset index of node l seen from node k of one block: o = sum_d (l_d - k_d + S - 1) W^d.
+    const int K = st.K;
+    pair_offset_.assign(static_cast<std::size_t>(K * K), 0);
+    for (int k = 0; k < K; ++k)
+      for (int l = 0; l < K; ++l) {
+        int o = 0, pw = 1, rk = k, rl = l;
+        for (int d = 0; d < D; ++d) {
+          o += (rl % S - rk % S + S - 1) * pw;
+          pw *= W_;
+          rk /= S;
+          rl /= S;
+        }
+        pair_offset_[static_cast<std::size_t>(k * K + l)] = o;
+      }
+    // Which offsets each active node couples to.
+    mask_.assign(nodes_.size() * static_cast<std::size_t>(words_), 0);
+    const std::size_t n = st.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t p = 0; p < n; ++p)
+      for (int k = 0; k < K; ++k) {
+        const std::int32_t a = active_[static_cast<std::size_t>(st.node[p * K + k])];
+        if (a < 0) continue;
+        std::uint64_t* m = &mask_[static_cast<std::size_t>(a) * words_];
+        for (int l = 0; l < K; ++l) {
+          if (active_[static_cast<std::size_t>(st.node[p * K + l])] < 0) continue;
+          const int o = pair_offset_[static_cast<std::size_t>(k * K + l)];
+          __atomic_fetch_or(&m[o / 64], std::uint64_t{1} << (o % 64), __ATOMIC_RELAXED);
+        }
+      }
+    // Rows: node a's D rows each hold D entries per coupled node, in flat (= active) order.
+    const std::size_t rows = nodes_.size() * D;
+    pattern_.row_start.assign(rows + 1, 0);
+    std::vector<int> count(nodes_.size());
+    for (std::size_t a = 0; a < nodes_.size(); ++a) {
+      int c = 0;
+      for (int w = 0; w < words_; ++w) c += std::popcount(mask_[a * words_ + w]);
+      count[a] = c;
+      for (int r = 0; r < D; ++r) pattern_.row_start[a * D + r + 1] = c * D;
+    }
+    for (std::size_t r = 0; r < rows; ++r) pattern_.row_start[r + 1] += pattern_.row_start[r];
+    pattern_.column.resize(static_cast<std::size_t>(pattern_.row_start[rows]));
+    std::vector<std::int64_t> offset_step(static_cast<std::size_t>(box));
+    for (int o = 0; o < box; ++o) {
+      std::int64_t step = 0;
+      for (int d = 0, r = o; d < D; ++d, r /= W_)
+        step += static_cast<std::int64_t>(r % W_ - (S - 1)) * static_cast<std::int64_t>(g.stride(d));
+      offset_step[static_cast<std::size_t>(o)] = step;
+    }
+    fill_columns(offset_step, threads);
+  }
+
+ private:
+  // Fills the column indices, given each offset's flat-index step (the grid's strides).
+  void fill_columns(const std::vector<std::int64_t>& offset_step, int threads) {
+    const std::size_t na = nodes_.size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t a = 0; a < na; ++a) {
+      std::int32_t* col = &pattern_.column[static_cast<std::size_t>(pattern_.row_start[a * D])];
+      int j = 0;
+      for (int w = 0; w < words_; ++w)
+        for (std::uint64_t bits = mask_[a * words_ + w]; bits; bits &= bits - 1) {
+          const int o = 64 * w + std::countr_zero(bits);
+          const std::int64_t b = nodes_[a] + offset_step[static_cast<std::size_t>(o)];
+          const std::int32_t ab = active_[static_cast<std::size_t>(b)];
+          for (int c = 0; c < D; ++c) col[j++] = ab * D + c;
+        }
+      const int len = j;
+      for (int r = 1; r < D; ++r)
+        for (int i = 0; i < len; ++i) col[r * len + i] = col[i];
+    }
+  }
+
+ public:
+  int dofs() const { return static_cast<int>(nodes_.size()) * D; }
+  std::size_t active_nodes() const { return nodes_.size(); }
+  // Active index of grid node i, -1 when it carries no mass.
+  std::int32_t active(std::size_t i) const { return active_[i]; }
+  std::int64_t node(std::size_t a) const { return nodes_[a]; }
+  bool held(std::size_t a, int c) const { return (held_[a] >> c) & 1u; }
+  const SparsePattern& pattern() const { return pattern_; }
+  int box_width() const { return W_; }
+  // Position in the values of entry (row a D + r, column b D + c) for the block coupling
+  // active node a to the node at offset o from it: row_entry(a, r, o) + c.
+  std::int32_t row_entry(std::size_t a, int r, int o) const {
+    const std::uint64_t* m = &mask_[a * words_];
+    int rank = 0;
+    for (int w = 0; w < o / 64; ++w) rank += std::popcount(m[w]);
+    rank += std::popcount(m[o / 64] & ((std::uint64_t{1} << (o % 64)) - 1));
+    const std::int32_t start = pattern_.row_start[a * D + r];
+    return start + rank * D;
+  }
+  int pair_offset(int k, int l, int K) const { return pair_offset_[static_cast<std::size_t>(k * K + l)]; }
+
+ private:
+  int S_ = 2, W_ = 3, words_ = 1;
+  std::vector<std::int32_t> active_;
+  std::vector<std::int64_t> nodes_;
+  std::vector<std::uint8_t> held_;
+  std::vector<std::uint64_t> mask_;
+  std::vector<int> pair_offset_;
+  SparsePattern pattern_;
+};
+
+}  // namespace skred

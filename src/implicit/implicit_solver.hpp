@@ -1,0 +1,182 @@
+// The implicit MPM of González Acosta et al. 2020 (seed 001, §2 and App. B): each step maps the
+// points' mass, velocity and acceleration to a fresh grid at x^k, keeps the points' weights
+// through the step's iterations, and solves the equilibrium equation (eq. 3, with Newmark's
+// inertia, eq. 8-10, 47) for the nodal displacement increment du by Newton-Raphson; the points
+// move and their stresses commit only once it has converged. The quasi-static analysis is the
+// same without inertia, in load steps.
+//
+// One step (step()):
+//   map_step        stencils N_ip, dN_ip at x^k; lumped m_i; v_i, a_i (eq. 43-44); the unknowns
+//                   and the matrix pattern (dof_map.hpp); the loads at t + dt (loads.cpp)
+//   solve_step      Newton-Raphson on R(du) = F_ext - F_int(du) - M (4 du / dt^2 - 4 v / dt - a)
+//                   (eq. 47-48) with the consistent tangent K + 4 M / dt^2 (eq. 10-11), or
+//                   Acosta's iteration (§2: the elastic matrix, factorised once per step); a line
+//                   search; a step that does not converge is halved and tried again
+//   commit_step     the laws' stresses and states, F, Fe, x_p, and Newmark's update of the
+//                   points' acceleration and velocity (eq. 41-42)
+#pragma once
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <omp.h>
+#include "implicit/dof_map.hpp"
+#include "implicit/linear_system.hpp"
+#include "implicit/point_stencils.hpp"
+#include "material/law_result.hpp"
+#include "shape/interpolation.hpp"
+#include "solver/boundary_side.hpp"
+#include "solver/integrator.hpp"
+
+namespace skred {
+
+// What the implicit integrator takes from a scenario besides its points and materials.
+template <int D>
+struct ImplicitModel {
+  GridGeometry<D> grid;
+  Interpolation interpolation = Interpolation::Gimp;
+  int quadrature_points = 2;
+  Vec<D> gravity = Vec<D>::Zero();
+  std::array<BoundarySide, 2 * D> boundaries{};
+  Geometry geometry = Geometry::PlaneStrain;  // 2D only
+  std::vector<BoundaryPressure> pressures;
+};
+
+// The phases of an implicit step whose wall time summary.json reports ("implicit_" + name).
+enum class ImplicitPhase { Map, Assembly, Factorisation, Solve, StressUpdate, Commit, Count };
+
+class ImplicitPhaseTimer {
+ public:
+  template <class Fn>
+  decltype(auto) time(ImplicitPhase p, Fn&& fn) {
+    struct Add {
+      double& s;
+      double t0;
+      ~Add() { s += omp_get_wtime() - t0; }
+    } add{seconds_[static_cast<std::size_t>(p)], omp_get_wtime()};
+    return fn();
+  }
+  std::vector<std::pair<std::string, double>> report() const {
+    static constexpr const char* names[] = {"implicit_map",           "implicit_assembly",
+                                            "implicit_factorisation", "implicit_solve",
+                                            "implicit_stress_update", "implicit_commit"};
+    std::vector<std::pair<std::string, double>> r;
+    for (std::size_t k = 0; k < seconds_.size(); ++k)
+      if (seconds_[k] > 0.0) r.emplace_back(names[k], seconds_[k]);
+    return r;
+  }
+
+ private:
+  std::array<double, static_cast<std::size_t>(ImplicitPhase::Count)> seconds_{};
+};
+
+// Totals over the implicit steps of a run (summary.json).
+struct ImplicitTotals {
+  long steps = 0;       // converged steps
+  long iterations = 0;  // linear solves of the converged steps
+  long cut_steps = 0;   // steps that were halved at least once
+  long factorisations = 0;
+  long max_unknowns = 0;
+  double max_factor_bytes = 0.0;
+  std::string linear_solver;  // PETSc's KSP + PC (+ factor package)
+};
+
+template <int D>
+class ImplicitSolver final : public Integrator<D> {
+ public:
+  ImplicitSolver(ImplicitModel<D> model, Particles<D>& particles, std::vector<Material> materials,
+                 int threads);
+
+  // The settings of the stage that begins or resumes, its step dt [s] (dynamic: the time step;
+  // quasi-static: duration / load_steps) and its end time; call before begin_stage.
+  void set_stage(const ImplicitSettings& settings, double dt, double end_time);
+  const ImplicitTotals& implicit_totals() const { return totals_; }
+
+  IntegratorKind kind() const override { return IntegratorKind::Implicit; }
+  StepStatus step() override;
+  void particles_changed() override {}
+  double time() const override { return time_; }
+  long steps() const override { return steps_; }
+  double dt() const override { return dt_; }
+  const EnergyTotals& energy() const override { return energy_; }
+  ParticleTotals<D> totals() const override;
+  double material_mean_speed() override { return totals().mean_speed; }
+  const GridGeometry<D>& grid() const override { return model_.grid; }
+  int threads() const override { return threads_; }
+  bool sort_by_nearest_node() const override { return false; }
+  bool contact_on() const override { return false; }
+  void begin_stage(std::vector<Material> materials, double gravity_ramp_time) override;
+  void set_local_damping(double) override {}
+  const std::vector<Material>& materials() const override { return materials_; }
+  void smoothed_stress(std::vector<Sym3>& out) override;
+  const std::vector<double>& node_mass() const override { return node_mass_; }
+  const std::vector<Vec<D>>& node_velocity() const override { return node_velocity_; }
+  const std::vector<Sym3>& node_stress() const override { return node_stress_; }
+  SolverClock clock() const override { return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_}; }
+  void restore(const SolverClock& c, std::vector<Material> materials) override;
+  std::vector<std::pair<std::string, double>> phase_seconds() const override { return timer_.report(); }
+  StepReport last_step() const override { return report_; }
+
+  // The residual norms of the last step's iterations, relative to its force scale (tests:
+  // Newton's quadratic convergence).
+  const std::vector<double>& residual_history() const { return history_; }
+
+ private:
+  bool dynamic() const { return settings_.analysis == ImplicitAnalysis::Dynamic; }
+  bool axisymmetric() const { return D == 2 && model_.geometry == Geometry::Axisymmetric; }
+  // implicit_step.cpp
+  StepStatus map_step();
+  void held_components();
+  void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
+  void pressure_forces(double t, std::vector<double>& f) const;  // loads.cpp
+  double residual(const std::vector<double>& du, double dt, bool tangent);
+  void assemble(double dt, bool elastic);
+  bool solve_step(double dt, std::string& why);
+  void commit_step(double dt);
+  void initial_acceleration();
+
+  ImplicitModel<D> model_;
+  Particles<D>& P_;
+  std::vector<Material> materials_;
+  int threads_;
+  ImplicitSettings settings_;
+  double dt_ = 0.0, end_time_ = 0.0;
+  double time_ = 0.0, ramp_start_ = 0.0, gravity_ramp_time_ = 0.0;
+  long steps_ = 0;
+  EnergyTotals energy_;
+  ImplicitTotals totals_;
+  StepReport report_;
+  std::vector<double> history_;
+  ImplicitPhaseTimer timer_;
+  LinearSystem system_;
+  bool configured_ = false;
+  bool symmetric_ = true;
+
+  // The step's map (kept through its iterations and cuts).
+  PointStencils<D> stencils_;
+  int width_ = 2;  // S, nodes per axis of a point's stencil
+  DofMap<D> dofs_;
+  std::vector<double> grid_mass_;            // per grid node (scratch of map_step)
+  std::vector<std::uint8_t> grid_held_;      // per grid node
+  std::vector<double> mass_;                 // m_i per unknown (lumped, eq. 43)
+  std::vector<double> v_bar_, a_bar_;        // v_i^t, a_i^t per unknown (eq. 43-44)
+  std::vector<double> f_ext_, f_ext_start_;  // F_ext at t + dt and at t
+  std::vector<double> inv_r_;                // 1 / r_p (axisymmetric), else empty
+  std::vector<double> volume_;               // V_p at x^k
+  // Newton's iterates.
+  std::vector<double> du_, ddu_, r_, trial_du_;
+  double force_scale_ = 0.0;
+  // The points' trial update at the current iterate.
+  std::vector<Sym3> deps_, trial_stress_, trial_plastic_;
+  std::vector<PointState> trial_state_;
+  std::vector<Mat6> tangent_;
+  std::vector<Mat6> elastic_tangent_;  // per material
+
+  // Nodal fields of the last smoothed_stress() call.
+  std::vector<double> node_mass_;
+  std::vector<Vec<D>> node_velocity_;
+  std::vector<Sym3> node_stress_;
+};
+
+}  // namespace skred

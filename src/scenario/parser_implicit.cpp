@@ -1,0 +1,184 @@
+// The implicit integrator's part of a scenario file (González Acosta et al. 2020):
+// solver.integrator and the stages' `integrator`, [implicit] with each stage's
+// [stage.implicit] over it, the [[pressure]] tables, and what an integrator refuses
+// (docs/scenario.md, "The implicit integrator").
+#include <optional>
+#include <string>
+
+#include "scenario/parser_detail.hpp"
+
+namespace skred::scenario_detail {
+
+namespace {
+
+constexpr Choices<IntegratorKind> kIntegrators = {{"explicit", IntegratorKind::Explicit},
+                                                  {"implicit", IntegratorKind::Implicit}};
+
+constexpr const char* kSideNames[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
+
+// Index of the body of the file called `name` (not a dilated continuum), or a message listing them.
+template <int D>
+int pressure_body(const TableReader& t, const ScenarioOf<D>& s) {
+  const std::string name = t.string("body");
+  std::string names;
+  for (std::size_t i = 0; i < s.bodies.size(); ++i) {
+    if (s.bodies[i].dilated_from >= 0) continue;
+    if (s.bodies[i].name == name) return static_cast<int>(i);
+    names += fmt::format("{}\"{}\"", names.empty() ? "" : ", ", s.bodies[i].name);
+  }
+  t.fail_at("body", fmt::format("no [[body]] is called \"{}\"; the bodies are {}", name, names));
+}
+
+// The [[pressure]] tables; `explicit_stage` is a stage that runs the explicit integrator, if any.
+template <int D>
+void parse_pressures(const TableReader& root, ScenarioOf<D>& s, const Stage* explicit_stage) {
+  const auto tables = root.array_of_tables("pressure");
+  if (tables.empty()) return;
+  if (explicit_stage)
+    fail(s.source, root.where("pressure"), "pressure",
+         fmt::format("pressures are applied by the implicit integrator only, and stage \"{}\" runs the "
+                     "explicit one; set integrator = \"implicit\" for every stage",
+                     explicit_stage->name));
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const TableReader& t = tables[i];
+    t.allow_declared();
+    BoundaryPressure p;
+    p.body = pressure_body(t, s);
+    p.side = t.choice<int>(
+        "side", {{"x_min", 0}, {"x_max", 1}, {"y_min", 2}, {"y_max", 3}, {"z_min", 4}, {"z_max", 5}});
+    if (p.side >= 2 * D) t.fail_at("side", fmt::format("\"{}\" needs a 3D grid", t.string("side")));
+    p.pressure = t.number("value");
+    p.ramp_time = t.number("ramp_time");
+    for (std::size_t j = 0; j < s.pressures.size(); ++j)
+      if (s.pressures[j].body == p.body && s.pressures[j].side == p.side)
+        t.fail_at("side",
+                  fmt::format("body \"{}\" has a pressure on its {} face already (pressure[{}])",
+                              s.bodies[static_cast<std::size_t>(p.body)].name, kSideNames[p.side], j));
+    s.pressures.push_back(p);
+  }
+}
+
+const char* analysis_text(ImplicitAnalysis a) {
+  return a == ImplicitAnalysis::Dynamic
+             ? "only a dynamic analysis (analysis = \"dynamic\") has a time step; "
+               "a quasi-static one is split into load_steps"
+             : "only a quasi-static analysis (analysis = \"quasi-static\") is split "
+               "into load steps; a dynamic one takes time_step";
+}
+
+}  // namespace
+
+void parse_implicit_settings(const TableReader& t, ImplicitSettings& im) {
+  t.allow_declared();
+  if (t.has("analysis"))
+    im.analysis = t.choice<ImplicitAnalysis>("analysis", {{"quasi-static", ImplicitAnalysis::QuasiStatic},
+                                                          {"dynamic", ImplicitAnalysis::Dynamic}});
+  if (t.has("time_step")) im.time_step = t.number("time_step");
+  if (t.has("load_steps")) im.load_steps = static_cast<int>(t.integer("load_steps"));
+  if (t.has("iteration"))
+    im.iteration = t.choice<ImplicitIteration>(
+        "iteration", {{"newton", ImplicitIteration::Newton}, {"elastic", ImplicitIteration::Elastic}});
+  if (t.has("residual_tolerance")) im.residual_tolerance = t.number("residual_tolerance");
+  if (t.has("displacement_tolerance")) im.displacement_tolerance = t.number("displacement_tolerance");
+  if (t.has("max_iterations")) im.max_iterations = static_cast<int>(t.integer("max_iterations"));
+  if (t.has("line_search")) im.line_search = t.boolean_or("line_search", im.line_search);
+  if (t.has("max_cuts")) im.max_cuts = static_cast<int>(t.integer("max_cuts"));
+  if (t.has("linear_solver"))
+    im.linear_solver = t.choice<LinearSolverKind>(
+        "linear_solver", {{"direct", LinearSolverKind::Direct}, {"iterative", LinearSolverKind::Iterative}});
+  if (t.has("petsc_options")) im.petsc_options = t.string("petsc_options");
+}
+
+void parse_integrator(const TableReader& root, const TableReader& solver, ScenarioCommon& s) {
+  s.integrator = solver.choice<IntegratorKind>("integrator", kIntegrators, IntegratorKind::Explicit);
+  if (const auto t = root.table("implicit", false)) parse_implicit_settings(*t, s.implicit);
+}
+
+template <int D>
+void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
+  const std::vector<TableReader> stage_tables = root.array_of_tables("stage");  // none: one stage
+  const auto stage_implicit = [&](std::size_t k) -> std::optional<TableReader> {
+    if (k >= stage_tables.size()) return std::nullopt;
+    const auto t = stage_tables[k].table("implicit", false);
+    if (!t) return std::nullopt;
+    return t->follows("implicit");
+  };
+  const Stage* explicit_stage = nullptr;
+  const Stage* implicit_stage = nullptr;
+  for (const Stage& st : s.stages) {
+    const Stage*& first = st.integrator == IntegratorKind::Implicit ? implicit_stage : explicit_stage;
+    if (!first) first = &st;
+  }
+  const std::optional<TableReader> implicit = root.table("implicit", false);
+  if (implicit && !implicit_stage)
+    fail(s.source, root.where("implicit"), "implicit",
+         "no stage runs the implicit integrator; set solver.integrator = \"implicit\" (or a stage's "
+         "integrator = \"implicit\"), or remove [implicit]");
+  for (std::size_t k = 0; k < stage_tables.size() && k < s.stages.size(); ++k)
+    if (s.stages[k].integrator == IntegratorKind::Explicit && stage_tables[k].has("implicit"))
+      stage_tables[k].fail_at("implicit", fmt::format("the stage (\"{}\") runs the explicit integrator; set "
+                                                      "integrator = \"implicit\"",
+                                                      s.stages[k].name));
+  if (s.geometry == Geometry::Axisymmetric && explicit_stage)
+    root.table("grid", true)
+        ->fail_at("geometry", fmt::format("axisymmetric runs need integrator = \"implicit\" for every stage; "
+                                          "stage \"{}\" runs the explicit integrator",
+                                          explicit_stage->name));
+  parse_pressures(root, s, explicit_stage);
+  if (!implicit_stage) return;
+
+  // What the implicit integrator does not support (yet).
+  const auto why = [&](const std::string& what) {
+    return fmt::format("{} is not available with integrator = \"implicit\" (stage \"{}\")", what,
+                       implicit_stage->name);
+  };
+  if (root.has("contact"))
+    fail(s.source, root.where("contact"), "contact", why("contact between bodies ([[contact]])"));
+  const std::vector<TableReader> body_tables = root.array_of_tables("body");
+  for (std::size_t i = 0; i < body_tables.size() && i < s.bodies.size(); ++i) {
+    if (s.bodies[i].rigid)
+      body_tables[i].fail_at("rigid", why(fmt::format("a rigid body (\"{}\")", s.bodies[i].name)));
+    if (s.bodies[i].split) body_tables[i].fail_at("split", why("material-point splitting"));
+  }
+  for (const BodyOf<D>& b : s.bodies)
+    if (b.dilated_from >= 0 && static_cast<std::size_t>(b.dilated_from) < body_tables.size())
+      body_tables[static_cast<std::size_t>(b.dilated_from)].fail_at(
+          "dilation_continuum", why(fmt::format("a dilated continuum (\"{}\")", b.name)));
+  if (!s.contacts.empty()) fail(s.source, root.where("body"), "body", why("contact between bodies"));
+  for (int k = 0; k < 2 * D; ++k)
+    if (s.boundaries[static_cast<std::size_t>(k)].kind == BoundaryKind::Friction)
+      root.table("boundary", true)->fail_at(kSideNames[k], why("a frictional wall (type = \"friction\")"));
+  for (std::size_t k = 0; k < stage_tables.size() && k < s.stages.size(); ++k)
+    if (s.stages[k].integrator == IntegratorKind::Implicit && s.stages[k].local_damping > 0.0)
+      stage_tables[k].fail_at("local_damping",
+                              fmt::format("local damping is not available with integrator = \"implicit\" "
+                                          "(stage \"{}\")",
+                                          s.stages[k].name));
+
+  // time_step is read by dynamic stages only, load_steps by quasi-static ones.
+  const std::pair<const char*, ImplicitAnalysis> uses[2] = {{"time_step", ImplicitAnalysis::Dynamic},
+                                                            {"load_steps", ImplicitAnalysis::QuasiStatic}};
+  for (const auto& [key, analysis] : uses) {
+    bool read = false;  // an implicit stage of that analysis takes [implicit]'s value
+    for (std::size_t k = 0; k < s.stages.size(); ++k) {
+      const Stage& st = s.stages[k];
+      if (st.integrator != IntegratorKind::Implicit) continue;
+      const auto own = stage_implicit(k);
+      if (own && own->has(key)) {
+        if (st.implicit.analysis != analysis)
+          own->fail_at(key, fmt::format("stage \"{}\" is {}: {}", st.name, to_string(st.implicit.analysis),
+                                        analysis_text(analysis)));
+      } else if (st.implicit.analysis == analysis) {
+        read = true;
+      }
+    }
+    if (implicit && implicit->has(key) && !read)
+      implicit->fail_at(key, fmt::format("no {} implicit stage reads it: {}", to_string(analysis),
+                                         analysis_text(analysis)));
+  }
+}
+
+template void check_integrators<2>(const TableReader&, Scenario&);
+template void check_integrators<3>(const TableReader&, Scenario3&);
+
+}  // namespace skred::scenario_detail

@@ -1,0 +1,82 @@
+// What a scenario says about the implicit integrator (González Acosta et al. 2020, §2, eq. 3-11,
+// 47-48) and the geometry of a 2D grid (App. A1). Plain data: the scenario parses it
+// ([implicit], [stage.implicit], [grid] geometry, [[pressure]]), the implicit integrator
+// (src/implicit) reads it.
+#pragma once
+#include <string>
+#include <vector>
+
+namespace skred {
+
+// Which integrator advances a stage.
+enum class IntegratorKind { Explicit, Implicit };
+
+inline const char* to_string(IntegratorKind k) {
+  return k == IntegratorKind::Implicit ? "implicit" : "explicit";
+}
+
+// A 2D grid's geometry: plane strain, or axisymmetric with x the radius r and y the axis
+// (Acosta App. A1: every integral over one radian, weighted by r).
+enum class Geometry { PlaneStrain, Axisymmetric };
+
+inline const char* to_string(Geometry g) {
+  return g == Geometry::Axisymmetric ? "axisymmetric" : "plane-strain";
+}
+
+// Dynamic: Newmark's trapezoidal rule (beta = 1/4, gamma = 1/2; Acosta eq. 8-10). Quasi-static:
+// the same equations without inertia (eq. 3 without M a), in load steps.
+enum class ImplicitAnalysis { QuasiStatic, Dynamic };
+
+inline const char* to_string(ImplicitAnalysis a) {
+  return a == ImplicitAnalysis::Dynamic ? "dynamic" : "quasi-static";
+}
+
+// The matrix each Newton iteration solves with: the consistent (algorithmic) tangent of the
+// materials (Newton-Raphson), or Acosta's own iteration (§2): the elastic matrix D_p, assembled and
+// factorised once per step, with the out-of-balance force re-applied until it vanishes.
+enum class ImplicitIteration { Newton, Elastic };
+
+inline const char* to_string(ImplicitIteration i) {
+  return i == ImplicitIteration::Elastic ? "elastic" : "newton";
+}
+
+// How each linear system is solved: a direct factorisation (Cholesky where the tangent is
+// symmetric, LU otherwise) or an iterative Krylov solver with algebraic multigrid.
+enum class LinearSolverKind { Direct, Iterative };
+
+inline const char* to_string(LinearSolverKind k) {
+  return k == LinearSolverKind::Iterative ? "iterative" : "direct";
+}
+
+// The implicit integrator's settings ([implicit], overridden per stage by [stage.implicit]).
+struct ImplicitSettings {
+  ImplicitAnalysis analysis = ImplicitAnalysis::QuasiStatic;
+  // Dynamic: the time step [s] (0: 10 times the explicit stable step). Quasi-static: the
+  // stage's duration is split into load_steps equal steps (its loads follow the stage's
+  // gravity ramp and the pressures' ramps over that pseudo-time).
+  double time_step = 0.0;
+  int load_steps = 1;
+  ImplicitIteration iteration = ImplicitIteration::Newton;
+  // Convergence: the out-of-balance force's norm below residual_tolerance times the norm of the
+  // step's force scale (external plus inertial forces), or the iteration's displacement
+  // correction below displacement_tolerance times the step's displacement increment.
+  double residual_tolerance = 1e-8;
+  double displacement_tolerance = 1e-10;
+  int max_iterations = 25;  // Newton iterations per step before it is cut
+  bool line_search = true;  // backtracking line search on the residual (PETSc's "bt")
+  int max_cuts = 8;         // a step that does not converge is halved at most this often
+  LinearSolverKind linear_solver = LinearSolverKind::Direct;
+  std::string petsc_options;  // extra PETSc options ("-ksp_type gmres ..."), for experts
+};
+
+// A pressure on a body's face that moves with the material (the hollow cylinder's inner wall,
+// Acosta §3.1, fig. 2c-d): on each row (2D) of the body's points, the outermost point towards
+// `side` carries it on the edge of its domain, x_p -+ l_p. Positive values push into the body.
+struct BoundaryPressure {
+  int body = 0;
+  int side = 0;            // 2 axis + (0: the body's face towards -axis, 1: towards +axis)
+  double pressure = 0.0;   // [Pa] at the end of the ramp
+  double ramp_time = 0.0;  // linear ramp from the start of the run, t = 0 [s]; 0: at once
+};
+
+}  // namespace skred
