@@ -26,7 +26,7 @@ def last_frame(run):
     u = vtk_to_numpy(cd.GetArray("displacement"))[:, :2]
     s = vtk_to_numpy(cd.GetArray("stress"))
     ref = x - u
-    order = np.lexsort((np.round(ref[:, 0], 6), np.round(ref[:, 1], 6)))
+    order = np.lexsort((np.round(ref[:, 0], 3), np.round(ref[:, 1], 3)))
     return ref[order], s[order]
 
 

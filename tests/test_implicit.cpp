@@ -428,3 +428,77 @@ TEST(ImplicitColumn, IterativeSolverAgreesWithTheDirectOne) {
   for (std::size_t p = 0; p < direct.P.size(); ++p)
     EXPECT_NEAR(iterative.P.x[p][1], direct.P.x[p][1], 1e-6 * kRho * kG * kH * kH / kM);
 }
+
+// The implicit examples are valid and run their implicit stages (the cylinder to its end).
+TEST(ImplicitExamples, HollowCylinderAndVerticalCutAreImplicit) {
+  const std::string dir = std::string(SKRED_SOURCE_DIR) + "/examples/";
+  const Scenario cut = std::get<Scenario>(load_any_scenario(dir + "vertical_cut_implicit.toml"));
+  EXPECT_EQ(cut.stages.front().implicit.analysis, ImplicitAnalysis::Dynamic);
+  const Scenario cyl = std::get<Scenario>(load_any_scenario(dir + "hollow_cylinder.toml"));
+  EXPECT_EQ(cyl.geometry, Geometry::Axisymmetric);
+  ASSERT_EQ(cyl.pressures.size(), 1u);
+  test::TempDir out;
+  RunOptions opt;
+  opt.progress = false;
+  const RunResult r = run_simulation(cyl, out.path(), opt);
+  EXPECT_TRUE(r.completed) << r.message;
+  EXPECT_EQ(r.steps, cyl.stages.front().implicit.load_steps);
+}
+
+// Checkpoint and restart serve the implicit integrator: a dynamic run (the bar of R1) stopped
+// after step 20 and continued from its checkpoint writes the series of the run that was not
+// stopped, bit for bit (one thread: the same sums in the same order).
+TEST(ImplicitRunDriver, RestartContinuesADynamicRunBitForBit) {
+  const std::string text = R"(
+[grid]
+size = [33.0, 0.5]
+cell_size = 0.5
+[[material]]
+name = "bar"
+model = "linear-elastic"
+density = 1.0
+young = 100.0
+poisson = 0.0
+[[body]]
+name = "bar"
+material = "bar"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [25.0, 0.5]
+velocity_sine = { amplitude = [0.1, 0.0], wavelength = 100.0, axis = "x" }
+[boundary]
+x_min = "fixed"
+y_min = "roller"
+y_max = "roller"
+[solver]
+end_time = 20.0
+integrator = "implicit"
+[implicit]
+analysis = "dynamic"
+[output]
+interval = 5.0
+series_interval = 0.5
+)";
+  const Scenario s = parse_scenario(text, "bar.toml");
+  test::TempDir dir;
+  RunOptions opt;
+  opt.progress = false;
+  opt.threads = 1;
+  opt.checkpoint_every = 1000000;
+  const RunResult a = run_simulation(s, dir / "a", opt);
+  ASSERT_TRUE(a.completed) << a.message;
+  RunOptions stop = opt;
+  stop.stop_at_step = 20;
+  const RunResult b = run_simulation(s, dir / "b", stop);
+  ASSERT_TRUE(b.interrupted) << b.message;
+  RunOptions again = opt;
+  again.restart = dir / "b" / "checkpoint.skc";
+  const RunResult c = run_simulation(s, dir / "b", again);
+  ASSERT_TRUE(c.completed) << c.message;
+  EXPECT_EQ(c.steps, a.steps);
+  auto read = [](const std::filesystem::path& f) {
+    std::ifstream in(f);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  EXPECT_EQ(read(dir / "a" / "series.csv"), read(dir / "b" / "series.csv"));
+}

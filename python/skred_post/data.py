@@ -187,7 +187,11 @@ def load_frame(outdir, step=-1, view=None):
     if not 0 <= step < len(index):
         raise PostError(f"step {step} out of range: {outdir} has frames 0..{len(index) - 1}")
     i, t, p = index[step]
-    return read_frame(p, t, i, view)
+    frame = read_frame(p, t, i, view)
+    summary = read_summary(outdir)
+    if summary and (summary.get("implicit") or {}).get("geometry") == "axisymmetric":
+        frame.axes = ("r", "y")  # the r-y section: x is the radius (grid.geometry, App. A1)
+    return frame
 
 
 def select(frame, spec):

@@ -134,7 +134,13 @@ StepStatus ImplicitSolver<D>::step() {
   report_ = {};
   std::string why;
   for (int cut = 0;; ++cut) {
-    if (solve_step(dt, why)) break;
+    bool converged = false;
+    try {
+      converged = solve_step(dt, why);
+    } catch (const LinearSolverError& e) {  // PETSc failed (out of memory, a zero pivot, ...)
+      why = e.what();
+    }
+    if (converged) break;
     if (cut >= settings_.max_cuts)
       return {
           false, -1,

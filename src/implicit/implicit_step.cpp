@@ -41,9 +41,13 @@ StepStatus ImplicitSolver<D>::map_step() {
   const std::size_t n = P_.size();
   const int K = stencils_.K;
   grid_mass_.assign(g.node_count(), 0.0);
+  double* gm = grid_mass_.data();
+#pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
-    for (int k = 0; k < K; ++k)
-      grid_mass_[static_cast<std::size_t>(stencils_.node[p * K + k])] += stencils_.N[p * K + k] * P_.mass[p];
+    for (int k = 0; k < K; ++k) {
+#pragma omp atomic
+      gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * P_.mass[p];
+    }
   // A node whose mass is round-off (a point's support ends on it) is no unknown: its equation
   // would balance round-off forces and pin the stress of the points around it.
   double m_max = 0.0;
@@ -65,18 +69,31 @@ StepStatus ImplicitSolver<D>::map_step() {
     for (std::size_t p = 0; p < n; ++p) inv_r_[p] = 1.0 / P_.x[p][0];
   }
   system_.set_pattern(dofs_.pattern());
+  if (settings_.linear_solver == LinearSolverKind::Iterative) {
+    std::vector<double>& xyz = trial_du_;  // (scratch until the iterations start)
+    xyz.resize(dofs);
+    for (std::size_t a = 0; a < dofs_.active_nodes(); ++a) {
+      const Vec<D> x = g.node_position(static_cast<std::size_t>(dofs_.node(a)));
+      for (int c = 0; c < D; ++c) xyz[a * D + c] = x[c];
+    }
+    system_.set_coordinates(xyz);
+  }
   if (!dynamic()) return {};
   if (P_.acceleration.size() != n) initial_acceleration();
   v_bar_.assign(dofs, 0.0);
   a_bar_.assign(dofs, 0.0);
+  double *vb = v_bar_.data(), *ab = a_bar_.data();
+#pragma omp parallel for num_threads(threads_) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
       const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
       if (a < 0) continue;
       const double wm = stencils_.N[p * K + k] * P_.mass[p];
       for (int c = 0; c < D; ++c) {
-        v_bar_[a * D + c] += wm * P_.v[p][c];
-        a_bar_[a * D + c] += wm * P_.acceleration[p][c];
+#pragma omp atomic
+        vb[a * D + c] += wm * P_.v[p][c];
+#pragma omp atomic
+        ab[a * D + c] += wm * P_.acceleration[p][c];
       }
     }
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)

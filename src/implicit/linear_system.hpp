@@ -40,6 +40,9 @@ class LinearSystem {
   void configure(LinearSolverKind kind, const std::string& petsc_options, bool symmetric, int block);
   // A new pattern (each step: the points moved); the values are zeroed.
   void set_pattern(const SparsePattern& pattern);
+  // The nodes' coordinates (block values each, in the unknowns' order): the multigrid builds
+  // the rigid-body modes of elasticity from them (its near null space). Iterative only.
+  void set_coordinates(const std::vector<double>& xyz);
   // The values in the pattern's order, to assemble into.
   std::vector<double>& values() { return values_; }
   // Hands the assembled values to PETSc and factorises (direct) or sets the preconditioner up.
@@ -58,6 +61,7 @@ class LinearSystem {
   std::unique_ptr<Petsc> petsc_;
   SparsePattern pattern_;
   std::vector<double> values_;
+  std::vector<double> coordinates_;  // set_coordinates
   std::string reason_;
   int iterations_ = 0;
   bool symmetric_ = true;

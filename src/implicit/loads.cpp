@@ -18,14 +18,19 @@ void ImplicitSolver<D>::external_forces(double t, std::vector<double>& f) const 
   f.assign(static_cast<std::size_t>(dofs_.dofs()), 0.0);
   const Vec<D> g = gravity_at(model_.gravity, gravity_ramp_time_, t - ramp_start_);
   const int K = stencils_.K;
-  if (g.squaredNorm() > 0.0)
-    for (std::size_t p = 0; p < P_.size(); ++p)
-      for (int k = 0; k < K; ++k) {
-        const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
-        if (a < 0) continue;
-        const double w = stencils_.N[p * K + k] * P_.mass[p];
-        for (int c = 0; c < D; ++c) f[static_cast<std::size_t>(a) * D + c] += w * g[c];
+  double* fa = f.data();
+  const std::size_t n = g.squaredNorm() > 0.0 ? P_.size() : 0;
+#pragma omp parallel for num_threads(threads_) schedule(static)
+  for (std::size_t p = 0; p < n; ++p)
+    for (int k = 0; k < K; ++k) {
+      const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
+      if (a < 0) continue;
+      const double w = stencils_.N[p * K + k] * P_.mass[p];
+      for (int c = 0; c < D; ++c) {
+#pragma omp atomic
+        fa[static_cast<std::size_t>(a) * D + c] += w * g[c];
       }
+    }
   pressure_forces(t, f);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c)
