@@ -31,6 +31,20 @@ void refuse_if_too_big(const ScenarioOf<D>& s, const ScenarioSize& z) {
         "{:.3g} grid nodes) and this machine offers {}; coarsen the grid, lower "
         "particles_per_cell or shrink the bodies (or pass --force to try anyway)",
         s.source, gigabytes(z.memory_bytes), z.points, z.nodes, gigabytes(available)));
+  // An implicit stage with the direct solver also holds the factor of its stiffness matrix.
+  bool direct = false;
+  for (const Stage& st : s.stages)
+    direct = direct || (st.integrator == IntegratorKind::Implicit &&
+                        st.implicit.linear_solver == LinearSolverKind::Direct);
+  if (!direct) return;
+  const ImplicitSystemSize k = estimate_implicit_system(s);
+  if (z.memory_bytes + k.direct_bytes > 0.8 * available)
+    throw ScenarioError(fmt::format(
+        "{}: key 'implicit.linear_solver': the direct solver's factor of about {:.3g} unknowns needs "
+        "about {} beside the points' {}, and this machine offers {}; set linear_solver = "
+        "\"iterative\" (CG or GMRES with algebraic multigrid), or coarsen the grid (or pass --force to "
+        "try anyway)",
+        s.source, k.unknowns, gigabytes(k.direct_bytes), gigabytes(z.memory_bytes), gigabytes(available)));
 }
 
 template <int D>

@@ -198,11 +198,8 @@ std::string describe(const ScenarioOf<D>& s) {
       direct = direct || (st.integrator == IntegratorKind::Implicit &&
                           st.implicit.linear_solver == LinearSolverKind::Direct);
     if (direct) {
-      const std::string how =
-          D == 2 ? fmt::format(
-                       "a banded factorisation, unknowns x bandwidth 2 x {:.0f} nodes per row x {} x 8 B",
-                       z.row_nodes, D)
-                 : std::string("nested dissection, unknowns^(5/3) x 8 B");
+      const std::string how = D == 2 ? fmt::format("MUMPS' measured {:g} B x N log2 N", kDirectBytes2)
+                                     : fmt::format("MUMPS' measured {:g} B x N^(4/3)", kDirectBytes3);
       line(fmt::format("  direct solver: about {} for the factorisation (an estimate: {}){}",
                        bytes_text(z.direct_bytes), how,
                        z.direct_bytes > 0.8 * available_memory_bytes()

@@ -38,12 +38,15 @@ double implicit_time_step(const ScenarioOf<D>& s, const Stage& st);
 // The implicit integrator's linear system, estimated from the grid and the bodies' bounding
 // boxes (the active nodes are those the points weight, numbered row by row): D unknowns per
 // grid node of the cells the bounding boxes cover, and what a direct factorisation stores.
+inline constexpr double kDirectBytes2 = 230.0, kDirectBytes3 = 1000.0;
 struct ImplicitSystemSize {
-  double nodes = 0;         // grid nodes of the cells the bodies' bounding boxes cover (their union)
-  double unknowns = 0;      // D per such node
-  double row_nodes = 0;     // 2D: nodes per grid row across those boxes (at most the grid's row)
-  double bandwidth = 0;     // 2D: 2 x row_nodes x D, the band of a row-by-row numbering
-  double direct_bytes = 0;  // 2D: unknowns x bandwidth x 8 (banded); 3D: unknowns^(5/3) x 8
+  double nodes = 0;      // grid nodes of the cells the bodies' bounding boxes cover (their union)
+  double unknowns = 0;   // D per such node
+  double row_nodes = 0;  // 2D: nodes per grid row across those boxes (at most the grid's row)
+  double bandwidth = 0;  // 2D: 2 x row_nodes x D, the band of a row-by-row numbering
+  // What MUMPS' factorisation takes (nested dissection), fitted to measurements: 2D
+  // kDirectBytes2 x N log2 N, 3D kDirectBytes3 x N^(4/3), N the unknowns.
+  double direct_bytes = 0;
 };
 template <int D>
 ImplicitSystemSize estimate_implicit_system(const ScenarioOf<D>& s);
