@@ -16,7 +16,7 @@
 # PROBLEMS=slope50 runs examples/slope_50m.toml instead (the slope at the thesis's scale, 50 m
 # high; h = 5, 2.5, 1.25 m: 60, 120, 240 cells across its grid, and by the count of the soil's
 # cells the thesis's 39, 77, 154 across; SIZES="3.3333333333333335 1.6666666666666667
-# 0.8333333333333334" starts at the thesis's 58: docs/method.md, "At the thesis's own discretisation").
+# 0.8333333333333334" starts at the thesis's 58: docs/studies/2026-11-29-slope-50m-at-the-thesis-discretisation.md).
 #   scripts/convergence.sh [build/skred] [transfers...]     e.g.  scripts/convergence.sh build/skred xpic apic
 #   PROBLEMS="column" THREADS=2 OUT=out/convergence scripts/convergence.sh
 #   PROBLEMS=column SIZES="0.125 0.0625" scripts/convergence.sh build/skred apic   (other sizes)
@@ -40,7 +40,7 @@
 #                               gives the mean runout, its half-range and the mean's change)
 #   HALF=1 PROBLEMS=column ...   (the column's symmetric half: the grid from its axis, x = 0 to
 #                               20 m, with the roller side at the axis; half the points and time,
-#                               the same tips to 0.3 % at h/4: docs/method.md, "One halving further";
+#                               the same tips to 0.3 % at h/4: docs/studies/2026-11-29-column-at-h16.md;
 #                               deposit_front.py's gravity work is then the half's)
 set -e
 skred=${1:-build/skred}

@@ -465,3 +465,25 @@ TEST(CliRun, CheckGivesASlopesLimitEquilibrium) {
             std::string::npos)
       << elastic.output;
 }
+
+// Under an address-space limit (ulimit -v) a scenario that cannot fit is refused by its size,
+// naming the key, before it starts (fuzzing: such a run ended in a bare std::bad_alloc; one that
+// passes the estimate and still runs out now says "out of memory" with what was left, main.cpp).
+// The soil column at 2 cm cells: 1.1e6 points, about 0.66 GB.
+TEST(CliRun, AnAddressSpaceLimitIsRead) {
+  TempDir d;
+  std::string t = read(fs::path(SKRED_SOURCE_DIR) / "examples" / "soil_column.toml");
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"cell_size = 0.5", "cell_size = 0.02"},
+                                 {"time_step = 0.001", "cfl = 0.5"}}) {
+    const auto at = t.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    t.replace(at, from.size(), to);
+  }
+  write(d / "fine.toml", t);
+  const Outcome small =
+      sh("ulimit -v 600000; " + kSkred + " run " + q(d / "fine.toml") + " -o " + q(d / "out"));
+  EXPECT_EQ(small.code, 5) << small.output;
+  EXPECT_NE(small.output.find("key 'grid.cell_size': the scenario needs about"), std::string::npos)
+      << small.output;
+  EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
+}

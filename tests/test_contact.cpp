@@ -127,8 +127,8 @@ TEST(ContactDiscs, FrictionlessDiscsCollideAndPartUSF) { check_discs(StressSchem
 // least a cell apart at the end), momentum to round-off, friction work >= 0, and no energy
 // from nowhere. Both transfers take the discs' grid-scale vibration that FLIP keeps (measured:
 // kinetic + strain energy -39 % with APIC, -46 % with XPIC over the run); what they took is
-// booked as transfer dissipation only in part (docs/method.md, "Velocity transfers"). The affine
-// FLIP gains 0.32 % here (its affine loss booked -1.0 %), so scenarios refuse it with contact.
+// booked as transfer dissipation only in part (docs/studies/2026-11-23-velocity-transfers-compared.md). The
+// affine FLIP gains 0.32 % here (its affine loss booked -1.0 %), so scenarios refuse it with contact.
 TEST(ContactDiscs, FrictionlessDiscsCollideAndPartApicXpic) {
   for (const VelocityTransfer vt : {VelocityTransfer::Apic, VelocityTransfer::Xpic}) {
     const DiscRun r = run_discs(StressScheme::Averaged, true, vt);

@@ -76,7 +76,7 @@ TEST(Extrapolate, KnownExpansionAndGrowingChanges) {
 }
 
 // An apparent order outside 0.5 to 4 is reported with a caution: the 50 m slope's mean tips with
-// the default at h = 10/3, 5/3 and 5/6 m (docs/method.md, "Where the face falls in its cells"),
+// the default at h = 10/3, 5/3 and 5/6 m (docs/studies/2026-11-29-slope-50m-at-the-thesis-discretisation.md),
 // +5.89 and +5.88 m, give R = 1.00 and p = 0.00 towards some 3.5 km. Sizes given to 7 digits are
 // still halvings.
 TEST(Extrapolate, AnImplausibleOrderIsFlagged) {

@@ -2,6 +2,7 @@
 // stratigraphy from CSV profiles builds the same points as the polygons drawn by hand, every
 // malformed profile is a located error, and overlapping bodies are refused unless the later
 // one wins.
+#include <fmt/core.h>
 #include <gtest/gtest.h>
 #include <stdlib.h>
 
@@ -185,6 +186,13 @@ TEST(Ground, MalformedProfilesNameTheFileAndLine) {
   }
   EXPECT_NE(error_of(layer("\"missing.csv\""), toml).find("key 'body[0].bottom': cannot open profile file"),
             std::string::npos);
+  // A device or a directory as the profile: a clear error, not an endless read (fuzzing).
+  EXPECT_NE(error_of(layer("\"/dev/zero\""), toml)
+                .find("key 'body[0].bottom': cannot read profile file "
+                      "'/dev/zero': it is not a regular file"),
+            std::string::npos);
+  EXPECT_NE(error_of(layer(fmt::format("\"{}\"", dir.string())), toml).find("it is a directory"),
+            std::string::npos);
   EXPECT_NE(
       error_of(layer("[[0, 5], [10, 6], [5, 7]]"), toml).find("key 'body[0].bottom[2]': x must increase"),
       std::string::npos);
@@ -192,6 +200,28 @@ TEST(Ground, MalformedProfilesNameTheFileAndLine) {
   EXPECT_NE(error_of(kHead + "[[body]]\nmaterial = \"clay\"\nshape = \"layer\"\n", toml)
                 .find("key 'body[0].shape': a layer needs `top`"),
             std::string::npos);
+  fs::remove_all(dir);
+}
+
+// A scenario that is not a regular file, or far larger than any scenario, is refused at once
+// (fuzzing: /dev/zero and /dev/urandom hung `check` and `run`).
+TEST(Ground, ScenarioFilesThatCannotEndAreRefused) {
+  const auto error = [](const std::string& path) {
+    try {
+      load_any_scenario(path);
+    } catch (const ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(error("/dev/zero").find("/dev/zero: cannot read as a scenario file: it is not a regular file"),
+            std::string::npos);
+  EXPECT_NE(error("/dev/urandom").find("it is not a regular file"), std::string::npos);
+  const fs::path dir = temp_dir();
+  EXPECT_NE(error(dir.string()).find("it is a directory"), std::string::npos);
+  { std::ofstream big(dir / "big.toml"); }
+  fs::resize_file(dir / "big.toml", (std::uintmax_t{16} << 20) + 1);  // sparse
+  EXPECT_NE(error((dir / "big.toml").string()).find("more than the 16 MiB"), std::string::npos);
   fs::remove_all(dir);
 }
 

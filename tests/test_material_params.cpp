@@ -61,7 +61,7 @@ std::string scenario(Model m, const std::string& skip, const std::string& key, d
   t += extra;
   t += "[[body]]\nname = \"b\"\nmaterial = \"soil\"\nparticles_per_cell = 2\nshape = "
        "\"rectangle\"\nmin = [0.0, 0.0]\nmax = [1.0, 1.0]\n"
-       "[solver]\nend_time = 1.0\n[output]\ninterval = 0.1\n";
+       "[solver]\nend_time = 500.0\n[output]\ninterval = 0.1\n";  // (longer than one step at E = 1 mPa)
   return t;
 }
 

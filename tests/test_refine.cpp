@@ -218,7 +218,7 @@ TEST(Refine, ASplittingCapGrowsWithThePointsAndEveryLevelIsCheckedFirst) {
 }
 
 // Richardson's extrapolation of the last three sizes, on rows with the soil column's figures of
-// docs/method.md ("The filter per unit time": the default 3.753 / 4.123 / 4.238 m at h = 0.5 /
+// docs/studies/2026-11-26-filter-per-unit-time.md ( the default 3.753 / 4.123 / 4.238 m at h = 0.5 /
 // 0.25 / 0.125 m) and the 10 m slope's (0.869 / 2.324 / 3.988 m, whose change grows).
 TEST(Refine, RichardsonsExtrapolationOfTheLastThreeSizes) {
   const auto series = [](const std::string& transfer, double h, std::vector<double> runout,

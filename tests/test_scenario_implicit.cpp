@@ -206,6 +206,34 @@ integrator = "implicit"
   EXPECT_TRUE(m.any_implicit());
 }
 
+TEST(ImplicitScenario, PrescribedVelocitiesAreParsed) {
+  const Scenario s = parse(implicit_text(R"(
+[[prescribed_velocity]]
+min = [0, 1]
+max = [0.5, 1]
+velocity = [0, -0.01]
+
+[[prescribed_velocity]]
+name = "plate"
+min = [1.0, 0.0]
+max = [1.0, 1.0]
+velocity = [0.002, 0]
+components = "x"
+)"));
+  ASSERT_EQ(s.prescribed.size(), 2u);
+  EXPECT_EQ(s.prescribed[0].name, "prescribed0");
+  EXPECT_EQ(s.prescribed[0].components, 0b11);  // "all"
+  EXPECT_EQ(s.prescribed[0].velocity[1], -0.01);
+  EXPECT_EQ(s.prescribed[0].max[0], 0.5);
+  EXPECT_EQ(s.prescribed[1].name, "plate");
+  EXPECT_EQ(s.prescribed[1].components, 0b01);
+  EXPECT_NE(
+      describe(s).find("prescribed velocity \"plate\": the nodes in [1, 0] to [1, 1] driven at [0.002, 0] "
+                       "m/s (x held)"),
+      std::string::npos)
+      << describe(s);
+}
+
 TEST(ImplicitScenario, PressuresAreParsed) {
   const Scenario s = parse(implicit_text(R"(
 [[pressure]]
@@ -339,6 +367,40 @@ TEST(ImplicitScenario, EveryErrorNamesItsKey) {
        "= "
        "\"s\"\nshape = \"box\"\nmin = [0, 0, 0]\nmax = [1, 1, 1]\n[solver]\nend_time = 1.0\n",
        "grid.geometry"},
+      {"prescribed velocity with the explicit integrator",
+       explicit_text("[[prescribed_velocity]]\nmin = [0, 1]\nmax = [0.5, 1]\nvelocity = [0, -1]\n"),
+       "prescribed_velocity"},
+      {"prescribed velocity with the B-spline",
+       implicit_text("interpolation = \"bspline\"\n[[prescribed_velocity]]\nmin = [0, 1]\nmax = [0.5, "
+                     "1]\nvelocity = [0, -1]\n"),
+       "prescribed_velocity"},
+      {"prescribed velocity between nodes",
+       implicit_text("[[prescribed_velocity]]\nmin = [0, 1.1]\nmax = [0.5, 1.2]\nvelocity = [0, -1]\n"),
+       "prescribed_velocity[0].min"},
+      {"prescribed velocity outside the grid",
+       implicit_text("[[prescribed_velocity]]\nmin = [0, 3]\nmax = [0.5, 4]\nvelocity = [0, -1]\n"),
+       "prescribed_velocity[0].min"},
+      {"prescribed velocity box upside down",
+       implicit_text("[[prescribed_velocity]]\nmin = [0, 1]\nmax = [0.5, 0.5]\nvelocity = [0, -1]\n"),
+       "prescribed_velocity[0].max"},
+      {"prescribed velocity without velocity",
+       implicit_text("[[prescribed_velocity]]\nmin = [0, 1]\nmax = [0.5, 1]\n"),
+       "prescribed_velocity[0].velocity"},
+      {"prescribed velocity of z in 2D",
+       implicit_text(
+           "[[prescribed_velocity]]\nmin = [0, 1]\nmax = [0.5, 1]\nvelocity = [0, -1]\ncomponents = "
+           "\"z\"\n"),
+       "prescribed_velocity[0].components"},
+      {"prescribed velocities of one name",
+       implicit_text(
+           "[[prescribed_velocity]]\nname = \"f\"\nmin = [0, 1]\nmax = [0.5, 1]\nvelocity = [0, "
+           "-1]\n[[prescribed_velocity]]\nname = \"f\"\nmin = [1, 1]\nmax = [1.5, 1]\nvelocity = [0, "
+           "-1]\n"),
+       "prescribed_velocity[1].name"},
+      {"prescribed velocity name with a comma",
+       implicit_text("[[prescribed_velocity]]\nname = \"a,b\"\nmin = [0, 1]\nmax = [0.5, 1]\nvelocity = [0, "
+                     "-1]\n"),
+       "prescribed_velocity[0].name"},
       {"pressure with the explicit integrator",
        explicit_text("[[pressure]]\nbody = \"block\"\nside = \"x_max\"\nvalue = 1e5\n"), "pressure"},
       {"pressure on an unknown body",

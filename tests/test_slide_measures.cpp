@@ -173,8 +173,8 @@ TEST(SlideMeasures, ASlopeMovedRigidlyRunsOutByTheDistanceItMoved) {
 // Over a base layer every column holds material, so the deposit is also cut where the slide left
 // a column unraised: a clump that came to rest beyond bare ground is not the front, however high
 // it stands (on the 50 m slope at 10/7 m cells such a clump, 3 m^2 two columns beyond the
-// deposit, had set the runout 4.6 m too far; docs/method.md, "At the thesis's own
-// discretisation").
+// deposit, had set the runout 4.6 m too far; docs/studies/2026-11-29-slope-50m-at-the-
+// thesis-discretisation.md).
 TEST(SlideMeasures, AClumpBeyondBareGroundOnABaseLayerDoesNotMoveTheFront) {
   const double width = 1.0;
   const Particles<2> slope = hand_made_slope();

@@ -363,10 +363,10 @@ TEST(Stages, LocalDampingBringsAnEquilibriumStageToRestInFewerSteps) {
 // phase changes the velocities afterwards). Damped, the stage ends at rest in fewer steps and
 // the damping does positive work. The energy balance is printed, not asserted: with the lid
 // ringing on the column the contact's bookkeeping misses (undamped +24 % of the gravity work
-// after 1 s, damped -4.0 %; docs/method.md, "Contact"), an open defect of the contact work.
-// The damping's work is what the points lose to it (damping_work_at_points: sum_p m_p dt d_p . (v_p + dt/2
-// a_p) at the points). Booked at the nodes, with the lumped mass of the nodes that a GIMP domain
-// barely reaches (where d_i ~ f_i / m_i), the Thesis fig. 4.7 cantilever's balance missed by +89 %
+// after 1 s, damped -4.0 %; docs/studies/2026-11-25-contact-and-damping-energy-defect.md), an open defect of
+// the contact work. The damping's work is what the points lose to it (damping_work_at_points: sum_p m_p dt
+// d_p . (v_p + dt/2 a_p) at the points). Booked at the nodes, with the lumped mass of the nodes that a GIMP
+// domain barely reaches (where d_i ~ f_i / m_i), the Thesis fig. 4.7 cantilever's balance missed by +89 %
 // (FLIP) and -51 % (XPIC) of the gravity work; measured now 3.5e-6 and 8.2e-4.
 TEST(Stages, LocalDampingWorkIsWhatThePointsLoseWithGimp) {
   for (const char* transfer : {"flip", "xpic"}) {

@@ -37,8 +37,8 @@ fs::path fifty_metre_slope(const fs::path& dir) {
 
 }  // namespace
 
-// Measured (docs/method.md, "Limit equilibrium"): from [0.5, 0.7] in three bisections the slope
-// stands at 0.575 and fails at 0.6, Bishop's F = 0.587 lying between.
+// Measured (docs/studies/2026-11-28-mpm-slopes-against-limit-equilibrium.md): from [0.5, 0.7] in three
+// bisections the slope stands at 0.575 and fails at 0.6, Bishop's F = 0.587 lying between.
 TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
   const fs::path dir = test::fresh_temp_dir("fos");
   FosOptions opt;

@@ -85,9 +85,9 @@ TEST(Slides, FiftyMetreSlopeSlidesAsTheThesisSays) {
 // The slope's strength from outside the MPM: Bishop's simplified method (run/slope_stability.hpp,
 // tested against published answers in test_limit_equilibrium.cpp) gives the 18 deg, 5 kPa slope
 // F = 0.59. Dividing c and tan(phi) by F / F_target gives the slope whose limit-equilibrium
-// factor is F_target. Measured at these 5 m cells (docs/method.md, "Limit equilibrium"): at
-// F = 0.9 / 0.95 the soil moves 17 / 9.5 m, at 1.0 0.5 m, at 1.05 / 1.1 / 1.2 0.10 / 0.09 / 0.07 m:
-// the MPM's onset lies within 5 % of Bishop's.
+// factor is F_target. Measured at these 5 m cells (docs/studies/2026-11-28-mpm-slopes-against-
+// limit-equilibrium.md): at F = 0.9 / 0.95 the soil moves 17 / 9.5 m, at 1.0 0.5 m, at 1.05 /
+// 1.1 / 1.2 0.10 / 0.09 / 0.07 m: the MPM's onset lies within 5 % of Bishop's.
 TEST(Slides, FiftyMetreSlopeStandsAndFailsWhereLimitEquilibriumSays) {
   constexpr double kHeight = 50.0;
   const SlopeStability original =

@@ -89,7 +89,7 @@ TEST(VelocityTransfer, VibratingBlockBalanceWithThePicShareAndXpicLossBooked) {
   // The loss of the PIC share and of XPIC is what they take from the scheme's energy
   // (particle_velocity). Booked as the kinetic energy difference 1/2 m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2)
   // it missed this balance (PIC share 1 / XPIC) by -5.4 / -4.5 % (USF), -2.0 / -3.1 % (USL) and
-  // -8.4 / -8.1 % (averaged); now 0.19 % at most (docs/method.md, "The PIC share's and XPIC's booked loss").
+  // -8.4 / -8.1 % (averaged); now 0.19 % at most (docs/studies/2026-11-25-pic-share-and-xpic-booked-loss.md).
   for (StressScheme s : {StressScheme::USF, StressScheme::USL, StressScheme::Averaged}) {
     const double pic = vibrating_block_balance(VelocityTransfer::Flip, 1.0, s);
     const double xpic = vibrating_block_balance(VelocityTransfer::Xpic, 0.0, s);

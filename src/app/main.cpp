@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <cmath>
 #include <filesystem>
+#include <new>
 #include <sstream>
 #include <stdexcept>
 #include <variant>
@@ -27,11 +28,14 @@
 #include "run/sweep.hpp"
 #include "run/version.hpp"
 #include "scenario/build.hpp"
+#include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 
 namespace {
 
 namespace code = skred::exit_code;
+
+std::string memory_text(double bytes) { return fmt::format("{:.3g} GB", bytes / 1e9); }
 
 // A new run (not a continuation) refuses an OUTDIR holding an earlier run unless --overwrite,
 // which removes that run's files first (run/output_folder.hpp).
@@ -388,6 +392,15 @@ int main(int argc, char** argv) {
   } catch (const CLI::ValidationError& e) {  // e.g. sweep's --set, checked after parsing
     fmt::print(stderr, "skred: {}\n", e.what());
     return code::kUsage;
+  } catch (const std::bad_alloc&) {  // (fuzzing: a run past `ulimit -v` said only "std::bad_alloc")
+    fmt::print(
+        stderr,
+        "skred: error: out of memory: an allocation failed with {} left to this process (the machine's "
+        "memory, its cgroup's memory.max and the address-space limit, ulimit -v). `skred check "
+        "SCENARIO` estimates what a run needs; coarsen the grid, lower particles_per_cell or raise the "
+        "limit\n",
+        memory_text(skred::available_memory_bytes()));
+    return code::kError;
   } catch (const std::exception& e) {
     fmt::print(stderr, "skred: error: {}\n", e.what());
     return code::kError;

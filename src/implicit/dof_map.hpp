@@ -1,9 +1,10 @@
 // The unknowns of an implicit step: D displacement components at every node that carries mass
 // (the active nodes, numbered in flat-index order), and the compressed-row pattern of the
-// stiffness matrix from the points' stencils, exact (two nodes are coupled when a point weights
-// both). A component held by a wall (Dirichlet condition) keeps its row as an identity row with
-// a zero right-hand side, so the matrix keeps the symmetry of the tangent and a node's D
-// unknowns stay together (PETSc's block size, the multigrid's near null space).
+// stiffness matrix, exact: two nodes are coupled when one block holds both — a point's stencil,
+// or with the cell-averaged volumetric strain the box of nodes of a cell's points
+// (cell_boxes.hpp). A component held by a wall (Dirichlet condition) keeps its row as an
+// identity row with a zero right-hand side, so the matrix keeps the symmetry of the tangent and
+// a node's D unknowns stay together (PETSc's block size, the multigrid's near null space).
 #pragma once
 #include <omp.h>
 
@@ -13,20 +14,22 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/grid.hpp"
 #include "implicit/linear_system.hpp"
-#include "implicit/point_stencils.hpp"
 
 namespace skred {
 
 template <int D>
 class DofMap {
  public:
+  // The coupling blocks: `blocks` runs of Kb = Sb^D flat node indices at `block_node` (boxes
+  // Sb nodes wide per axis, axis 0 fastest); the points' stencils are Sp wide (Sp <= Sb).
   // `mass` per grid node (its active nodes: mass > 0), `held` per grid node the bits c of its
   // components held by a wall.
-  void build(const PointStencils<D>& st, int S, const GridGeometry<D>& g, const std::vector<double>& mass,
-             const std::vector<std::uint8_t>& held, int threads) {
-    S_ = S;
-    W_ = 2 * S - 1;
+  void build(const std::int64_t* block_node, std::size_t blocks, int Sb, int Sp, const GridGeometry<D>& g,
+             const std::vector<double>& mass, const std::vector<std::uint8_t>& held, int threads) {
+    S_ = Sb;
+    W_ = 2 * Sb - 1;
     int box = 1;
     for (int d = 0; d < D; ++d) box *= W_;
     words_ = (box + 63) / 64;
@@ -40,32 +43,21 @@ class DofMap {
       }
     held_.assign(nodes_.size(), 0);
     for (std::size_t a = 0; a < nodes_.size(); ++a) held_[a] = held[static_cast<std::size_t>(nodes_[a])];
-    // Offset index of node l seen from node k of one block: o = sum_d (l_d - k_d + S - 1) W^d.
-    const int K = st.K;
-    pair_offset_.assign(static_cast<std::size_t>(K * K), 0);
-    for (int k = 0; k < K; ++k)
-      for (int l = 0; l < K; ++l) {
-        int o = 0, pw = 1, rk = k, rl = l;
-        for (int d = 0; d < D; ++d) {
-          o += (rl % S - rk % S + S - 1) * pw;
-          pw *= W_;
-          rk /= S;
-          rl /= S;
-        }
-        pair_offset_[static_cast<std::size_t>(k * K + l)] = o;
-      }
+    offsets(Sp, pair_offset_);
+    offsets(Sb, box_offset_);
+    int K = 1;
+    for (int d = 0; d < D; ++d) K *= Sb;
     // Which offsets each active node couples to.
     mask_.assign(nodes_.size() * static_cast<std::size_t>(words_), 0);
-    const std::size_t n = st.size();
 #pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t p = 0; p < n; ++p)
+    for (std::size_t p = 0; p < blocks; ++p)
       for (int k = 0; k < K; ++k) {
-        const std::int32_t a = active_[static_cast<std::size_t>(st.node[p * K + k])];
+        const std::int32_t a = active_[static_cast<std::size_t>(block_node[p * K + k])];
         if (a < 0) continue;
         std::uint64_t* m = &mask_[static_cast<std::size_t>(a) * words_];
         for (int l = 0; l < K; ++l) {
-          if (active_[static_cast<std::size_t>(st.node[p * K + l])] < 0) continue;
-          const int o = pair_offset_[static_cast<std::size_t>(k * K + l)];
+          if (active_[static_cast<std::size_t>(block_node[p * K + l])] < 0) continue;
+          const int o = box_offset_[static_cast<std::size_t>(k * K + l)];
           __atomic_fetch_or(&m[o / 64], std::uint64_t{1} << (o % 64), __ATOMIC_RELAXED);
         }
       }
@@ -85,7 +77,7 @@ class DofMap {
     for (int o = 0; o < box; ++o) {
       std::int64_t step = 0;
       for (int d = 0, r = o; d < D; ++d, r /= W_)
-        step += static_cast<std::int64_t>(r % W_ - (S - 1)) * static_cast<std::int64_t>(g.stride(d));
+        step += static_cast<std::int64_t>(r % W_ - (Sb - 1)) * static_cast<std::int64_t>(g.stride(d));
       offset_step[static_cast<std::size_t>(o)] = step;
     }
     fill_columns(offset_step, threads);
@@ -131,15 +123,36 @@ class DofMap {
     const std::int32_t start = pattern_.row_start[a * D + r];
     return start + rank * D;
   }
+  // Offset of node l from node k of one point's stencil (K nodes), and of one cell's box.
   int pair_offset(int k, int l, int K) const { return pair_offset_[static_cast<std::size_t>(k * K + l)]; }
+  int box_offset(int i, int j, int K) const { return box_offset_[static_cast<std::size_t>(i * K + j)]; }
 
  private:
+  // The offset index of node l seen from node k of a block S wide:
+  // o = sum_d (l_d - k_d + S_ - 1) W^d, in the coupling box of width S_.
+  void offsets(int S, std::vector<int>& table) const {
+    int K = 1;
+    for (int d = 0; d < D; ++d) K *= S;
+    table.assign(static_cast<std::size_t>(K * K), 0);
+    for (int k = 0; k < K; ++k)
+      for (int l = 0; l < K; ++l) {
+        int o = 0, pw = 1, rk = k, rl = l;
+        for (int d = 0; d < D; ++d) {
+          o += (rl % S - rk % S + S_ - 1) * pw;
+          pw *= W_;
+          rk /= S;
+          rl /= S;
+        }
+        table[static_cast<std::size_t>(k * K + l)] = o;
+      }
+  }
+
   int S_ = 2, W_ = 3, words_ = 1;
   std::vector<std::int32_t> active_;
   std::vector<std::int64_t> nodes_;
   std::vector<std::uint8_t> held_;
   std::vector<std::uint64_t> mask_;
-  std::vector<int> pair_offset_;
+  std::vector<int> pair_offset_, box_offset_;
   SparsePattern pattern_;
 };
 

@@ -56,6 +56,7 @@ void ImplicitSolver<D>::restore(const SolverClock& c, std::vector<Material> mate
   ramp_start_ = c.ramp_start;
   gravity_ramp_time_ = c.gravity_ramp_time;
   energy_ = c.energy;
+  boundary_force_ = c.boundary_force;
 }
 
 template <int D>

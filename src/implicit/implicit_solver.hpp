@@ -21,6 +21,7 @@
 #include <vector>
 
 #include <omp.h>
+#include "implicit/cell_boxes.hpp"
 #include "implicit/dof_map.hpp"
 #include "implicit/linear_system.hpp"
 #include "implicit/point_stencils.hpp"
@@ -41,6 +42,8 @@ struct ImplicitModel {
   std::array<BoundarySide, 2 * D> boundaries{};
   Geometry geometry = Geometry::PlaneStrain;  // 2D only
   std::vector<BoundaryPressure> pressures;
+  bool volumetric_averaging = false;  // the cell-averaged volumetric strain (cell_boxes.hpp)
+  std::vector<PrescribedVelocity> prescribed;
 };
 
 // The phases of an implicit step whose wall time summary.json reports ("implicit_" + name).
@@ -77,6 +80,7 @@ struct ImplicitTotals {
   long iterations = 0;  // linear solves of the converged steps
   long cut_steps = 0;   // steps that were halved at least once
   long factorisations = 0;
+  long elastic_fallbacks = 0;  // Newton iterations that took the elastic matrix (a singular tangent)
   long max_unknowns = 0;
   double max_factor_bytes = 0.0;
   std::string linear_solver;  // PETSc's KSP + PC (+ factor package)
@@ -113,7 +117,9 @@ class ImplicitSolver final : public Integrator<D> {
   const std::vector<double>& node_mass() const override { return node_mass_; }
   const std::vector<Vec<D>>& node_velocity() const override { return node_velocity_; }
   const std::vector<Sym3>& node_stress() const override { return node_stress_; }
-  SolverClock clock() const override { return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_}; }
+  SolverClock clock() const override {
+    return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_, boundary_force_};
+  }
   void restore(const SolverClock& c, std::vector<Material> materials) override;
   std::vector<std::pair<std::string, double>> phase_seconds() const override { return timer_.report(); }
   StepReport last_step() const override { return report_; }
@@ -125,15 +131,33 @@ class ImplicitSolver final : public Integrator<D> {
  private:
   bool dynamic() const { return settings_.analysis == ImplicitAnalysis::Dynamic; }
   bool axisymmetric() const { return D == 2 && model_.geometry == Geometry::Axisymmetric; }
+  bool averaging() const { return model_.volumetric_averaging; }
+  // m, the volumetric axes: the in-plane normal strains in plane strain, all three in 3D and in
+  // axisymmetric geometry (with the hoop strain).
+  Sym3 volumetric_axes() const {
+    Sym3 m = Sym3::Zero();
+    m.head<3>().setOnes();
+    if (D == 2 && !axisymmetric()) m[2] = 0.0;
+    return m;
+  }
+  static constexpr int kMaxStencil = D == 3 ? 64 : 16;  // 4^D (cubic B-spline, GIMP quadrature)
+  static constexpr int kMaxBox = D == 3 ? 125 : 25;     // (4 + 1)^D
   // implicit_step.cpp
   StepStatus map_step();
   void held_components();
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
   void pressure_forces(double t, std::vector<double>& f) const;  // loads.cpp
+  Sym3 point_strain(std::size_t p, const std::vector<double>& du) const;
+  const Sym3& update_point(std::size_t p, const Sym3& de, bool tangent);
+  void subtract_internal_force(std::size_t p, const Sym3& ws, double* r) const;
   double residual(const std::vector<double>& du, double dt, bool tangent);
+  void add_point_block(std::size_t p, const Mat6& WT, bool project, Vec<D>* g, Vec<D>* h, double* v) const;
+  void add_block(std::size_t a, std::size_t b, int o, const Mat<D>& block, double* v) const;
   void assemble(double dt, bool elastic);
   bool solve_step(double dt, std::string& why);
+  bool within_a_cell(std::string& why) const;
   void commit_step(double dt);
+  void commit_boundary_forces(double dt);
   void initial_acceleration();
 
   ImplicitModel<D> model_;
@@ -157,8 +181,14 @@ class ImplicitSolver final : public Integrator<D> {
   PointStencils<D> stencils_;
   int width_ = 2;  // S, nodes per axis of a point's stencil
   DofMap<D> dofs_;
-  std::vector<double> grid_mass_;            // per grid node (scratch of map_step)
-  std::vector<std::uint8_t> grid_held_;      // per grid node
+  CellBoxes<D> cells_;                   // with the cell-averaged volumetric strain
+  std::vector<double> grid_mass_;        // per grid node (scratch of map_step)
+  std::vector<std::uint8_t> grid_held_;  // per grid node
+  // The prescribed velocities: per grid node (scratch) and per active node, the table's index
+  // (-1: none) and the bits of the components it drives (not held by a wall).
+  std::vector<std::int8_t> grid_prescribed_, prescribed_id_;
+  std::vector<std::uint8_t> grid_driven_, driven_;
+  BoundaryForces boundary_force_{};          // at time_ (series.csv, the work's trapezoid)
   std::vector<double> mass_;                 // m_i per unknown (lumped, eq. 43)
   std::vector<double> v_bar_, a_bar_;        // v_i^t, a_i^t per unknown (eq. 43-44)
   std::vector<double> f_ext_, f_ext_start_;  // F_ext at t + dt and at t
@@ -166,12 +196,14 @@ class ImplicitSolver final : public Integrator<D> {
   std::vector<double> volume_;               // V_p at x^k
   // Newton's iterates.
   std::vector<double> du_, ddu_, r_, trial_du_;
+  std::vector<double> held_force_;  // per unknown: a held component's support force (-R)
   double force_scale_ = 0.0;
   // The points' trial update at the current iterate.
   std::vector<Sym3> deps_, trial_stress_, trial_plastic_;
   std::vector<PointState> trial_state_;
   std::vector<Mat6> tangent_;
-  std::vector<Mat6> elastic_tangent_;  // per material
+  std::vector<double> vol_corr_, mean_;  // (theta_c - theta_p) / d and q_p (cell averaging)
+  std::vector<Mat6> elastic_tangent_;    // per material
 
   // Nodal fields of the last smoothed_stress() call.
   std::vector<double> node_mass_;

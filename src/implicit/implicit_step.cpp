@@ -54,19 +54,34 @@ StepStatus ImplicitSolver<D>::map_step() {
   for (std::size_t p = 0; p < n; ++p) m_max = std::max(m_max, P_.mass[p]);
   for (double& m : grid_mass_)
     if (m < 1e-10 * m_max) m = 0.0;
-  held_components();
-  dofs_.build(stencils_, width_, g, grid_mass_, grid_held_, threads_);
-  const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
-  totals_.max_unknowns = std::max(totals_.max_unknowns, static_cast<long>(dofs));
-  mass_.resize(dofs);
-  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
-    for (int c = 0; c < D; ++c) mass_[a * D + c] = grid_mass_[static_cast<std::size_t>(dofs_.node(a))];
   volume_.resize(n);
   for (std::size_t p = 0; p < n; ++p) volume_[p] = P_.volume(p);
   inv_r_.clear();
   if (axisymmetric()) {
     inv_r_.resize(n);
     for (std::size_t p = 0; p < n; ++p) inv_r_[p] = 1.0 / P_.x[p][0];
+  }
+  held_components();
+  if (averaging()) {
+    const long wide = cells_.build(stencils_, width_, g, P_, volume_, inv_r_, threads_);
+    if (wide >= 0)
+      return {false, wide, "its stencil spreads beyond its cell's box (cell-averaged volumetric strain)"};
+    dofs_.build(cells_.node.data(), static_cast<std::size_t>(cells_.cells()), cells_.S, width_, g, grid_mass_,
+                grid_held_, threads_);
+  } else {
+    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, threads_);
+  }
+  const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
+  totals_.max_unknowns = std::max(totals_.max_unknowns, static_cast<long>(dofs));
+  mass_.resize(dofs);
+  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
+    for (int c = 0; c < D; ++c) mass_[a * D + c] = grid_mass_[static_cast<std::size_t>(dofs_.node(a))];
+  held_force_.assign(dofs, 0.0);
+  prescribed_id_.assign(grid_prescribed_.empty() ? 0 : dofs_.active_nodes(), -1);
+  driven_.assign(prescribed_id_.size(), 0);
+  for (std::size_t a = 0; a < prescribed_id_.size(); ++a) {
+    prescribed_id_[a] = grid_prescribed_[static_cast<std::size_t>(dofs_.node(a))];
+    driven_[a] = grid_driven_[static_cast<std::size_t>(dofs_.node(a))];
   }
   system_.set_pattern(dofs_.pattern());
   if (settings_.linear_solver == LinearSolverKind::Iterative) {
@@ -105,14 +120,17 @@ StepStatus ImplicitSolver<D>::map_step() {
   return {};
 }
 
-// The components each node with mass has held (Dirichlet conditions, du = 0): every one on or
-// beyond a fixed wall, the normal one on or beyond a roller wall (and a frictional one, which
-// the implicit integrator does not model: the scenario refuses it), and in axisymmetric
-// geometry the radial one on the axis r = 0.
+// The components each node with mass has held (Dirichlet conditions): every one on or beyond a
+// fixed wall, the normal one on or beyond a roller wall (and a frictional one, which the
+// implicit integrator does not model: the scenario refuses it), in axisymmetric geometry the
+// radial one on the axis r = 0 (all these with du = 0), and those of a [[prescribed_velocity]]
+// box (du = v dt).
 template <int D>
 void ImplicitSolver<D>::held_components() {
   const GridGeometry<D>& g = model_.grid;
   grid_held_.assign(g.node_count(), 0);
+  grid_prescribed_.assign(model_.prescribed.empty() ? 0 : g.node_count(), -1);
+  grid_driven_.assign(grid_prescribed_.size(), 0);
   const double tol = 1e-9 * g.h;
   const Vec<D> hi = g.origin + g.extent();
   for (std::size_t i = 0; i < grid_held_.size(); ++i) {
@@ -128,17 +146,81 @@ void ImplicitSolver<D>::held_components() {
         bits |= kind == BoundaryKind::Fixed ? std::uint8_t((1u << D) - 1) : std::uint8_t(1u << d);
       }
     if (axisymmetric() && x[0] <= tol) bits |= 1u;
+    // The first [[prescribed_velocity]] box that holds the node drives its components that no
+    // wall holds.
+    for (std::size_t b = 0; b < model_.prescribed.size(); ++b) {
+      const PrescribedVelocity& pv = model_.prescribed[b];
+      bool in = true;
+      for (int d = 0; d < D; ++d)
+        in = in && x[d] >= pv.min[static_cast<std::size_t>(d)] - tol &&
+             x[d] <= pv.max[static_cast<std::size_t>(d)] + tol;
+      if (!in) continue;
+      grid_prescribed_[i] = static_cast<std::int8_t>(b);
+      grid_driven_[i] = static_cast<std::uint8_t>(pv.components & ~bits);
+      bits |= pv.components;
+      break;
+    }
     grid_held_[i] = bits;
   }
 }
 
-// The points' strain increments d_eps = sum_i B_i du_i and the laws' update at the iterate du
-// (eq. 5-6), then R = F_ext - F_int - M (4 du / dt^2 - 4 v / dt - a) (eq. 47; without the last
-// term when quasi-static or `inertia` is false), zero on held components. Returns |R|.
+// Point p's strain increment d_eps = sum_i B_i du_i (eq. 5, 11).
+template <int D>
+Sym3 ImplicitSolver<D>::point_strain(std::size_t p, const std::vector<double>& du) const {
+  const int K = stencils_.K;
+  const double inv_r = axisymmetric() ? inv_r_[p] : 0.0;
+  Sym3 de = Sym3::Zero();
+  for (int k = 0; k < K; ++k) {
+    const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
+    if (a < 0) continue;
+    const Eigen::Map<const Vec<D>> u(&du[static_cast<std::size_t>(a) * D]);
+    de += strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r) * u;
+  }
+  return de;
+}
+
+// The law's update of point p for the strain increment de (eq. 6), kept as the trial state.
+template <int D>
+const Sym3& ImplicitSolver<D>::update_point(std::size_t p, const Sym3& de, bool tangent) {
+  const Material& mat = materials_[static_cast<std::size_t>(P_.material[p])];
+  LawResult res = evaluate(mat, full_stress<D>(P_.stress[p]), de, P_.state[p], tangent);
+  deps_[p] = de;
+  trial_stress_[p] = res.stress;
+  trial_plastic_[p] = res.plastic_strain;
+  trial_state_[p] = res.state;
+  if (tangent) tangent_[p] = res.tangent;
+  return trial_stress_[p];
+}
+
+// Subtracts point p's internal force V B_i^T (W sigma) (eq. 4) from r on its nodes; ws = V W sigma.
+template <int D>
+void ImplicitSolver<D>::subtract_internal_force(std::size_t p, const Sym3& ws, double* r) const {
+  const int K = stencils_.K;
+  const double inv_r = axisymmetric() ? inv_r_[p] : 0.0;
+  for (int k = 0; k < K; ++k) {
+    const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
+    if (a < 0) continue;
+    const Vec<D> f =
+        strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r).transpose() * ws;
+    for (int c = 0; c < D; ++c) {
+#pragma omp atomic
+      r[static_cast<std::size_t>(a) * D + c] -= f[c];
+    }
+  }
+}
+
+// The points' strain increments and the laws' update at the iterate du (eq. 5-6), then
+// R = F_ext - F_int - M (4 du / dt^2 - 4 v / dt - a) (eq. 47; without the last term when
+// quasi-static or `inertia` is false), zero on held components (their values kept as the
+// supports' forces, held_force_). Returns |R|.
+//
+// With the cell-averaged volumetric strain (cell_boxes.hpp) a point's increment takes its
+// cell's volume-weighted mean volumetric part, d_eps_p + (theta_c - theta_p) / d m, and its
+// internal force pairs with it through the cell's mean pressure: sigma_p + (q_c - q_p) m,
+// q = m^T sigma / d (the explicit engine's solver/volumetric_averaging.hpp).
 template <int D>
 double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, bool tangent) {
   const std::size_t n = P_.size();
-  const int K = stencils_.K;
   deps_.resize(n);
   trial_stress_.resize(n);
   trial_plastic_.resize(n);
@@ -146,36 +228,44 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   if (tangent) tangent_.resize(n);
   r_ = f_ext_;
   double* r = r_.data();
-  const bool axi = axisymmetric();
   timer_.time(ImplicitPhase::StressUpdate, [&] {
+    if (!averaging()) {
 #pragma omp parallel for num_threads(threads_) schedule(static)
-    for (std::size_t p = 0; p < n; ++p) {
-      const double inv_r = axi ? inv_r_[p] : 0.0;
-      Sym3 de = Sym3::Zero();
-      for (int k = 0; k < K; ++k) {
-        const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
-        if (a < 0) continue;
-        const Eigen::Map<const Vec<D>> u(&du[static_cast<std::size_t>(a) * D]);
-        de += strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r) * u;
+      for (std::size_t p = 0; p < n; ++p) {
+        const Sym3& s = update_point(p, point_strain(p, du), tangent);
+        subtract_internal_force(p, volume_[p] * voigt_weighted(s), r);
       }
-      const Material& mat = materials_[static_cast<std::size_t>(P_.material[p])];
-      LawResult res = evaluate(mat, full_stress<D>(P_.stress[p]), de, P_.state[p], tangent);
-      deps_[p] = de;
-      trial_stress_[p] = res.stress;
-      trial_plastic_[p] = res.plastic_strain;
-      trial_state_[p] = res.state;
-      if (tangent) tangent_[p] = res.tangent;
-      // F_int on the step's nodes: V B_i^T W sigma (eq. 4).
-      const Sym3 ws = volume_[p] * voigt_weighted(res.stress);
-      for (int k = 0; k < K; ++k) {
-        const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
-        if (a < 0) continue;
-        const Vec<D> f =
-            strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r).transpose() * ws;
-        for (int c = 0; c < D; ++c) {
-#pragma omp atomic
-          r[static_cast<std::size_t>(a) * D + c] -= f[c];
-        }
+      return;
+    }
+    const Sym3 m = volumetric_axes();
+    const double d = m.sum();
+    vol_corr_.resize(n);
+    mean_.resize(n);
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::size_t p = 0; p < n; ++p) deps_[p] = point_strain(p, du);
+    const int cells = cells_.cells();
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 64)
+    for (int c = 0; c < cells; ++c) {
+      const int q0 = cells_.start[c], q1 = cells_.start[c + 1];
+      double theta = 0.0;
+      for (int q = q0; q < q1; ++q) {
+        const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
+        theta += volume_[p] * m.dot(deps_[p]);
+      }
+      theta /= cells_.volume[static_cast<std::size_t>(c)];
+      double mean = 0.0;
+      for (int q = q0; q < q1; ++q) {
+        const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
+        vol_corr_[p] = (theta - m.dot(deps_[p])) / d;
+        const Sym3& s = update_point(p, Sym3(deps_[p] + vol_corr_[p] * m), tangent);
+        mean_[p] = m.dot(s) / d;
+        mean += volume_[p] * mean_[p];
+      }
+      mean /= cells_.volume[static_cast<std::size_t>(c)];
+      for (int q = q0; q < q1; ++q) {
+        const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
+        subtract_internal_force(p, volume_[p] * (voigt_weighted(trial_stress_[p]) + (mean - mean_[p]) * m),
+                                r);
       }
     }
   });
@@ -185,56 +275,120 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c) {
       const std::size_t i = a * D + c;
+      if (inertia) r_[i] -= mass_[i] * (c0 * du[i] - c1 * v_bar_[i] - a_bar_[i]);  // eq. 9-10, 47
       if (dofs_.held(a, c)) {
+        held_force_[i] = -r_[i];
         r_[i] = 0.0;
         continue;
       }
-      if (inertia) r_[i] -= mass_[i] * (c0 * du[i] - c1 * v_bar_[i] - a_bar_[i]);  // eq. 9-10, 47
       s += r_[i] * r_[i];
     }
   return std::sqrt(s);
 }
 
+// Adds the block sum_kl Bk^T WT Bl of point p (its stencil's pairs) to the matrix values v;
+// with `project`, Bk is the deviatoric part P Bk = Bk - m m^T Bk / d (the cell-averaged
+// volumetric strain), and g, h (the box's K entries, by the point's box indices) gain
+// Bk^T WT m / d and Bk^T WT^T m / d.
+template <int D>
+void ImplicitSolver<D>::add_point_block(std::size_t p, const Mat6& WT, bool project, Vec<D>* g, Vec<D>* h,
+                                        double* v) const {
+  const int K = stencils_.K;
+  const double inv_r = axisymmetric() ? inv_r_[p] : 0.0;
+  const Sym3 m = volumetric_axes();
+  const double d = m.sum();
+  std::array<StrainMatrix<D>, kMaxStencil> B;
+  for (int k = 0; k < K; ++k) {
+    B[static_cast<std::size_t>(k)] = strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r);
+    if (project) {
+      StrainMatrix<D>& Bk = B[static_cast<std::size_t>(k)];
+      const Eigen::Matrix<double, 1, D> div = m.transpose() * Bk;
+      Bk -= m * div / d;
+      const int j = cells_.local[p * K + k];
+      g[j] += Bk.transpose() * (WT * m) / d;
+      h[j] += Bk.transpose() * (WT.transpose() * m) / d;
+    }
+  }
+  for (int l = 0; l < K; ++l) {
+    const std::int32_t b = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + l]));
+    if (b < 0) continue;
+    const StrainMatrix<D> C = WT * B[static_cast<std::size_t>(l)];
+    for (int k = 0; k < K; ++k) {
+      const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
+      if (a < 0) continue;
+      const Mat<D> block = B[static_cast<std::size_t>(k)].transpose() * C;
+      add_block(static_cast<std::size_t>(a), static_cast<std::size_t>(b), dofs_.pair_offset(k, l, K), block,
+                v);
+    }
+  }
+}
+
+// Adds a D x D block coupling active nodes a and b (b at offset o from a) to the values v,
+// leaving out held rows and columns.
+template <int D>
+void ImplicitSolver<D>::add_block(std::size_t a, std::size_t b, int o, const Mat<D>& block, double* v) const {
+  for (int r = 0; r < D; ++r) {
+    if (dofs_.held(a, r)) continue;
+    const std::int32_t e = dofs_.row_entry(a, r, o);
+    for (int c = 0; c < D; ++c) {
+      if (dofs_.held(b, c)) continue;
+#pragma omp atomic
+      v[e + c] += block(r, c);
+    }
+  }
+}
+
 // K = sum_p V B_i^T W T B_j (eq. 5, 10-11; T the laws' consistent tangent at the iterate, or
 // the elastic matrix for Acosta's iteration) + 4 M / dt^2 (eq. 10, dynamic), held rows and
-// columns replaced by the identity.
+// columns replaced by the identity. With the cell-averaged volumetric strain a point's B is
+// P B + m b_c / d (cell_boxes.hpp), and its K splits into the point's own block P B^T WT P B and
+// the cell's g b_c^T + b_c h^T + s b_c b_c^T, s = sum V m^T W T m / d^2, over the cell's box.
 template <int D>
 void ImplicitSolver<D>::assemble(double dt, bool elastic) {
   std::vector<double>& values = system_.values();
   std::fill(values.begin(), values.end(), 0.0);
   double* v = values.data();
   const std::size_t n = P_.size();
-  const int K = stencils_.K;
-  const bool axi = axisymmetric();
-#pragma omp parallel for num_threads(threads_) schedule(static)
-  for (std::size_t p = 0; p < n; ++p) {
+  const auto point_WT = [&](std::size_t p) {
     Mat6 WT = elastic ? elastic_tangent_[static_cast<std::size_t>(P_.material[p])] : tangent_[p];
     WT.bottomRows<3>() *= 2.0;
-    WT *= volume_[p];
-    const double inv_r = axi ? inv_r_[p] : 0.0;
-    for (int l = 0; l < K; ++l) {
-      const std::int32_t b = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + l]));
-      if (b < 0) continue;
-      const StrainMatrix<D> C = WT * strain_matrix<D>(stencils_.N[p * K + l], stencils_.dN[p * K + l], inv_r);
-      for (int k = 0; k < K; ++k) {
-        const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
-        if (a < 0) continue;
-        const Mat<D> block =
-            strain_matrix<D>(stencils_.N[p * K + k], stencils_.dN[p * K + k], inv_r).transpose() * C;
-        const int o = dofs_.pair_offset(k, l, K);
-        for (int r = 0; r < D; ++r) {
-          if (dofs_.held(static_cast<std::size_t>(a), r)) continue;
-          const std::int32_t e = dofs_.row_entry(static_cast<std::size_t>(a), r, o);
-          for (int c = 0; c < D; ++c) {
-            if (dofs_.held(static_cast<std::size_t>(b), c)) continue;
-#pragma omp atomic
-            v[e + c] += block(r, c);
-          }
+    return Mat6(volume_[p] * WT);
+  };
+  if (!averaging()) {
+#pragma omp parallel for num_threads(threads_) schedule(static)
+    for (std::size_t p = 0; p < n; ++p) add_point_block(p, point_WT(p), false, nullptr, nullptr, v);
+  } else {
+    const Sym3 m = volumetric_axes();
+    const double d = m.sum();
+    const int cells = cells_.cells(), Kc = cells_.K;
+#pragma omp parallel for num_threads(threads_) schedule(dynamic, 64)
+    for (int c = 0; c < cells; ++c) {
+      std::array<Vec<D>, kMaxBox> g, h;
+      std::fill_n(g.begin(), Kc, Vec<D>::Zero());
+      std::fill_n(h.begin(), Kc, Vec<D>::Zero());
+      double s = 0.0;
+      for (int q = cells_.start[c]; q < cells_.start[c + 1]; ++q) {
+        const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
+        const Mat6 WT = point_WT(p);
+        add_point_block(p, WT, true, g.data(), h.data(), v);
+        s += m.dot(WT * m) / (d * d);
+      }
+      const std::int64_t* box = &cells_.node[static_cast<std::size_t>(c) * Kc];
+      const Vec<D>* b = &cells_.mean_div[static_cast<std::size_t>(c) * Kc];
+      for (int i = 0; i < Kc; ++i) {
+        const std::int32_t ai = dofs_.active(static_cast<std::size_t>(box[i]));
+        if (ai < 0) continue;
+        for (int j = 0; j < Kc; ++j) {
+          const std::int32_t aj = dofs_.active(static_cast<std::size_t>(box[j]));
+          if (aj < 0) continue;
+          const Mat<D> block = g[i] * b[j].transpose() + b[i] * (h[j] + s * b[j]).transpose();
+          add_block(static_cast<std::size_t>(ai), static_cast<std::size_t>(aj), dofs_.box_offset(i, j, Kc),
+                    block, v);
         }
       }
     }
   }
-  const int centre = dofs_.pair_offset(0, 0, K);
+  const int centre = dofs_.pair_offset(0, 0, stencils_.K);
   const double c0 = dynamic() ? 4.0 / (dt * dt) : 0.0;
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int r = 0; r < D; ++r) {
@@ -252,10 +406,17 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
   history_.clear();
   external_forces(time_ + dt, f_ext_);
   du_.assign(dofs, 0.0);
+  for (std::size_t a = 0; a < prescribed_id_.size(); ++a)  // du = v dt on the driven components
+    if (prescribed_id_[a] >= 0)
+      for (int c = 0; c < D; ++c)
+        if ((driven_[a] >> c) & 1u)
+          du_[a * D + c] = model_.prescribed[static_cast<std::size_t>(prescribed_id_[a])].velocity[c] * dt;
   double rn = residual(du_, dt, !elastic);
-  // The force scale: the largest of |F_ext|, |F_int(sigma^k)| and the inertial force of du = 0.
+  // The force scale: the largest of |F_ext|, |F_int(sigma^k)| with the supports' forces, and the
+  // inertial force of du = 0.
   {
     double fint = 0.0, inert = 0.0;
+    for (double f : held_force_) fint += f * f;
     const double c1 = 4.0 / dt;
     for (std::size_t i = 0; i < dofs; ++i) {
       const double in = dynamic() ? mass_[i] * (c1 * v_bar_[i] + a_bar_[i]) : 0.0;
@@ -283,7 +444,17 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
       ++totals_.factorisations;
     }
     totals_.max_factor_bytes = std::max(totals_.max_factor_bytes, system_.factor_bytes());
-    const bool solved = timer_.time(ImplicitPhase::Solve, [&] { return system_.solve(r_, ddu_); });
+    bool solved = timer_.time(ImplicitPhase::Solve, [&] { return system_.solve(r_, ddu_); });
+    if (!solved && !elastic) {
+      // A singular consistent tangent (perfectly plastic points at a corner of their yield
+      // surface keep only the volumetric stiffness, which the cell average shares out): this
+      // iteration takes the elastic matrix, Acosta's, which is regular.
+      timer_.time(ImplicitPhase::Assembly, [&] { assemble(dt, true); });
+      timer_.time(ImplicitPhase::Factorisation, [&] { system_.factorise(); });
+      ++totals_.factorisations;
+      ++totals_.elastic_fallbacks;
+      solved = timer_.time(ImplicitPhase::Solve, [&] { return system_.solve(r_, ddu_); });
+    }
     if (!solved) {
       why = system_.reason();
       return false;
@@ -314,12 +485,28 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
       why = "the out-of-balance force became non-finite";
       return false;
     }
-    if (rn <= tol) return true;
-    if (alpha * norm(ddu_) <= settings_.displacement_tolerance * norm(du_)) return true;
+    if (rn <= tol || alpha * norm(ddu_) <= settings_.displacement_tolerance * norm(du_))
+      return within_a_cell(why);
     if (rn > 1e12 * force_scale_) break;  // diverging
   }
   why = fmt::format("the out-of-balance force stayed at {:.3g} of the force scale after {} iterations",
                     rn / force_scale_, report_.iterations);
+  return false;
+}
+
+// A converged increment that moves a node by more than a cell is refused (the step is cut): the
+// step's stencils, taken at x^k, no longer describe the points, and a perfectly plastic body can
+// offer such a solution along a spurious mechanism of the discretisation.
+template <int D>
+bool ImplicitSolver<D>::within_a_cell(std::string& why) const {
+  double largest = 0.0;
+  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a) {
+    const Eigen::Map<const Vec<D>> u(&du_[a * D]);
+    largest = std::max(largest, u.norm());
+  }
+  if (largest <= model_.grid.h) return true;
+  why = fmt::format("the converged increment moves a node by {:.3g} m, more than a cell ({:.3g} m)", largest,
+                    model_.grid.h);
   return false;
 }
 
@@ -388,10 +575,12 @@ void ImplicitSolver<D>::commit_step(double dt) {
     strain += contract(mid, deps_[p] - trial_plastic_[p]);
     plastic += contract(mid, trial_plastic_[p]);
     gravity += P_.mass[p] * g_mid.dot(dx);
-    const Mat<D> dF = Mat<D>::Identity() + grad;
+    // With the cell-averaged volumetric strain, dF takes the strain's correction too.
+    const double corr = averaging() ? vol_corr_[p] : 0.0;
+    const Mat<D> dF = Mat<D>::Identity() + grad + corr * Mat<D>::Identity();
     Mat3 dF3 = embed3<D>(dF, 1.0);
     if constexpr (D == 2)
-      if (axi) dF3(2, 2) = 1.0 + u_r * inv_r_[p];  // hoop stretch r^{k+1} / r^k
+      if (axi) dF3(2, 2) = 1.0 + u_r * inv_r_[p] + corr;  // hoop stretch r^{k+1} / r^k
     // The law's stress rotated with the material, R S R^T, R the rotation of dF = R U (polar
     // decomposition): Acosta's incremental update made objective. (The explicit update, Thesis
     // eq. 4.4, pushes forward by all of dF, which also scales the stress by the stretch: an
@@ -425,6 +614,26 @@ void ImplicitSolver<D>::commit_step(double dt) {
   energy_.strain_energy += strain;
   energy_.plastic_dissipation += plastic;
   energy_.gravity_work += gravity;
+  commit_boundary_forces(dt);
+}
+
+// The prescribed velocities' forces on the material at t + dt (the sums of the supports' forces
+// -R on their driven components) and their work, trapezoidal over the step, into load_work.
+template <int D>
+void ImplicitSolver<D>::commit_boundary_forces(double dt) {
+  if (model_.prescribed.empty()) return;
+  BoundaryForces f{};
+  for (std::size_t a = 0; a < prescribed_id_.size(); ++a)
+    if (prescribed_id_[a] >= 0)
+      for (int c = 0; c < D; ++c)
+        if ((driven_[a] >> c) & 1u)
+          f[static_cast<std::size_t>(3 * prescribed_id_[a] + c)] += held_force_[a * D + c];
+  for (std::size_t b = 0; b < model_.prescribed.size(); ++b)
+    for (int c = 0; c < D; ++c) {
+      const std::size_t k = 3 * b + static_cast<std::size_t>(c);
+      energy_.load_work += 0.5 * (boundary_force_[k] + f[k]) * model_.prescribed[b].velocity[c] * dt;
+    }
+  boundary_force_ = f;
 }
 
 #define SKRED_IMPLICIT_STEP(D)                                                           \
@@ -434,7 +643,9 @@ void ImplicitSolver<D>::commit_step(double dt) {
   template void ImplicitSolver<D>::assemble(double, bool);                               \
   template bool ImplicitSolver<D>::solve_step(double, std::string&);                     \
   template void ImplicitSolver<D>::initial_acceleration();                               \
-  template void ImplicitSolver<D>::commit_step(double);
+  template void ImplicitSolver<D>::commit_step(double);                                  \
+  template void ImplicitSolver<D>::commit_boundary_forces(double);                       \
+  template bool ImplicitSolver<D>::within_a_cell(std::string&) const;
 SKRED_IMPLICIT_STEP(2)
 SKRED_IMPLICIT_STEP(3)
 #undef SKRED_IMPLICIT_STEP

@@ -151,6 +151,8 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
   KSPGetIterationNumber(p.ksp, &its);
   iterations_ = static_cast<int>(its);
   if (code != 0 || why < 0) {
+    // A failed factorisation leaves the preconditioner failed: the next factorise() starts afresh.
+    KSPReset(p.ksp);
     const char* name = nullptr;
     if (why < 0) name = KSPConvergedReasons[why];
     reason_ = code != 0 ? fmt::format("PETSc error {} in KSPSolve", static_cast<int>(code))

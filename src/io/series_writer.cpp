@@ -55,6 +55,8 @@ void SeriesWriter::format_row(const SeriesRow& r, std::string& out) const {
   if (extra_.material_speed) fmt::format_to(std::back_inserter(out), ",{}", r.material_speed);
   if (extra_.implicit)
     fmt::format_to(std::back_inserter(out), ",{},{},{}", r.iterations, r.residual, r.load_work);
+  for (const auto& [name, k] : extra_.forces)
+    fmt::format_to(std::back_inserter(out), ",{}", r.boundary_force[static_cast<std::size_t>(k)]);
   out += '\n';
 }
 
@@ -102,7 +104,9 @@ void SeriesWriter::flush() {
     os << h.substr(0, h.size() - 1) << (extra_.momentum_z ? ",momentum_z" : "")
        << (extra_.contact_work ? ",contact_work" : "") << (extra_.damping_work ? ",damping_work" : "")
        << (extra_.material_speed ? ",material_speed" : "")
-       << (extra_.implicit ? ",iterations,residual,load_work" : "") << '\n';
+       << (extra_.implicit ? ",iterations,residual,load_work" : "");
+    for (const auto& [name, k] : extra_.forces) os << ',' << name;
+    os << '\n';
     os.write(text_.data(), static_cast<std::streamsize>(text_.size()));
   });
   started_ = true;

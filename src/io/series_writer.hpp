@@ -2,7 +2,10 @@
 #pragma once
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include "solver/implicit_settings.hpp"
 
 namespace skred {
 
@@ -20,16 +23,17 @@ struct SeriesRow {
   double momentum_x;
   double momentum_y;
   long num_particles;
-  int stage;                    // zero-based stage index
-  double runout;                // front advance since the stage start [m] (StageTracker::runout)
-  long yielding_points;         // points whose last stress update was plastic
-  double momentum_z = 0.0;      // 3D runs only
-  double contact_work = 0.0;    // runs with contact only (Paper III §C.2.7)
-  double damping_work = 0.0;    // runs with local damping only
-  double material_speed = 0.0;  // runs with a stage that rests on it only (Stage::rest_measure)
-  int iterations = 0;           // runs with an implicit stage only: Newton iterations of the step
-  double residual = 0.0;        // ... and its final out-of-balance force over the force scale
-  double load_work = 0.0;       // ... and the work of the boundary pressures (EnergyTotals)
+  int stage;                        // zero-based stage index
+  double runout;                    // front advance since the stage start [m] (StageTracker::runout)
+  long yielding_points;             // points whose last stress update was plastic
+  double momentum_z = 0.0;          // 3D runs only
+  double contact_work = 0.0;        // runs with contact only (Paper III §C.2.7)
+  double damping_work = 0.0;        // runs with local damping only
+  double material_speed = 0.0;      // runs with a stage that rests on it only (Stage::rest_measure)
+  int iterations = 0;               // runs with an implicit stage only: Newton iterations of the step
+  double residual = 0.0;            // ... and its final out-of-balance force over the force scale
+  double load_work = 0.0;           // ... and the work of the boundary pressures (EnergyTotals)
+  BoundaryForces boundary_force{};  // runs with [[prescribed_velocity]]: their forces
 };
 
 // The columns only some runs have, in their order after yielding_points.
@@ -39,6 +43,9 @@ struct SeriesColumns {
   bool damping_work = false;    // runs with a locally damped stage
   bool material_speed = false;  // runs with a stage whose rest test reads the material's speed
   bool implicit = false;        // runs with an implicit stage: iterations, residual, load_work
+  // Runs with [[prescribed_velocity]]: the force columns' names (force_<name>_<axis>) and their
+  // index in SeriesRow::boundary_force.
+  std::vector<std::pair<std::string, int>> forces;
 };
 
 // Collects rows in memory (for checkpoints). The first flush() writes the file atomically;
@@ -57,8 +64,9 @@ struct SeriesColumns {
 // the material's speed a column material_speed (ExplicitSolver::material_mean_speed), runs
 // with an implicit stage the last columns iterations, residual (the Newton iterations of the
 // row's step and its final out-of-balance force relative to the step's force scale; 0 in
-// explicit stages) and load_work (the work of the boundary pressures, subtracted in
-// total_energy like the gravity work).
+// explicit stages) and load_work (the work of the boundary pressures and prescribed velocities,
+// subtracted in total_energy like the gravity work), and runs with [[prescribed_velocity]] the
+// forces of each on the material, force_<name>_x, force_<name>_y (, force_<name>_z).
 // Gravity work, strain energy
 // (stored elastic) and the dissipations are measured from the start of the row's stage. Every real number is
 // written as the shortest decimal that reads back to the identical double.

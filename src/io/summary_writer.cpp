@@ -136,13 +136,19 @@ std::string limit_equilibrium_json(const Summary& s) {
 std::string implicit_json(const Summary& s) {
   if (!s.implicit) return "";
   const Summary::Implicit& m = *s.implicit;
+  std::string forces;
+  for (const auto& [name, f] : m.forces) {
+    std::string v;
+    for (double x : f) v += (v.empty() ? "" : ", ") + json_number(x);
+    forces += fmt::format("{}{}: [{}]", forces.empty() ? "" : ", ", json_string(name), v);
+  }
   return fmt::format(
       "  \"implicit\": {{\"geometry\": {}, \"analysis\": {}, \"iteration\": {}, \"linear_solver\": {}, "
       "\"steps\": {}, \"iterations\": {}, \"factorisations\": {}, \"cut_steps\": {}, \"max_unknowns\": {}, "
-      "\"max_factor_bytes\": {}}},\n",
+      "\"max_factor_bytes\": {}, \"elastic_fallbacks\": {}, \"forces\": {{{}}}}},\n",
       json_string(m.geometry), json_string(m.analysis), json_string(m.iteration),
       json_string(m.linear_solver), m.steps, m.iterations, m.factorisations, m.cut_steps, m.max_unknowns,
-      json_number(m.max_factor_bytes));
+      json_number(m.max_factor_bytes), m.elastic_fallbacks, forces);
 }
 
 }  // namespace

@@ -82,6 +82,9 @@ struct Summary {
     std::string geometry, analysis, iteration, linear_solver;
     long steps = 0, iterations = 0, factorisations = 0, cut_steps = 0, max_unknowns = 0;
     double max_factor_bytes = 0.0;
+    long elastic_fallbacks = 0;  // Newton iterations on the elastic matrix (a singular tangent)
+    // [[prescribed_velocity]]: each one's name and force on the material at the end [N/m, N].
+    std::vector<std::pair<std::string, std::vector<double>>> forces = {};
   };
   std::optional<Implicit> implicit = {};
 };

@@ -51,6 +51,7 @@ void archive_row(A& a, SeriesRow& r) {
   a(r.iterations);
   a(r.residual);
   a(r.load_work);
+  for (double& f : r.boundary_force) a(f);
 }
 
 // The run's state besides the particles, in payload order.
@@ -68,6 +69,7 @@ void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
   a(c.energy.transfer_dissipation);
   a(c.energy.damping_work);
   a(c.energy.load_work);
+  for (double& f : c.boundary_force) a(f);
   a(at.stage);
   a(at.in_stage);
   a(at.stage_first_step);

@@ -90,6 +90,8 @@ ImplicitModel<D> implicit_model(const ScenarioOf<D>& s) {
   m.boundaries = s.boundaries;
   m.geometry = s.geometry;
   m.pressures = s.pressures;
+  m.volumetric_averaging = s.volumetric_averaging;
+  m.prescribed = s.prescribed;
   return m;
 }
 
@@ -128,6 +130,16 @@ std::string hms(double seconds) {
                    : fmt::format("{:02}:{:02}", s / 60, s % 60);
 }
 
+// series.csv's columns of the [[prescribed_velocity]] forces: force_<name>_<axis>.
+template <int D>
+std::vector<std::pair<std::string, int>> force_columns(const ScenarioOf<D>& s) {
+  std::vector<std::pair<std::string, int>> c;
+  for (std::size_t b = 0; b < s.prescribed.size(); ++b)
+    for (int d = 0; d < D; ++d)
+      c.emplace_back(fmt::format("force_{}_{}", s.prescribed[b].name, "xyz"[d]), static_cast<int>(3 * b) + d);
+  return c;
+}
+
 template <int D>
 SeriesRow series_row(const Integrator<D>& solver, const ParticleTotals<D>& t, long particles, int stage,
                      double runout) {
@@ -155,6 +167,7 @@ SeriesRow series_row(const Integrator<D>& solver, const ParticleTotals<D>& t, lo
   r.iterations = solver.last_step().iterations;
   r.residual = solver.last_step().residual;
   r.load_work = e.load_work;
+  r.boundary_force = solver.clock().boundary_force;
   return r;
 }
 
@@ -259,7 +272,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                               .contact_work = solver_settings(s).contact.enabled(),
                                               .damping_work = damped,
                                               .material_speed = material_speed,
-                                              .implicit = s.any_implicit()});
+                                              .implicit = s.any_implicit(),
+                                              .forces = force_columns(s)});
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
   checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd);
@@ -357,7 +371,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     const double stage_start = at.stage_start;
     StageTracker<D>& tracker = at.tracker;
     DensityTrigger density(s, k);  // Paper III §C.3 trigger
-    watch.begin_stage(tracker.kinetic_start());
+    watch.begin_stage(tracker.kinetic_start(), stored_stress_energy(particles, solver->materials()));
     auto sample = [&]() {
       const ParticleTotals<D> t = solver->totals();
       SeriesRow row = series_row(*solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
@@ -565,7 +579,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                      t.factorisations,
                                      t.cut_steps,
                                      t.max_unknowns,
-                                     t.max_factor_bytes};
+                                     t.max_factor_bytes,
+                                     t.elastic_fallbacks};
+    const BoundaryForces f = im->clock().boundary_force;
+    for (std::size_t b = 0; b < s.prescribed.size(); ++b)
+      sum.implicit->forces.emplace_back(s.prescribed[b].name, std::vector<double>(&f[3 * b], &f[3 * b] + D));
   }
   sum.stages = at.finished;
   sum.phase_seconds = integrators.phase_seconds();

@@ -80,10 +80,25 @@ std::string StabilityWatch<D>::step_above_limit() const {
 }
 
 template <int D>
-void StabilityWatch<D>::begin_stage(double kinetic_energy) {
+void StabilityWatch<D>::begin_stage(double kinetic_energy, double stored) {
   k0_ = kinetic_energy;
   max_gravity_work_ = 0.0;
   max_released_ = 0.0;
+  stored0_ = stored;
+}
+
+template <int D>
+double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials) {
+  double w = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const ElasticParams& e = materials[static_cast<std::size_t>(P.material[p])].elastic;
+    const Sym3 s = full_stress<D>(P.stress[p]);
+    const double tr = s[0] + s[1] + s[2];
+    const double ss = s.head<3>().squaredNorm() + 2.0 * s.tail<3>().squaredNorm();  // sigma : sigma
+    // sigma : C^-1 : sigma = ((1 + nu) sigma : sigma - nu tr(sigma)^2) / E
+    if (e.young > 0.0) w += 0.5 * P.volume(p) * ((1.0 + e.poisson) * ss - e.poisson * tr * tr) / e.young;
+  }
+  return w;
 }
 
 template <int D>
@@ -99,7 +114,7 @@ std::string StabilityWatch<D>::check(const ParticleTotals<D>& t, const EnergyTot
   max_released_ = std::max(max_released_, -e.strain_energy);
   const double gained =
       t.kinetic_energy - k0_ + e.strain_energy + e.plastic_dissipation - e.gravity_work - e.load_work;
-  const double supplied = k0_ + max_gravity_work_ + max_released_;
+  const double supplied = k0_ + max_gravity_work_ + std::max(max_released_, stored0_);
   if (gained <= kEnergyGrowthTolerance * supplied + floor_) return {};
   return fmt::format(
       "energy grew by {:.4g} J beyond the {:.4g} J supplied since the stage start "
@@ -148,6 +163,8 @@ bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, d
 
 template class StabilityWatch<2>;
 template class StabilityWatch<3>;
+template double stored_stress_energy<2>(const Particles<2>&, const std::vector<Material>&);
+template double stored_stress_energy<3>(const Particles<3>&, const std::vector<Material>&);
 template long first_non_finite_point<2>(const Particles<2>&);
 template long first_non_finite_point<3>(const Particles<3>&);
 template long offending_point<2>(const Particles<2>&);

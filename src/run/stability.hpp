@@ -29,13 +29,16 @@ class StabilityWatch {
   // that insists on such a step skips this check; the run is then watched as any other).
   std::string step_above_limit() const;
   bool initial_speed_finite() const { return std::isfinite(v0_); }
-  // Energies are measured from the stage start (EnergyTotals; kinetic energy K0 then).
-  void begin_stage(double kinetic_energy);
+  // Energies are measured from the stage start (EnergyTotals; kinetic energy K0 then);
+  // `stored` is the elastic energy of the stresses the points start the stage with (a K0
+  // initial stress, a previous stage's), which the stage may release: stored_stress_energy.
+  void begin_stage(double kinetic_energy, double stored = 0.0);
   // Empty, or why the run is unstable, after a series row with these sums:
   //  - a sum is not finite (a non-finite speed or energy at some point);
   //  - the largest speed exceeds speed_bound();
   //  - energy grows beyond the supply: K - K0 + W_stored + D_plastic - W_gravity >
-  //    tolerance * (K0 + max |W_gravity| + max released stored energy) + floor, the floor
+  //    tolerance * (K0 + max |W_gravity| + the larger of the stored energy released so far and
+  //    the stored energy at the start) + floor, the floor
   //    1e-9 M c^2 (the stored energy of all the material at a uniform strain of ~5e-5).
   std::string check(const ParticleTotals<D>& t, const EnergyTotals& e);
   // c_max + v0 + sqrt(2 |g| H): wave speed, initial speed and free fall over the grid height.
@@ -56,12 +59,19 @@ class StabilityWatch {
  private:
   double c_ = 0.0, v0_ = 0.0, dt_ = 0.0, h_ = 0.0, floor_ = 0.0, speed_bound_ = 0.0;
   std::string fastest_material_;
-  double k0_ = 0.0, max_gravity_work_ = 0.0, max_released_ = 0.0;
+  double k0_ = 0.0, max_gravity_work_ = 0.0, max_released_ = 0.0, stored0_ = 0.0;
   double dilation_limit_ = INFINITY;
   double det_max_ = 1.0;  // the largest det F at the last series row observed, and where
   long det_point_ = -1;
   bool dilation_warned_ = false;
 };
+
+// The elastic energy of the points' stresses, sum V_p sigma : C^-1 : sigma / 2 with each point's
+// material's E and nu: what a stage that starts from them can release (a K0 column whose walls
+// go: its first series row holds the kinetic energy the release gave before the stress update
+// books the release, so the watch must not call it created).
+template <int D>
+double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials);
 
 // The first point with a non-finite position, velocity, F or stress, or -1 (a frame of it
 // would hold non-finite output).

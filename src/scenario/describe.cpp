@@ -183,6 +183,18 @@ std::string describe(const ScenarioOf<D>& s) {
                      s.bodies[static_cast<std::size_t>(p.body)].name,
                      p.ramp_time > 0.0 ? fmt::format(", ramped over {} s", p.ramp_time) : ""));
   }
+  for (const PrescribedVelocity& pv : s.prescribed) {
+    std::string comps, lo, hi, v;
+    for (int d = 0; d < D; ++d) {
+      const auto k = static_cast<std::size_t>(d);
+      if ((pv.components >> d) & 1u) comps += "xyz"[d];
+      lo += fmt::format("{}{}", d ? ", " : "", pv.min[k]);
+      hi += fmt::format("{}{}", d ? ", " : "", pv.max[k]);
+      v += fmt::format("{}{}", d ? ", " : "", pv.velocity[k]);
+    }
+    line(fmt::format("prescribed velocity \"{}\": the nodes in [{}] to [{}] driven at [{}] m/s ({} held)",
+                     pv.name, lo, hi, v, comps));
+  }
   line(fmt::format("stages ({}):", s.stages.size()));
   for (const auto& st : s.stages)
     line(stage_summary(s, st) +

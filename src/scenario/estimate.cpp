@@ -1,12 +1,15 @@
 // Time step and size estimates of a scenario (estimate.hpp).
 #include "scenario/estimate.hpp"
 
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
+#include <string>
 #include <type_traits>
 #include <variant>
 #include <vector>
@@ -192,6 +195,15 @@ double available_memory_bytes() {
   std::ifstream cg("/sys/fs/cgroup/memory.max");
   double limit = 0;
   if (cg >> limit && limit > 0) bytes = std::min(bytes, limit);  // "max" reads as no number
+  // The address-space limit (ulimit -v), less the address space the process holds already.
+  rlimit as{};
+  if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY) {
+    double held = 0.0;
+    std::ifstream status("/proc/self/status");
+    for (std::string line; std::getline(status, line);)
+      if (line.rfind("VmSize:", 0) == 0) held = 1024.0 * std::strtod(line.c_str() + 7, nullptr);
+    bytes = std::min(bytes, std::max(0.0, static_cast<double>(as.rlim_cur) - held));
+  }
   return bytes;
 }
 

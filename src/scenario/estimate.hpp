@@ -51,7 +51,8 @@ struct ImplicitSystemSize {
 template <int D>
 ImplicitSystemSize estimate_implicit_system(const ScenarioOf<D>& s);
 
-// Memory this machine offers a process: physical memory, or the cgroup limit when lower.
+// Memory this machine offers a process: physical memory, or the cgroup limit when lower, or
+// the address-space limit (ulimit -v) less the address space the process holds, when lower.
 double available_memory_bytes();
 
 }  // namespace skred

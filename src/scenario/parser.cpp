@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <set>
@@ -483,6 +484,18 @@ void check_time_step(const TableReader& root, const ScenarioOf<D>& s) {
     if (last_explicit < stages.size()) stages[last_explicit].fail_at("duration", why);
     solver->fail_at("end_time", why);
   }
+  // An explicit stage runs whole steps: one shorter than a step would run a whole step past its
+  // end (and a duration of 1e-30 s none at all, "completed" without moving).
+  for (std::size_t k = 0; k < s.stages.size(); ++k) {
+    const Stage& st = s.stages[k];
+    if (st.integrator != IntegratorKind::Explicit || st.duration >= dt * (1.0 - 1e-9)) continue;
+    const std::string why = fmt::format(
+        "{} s is shorter than one explicit time step ({:.4g} s{}): the stage would run a whole step past "
+        "its end; make it at least one step long",
+        st.duration, dt, s.time_step > 0.0 ? ", solver.time_step" : ", solver.cfl times h / (c + v0)");
+    if (k < stages.size()) stages[k].fail_at("duration", why);
+    solver->fail_at("end_time", why);
+  }
   const auto implicit = root.table("implicit", false);
   for (std::size_t k = 0; k < s.stages.size(); ++k) {
     const Stage& st = s.stages[k];
@@ -571,7 +584,28 @@ AnyScenario parse_any_scenario(const std::string& text, const std::string& sourc
   return parse_any_document(doc, source);
 }
 
+namespace scenario_detail {
+
+std::string input_file_problem(const std::string& path, std::uintmax_t max_bytes) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(path, ec);
+  if (ec || !std::filesystem::exists(status)) return "";  // opening it says why
+  if (!std::filesystem::is_regular_file(status))
+    return std::filesystem::is_directory(status) ? "it is a directory, not a file"
+                                                 : "it is not a regular file (a device, pipe or socket)";
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > max_bytes)
+    return fmt::format("it holds {} bytes, more than the {} MiB an input file of skred may have", size,
+                       max_bytes >> 20);
+  return "";
+}
+
+}  // namespace scenario_detail
+
 std::string read_scenario_text(const std::string& path) {
+  if (const std::string why = scenario_detail::input_file_problem(path, scenario_detail::kMaxScenarioBytes);
+      !why.empty())
+    throw ScenarioError(fmt::format("{}: cannot read as a scenario file: {}", path, why));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ScenarioError(fmt::format("{}: cannot open scenario file: {}", path, std::strerror(errno)));
   std::ostringstream text;

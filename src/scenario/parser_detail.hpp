@@ -4,6 +4,7 @@
 #pragma once
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -105,5 +106,12 @@ void set_key(toml::table& doc, const std::string& path, double value, const std:
 // The same with a text value. "solver.velocity_transfer" also removes the keys of one transfer
 // (pic_fraction, xpic_order, xpic_period): the transfer set comes with its own defaults.
 void set_key(toml::table& doc, const std::string& path, const std::string& value, const std::string& source);
+
+// Empty, or why `path` cannot be read as an input file of at most `max_bytes`: it is not a
+// regular file (a device such as /dev/zero, a pipe, a directory: reading it would not end) or
+// it is larger (parser.cpp).
+std::string input_file_problem(const std::string& path, std::uintmax_t max_bytes);
+inline constexpr std::uintmax_t kMaxScenarioBytes = std::uintmax_t{16} << 20;  // 16 MiB
+inline constexpr std::uintmax_t kMaxProfileBytes = std::uintmax_t{512} << 20;  // 512 MiB
 
 }  // namespace skred::scenario_detail

@@ -61,6 +61,8 @@ Profile read_profile_csv(const TableReader& t, std::string_view key, const Scena
   const std::string name = t.string(key);
   std::filesystem::path path(name);
   if (path.is_relative()) path = std::filesystem::path(s.source).parent_path() / path;
+  if (const std::string why = input_file_problem(path.string(), kMaxProfileBytes); !why.empty())
+    t.fail_at(key, fmt::format("cannot read profile file '{}': {}", path.string(), why));
   std::ifstream in(path);
   if (!in)
     t.fail_at(key, fmt::format("cannot open profile file '{}': {}", path.string(), std::strerror(errno)));

@@ -1,6 +1,7 @@
 // The implicit integrator's part of a scenario file (González Acosta et al. 2020):
 // solver.integrator and the stages' `integrator`, [implicit] with each stage's
-// [stage.implicit] over it, the [[pressure]] tables, and what an integrator refuses
+// [stage.implicit] over it, the [[pressure]] and [[prescribed_velocity]] tables, and what an
+// integrator refuses
 // (docs/scenario.md, "The implicit integrator").
 #include <optional>
 #include <string>
@@ -29,16 +30,23 @@ int pressure_body(const TableReader& t, const ScenarioOf<D>& s) {
   t.fail_at("body", fmt::format("no [[body]] is called \"{}\"; the bodies are {}", name, names));
 }
 
+// Refuses the tables `key` ("<what> applied by the implicit integrator only") when a stage,
+// `explicit_stage`, runs the explicit integrator.
+void implicit_only(const TableReader& root, const ScenarioCommon& s, const char* key, const char* what,
+                   const Stage* explicit_stage) {
+  if (!explicit_stage) return;
+  fail(s.source, root.where(key), key,
+       fmt::format("{} applied by the implicit integrator only, and stage \"{}\" runs the explicit one; set "
+                   "integrator = \"implicit\" for every stage",
+                   what, explicit_stage->name));
+}
+
 // The [[pressure]] tables; `explicit_stage` is a stage that runs the explicit integrator, if any.
 template <int D>
 void parse_pressures(const TableReader& root, ScenarioOf<D>& s, const Stage* explicit_stage) {
   const auto tables = root.array_of_tables("pressure");
   if (tables.empty()) return;
-  if (explicit_stage)
-    fail(s.source, root.where("pressure"), "pressure",
-         fmt::format("pressures are applied by the implicit integrator only, and stage \"{}\" runs the "
-                     "explicit one; set integrator = \"implicit\" for every stage",
-                     explicit_stage->name));
+  implicit_only(root, s, "pressure", "pressures are", explicit_stage);
   for (std::size_t i = 0; i < tables.size(); ++i) {
     const TableReader& t = tables[i];
     t.allow_declared();
@@ -55,6 +63,66 @@ void parse_pressures(const TableReader& root, ScenarioOf<D>& s, const Stage* exp
                   fmt::format("body \"{}\" has a pressure on its {} face already (pressure[{}])",
                               s.bodies[static_cast<std::size_t>(p.body)].name, kSideNames[p.side], j));
     s.pressures.push_back(p);
+  }
+}
+
+// The [[prescribed_velocity]] tables: a box that holds at least one grid node inside the grid.
+template <int D>
+void parse_prescribed(const TableReader& root, ScenarioOf<D>& s, const Stage* explicit_stage) {
+  const auto tables = root.array_of_tables("prescribed_velocity");
+  if (tables.empty()) return;
+  implicit_only(root, s, "prescribed_velocity", "prescribed velocities are", explicit_stage);
+  if (s.interpolation == Interpolation::Bspline)
+    fail(s.source, root.where("prescribed_velocity"), "prescribed_velocity",
+         "the cubic B-spline's degrees of freedom are control points, not the displacements of the nodes: "
+         "prescribed velocities need interpolation = \"linear\", \"gimp\" or \"gimp-quadrature\"");
+  if (tables.size() > static_cast<std::size_t>(kMaxPrescribed))
+    tables[kMaxPrescribed].fail_at("name",
+                                   fmt::format("at most {} [[prescribed_velocity]] tables", kMaxPrescribed));
+  for (std::size_t i = 0; i < tables.size(); ++i) {
+    const TableReader& t = tables[i];
+    t.allow_declared();
+    PrescribedVelocity pv;
+    pv.name = t.has("name") ? t.string("name") : fmt::format("prescribed{}", i);
+    for (const PrescribedVelocity& other : s.prescribed)
+      if (other.name == pv.name)
+        t.fail_at("name", fmt::format("another [[prescribed_velocity]] is called \"{}\"", pv.name));
+    if (pv.name.empty() || pv.name.find_first_of(" ,\"\n\t") != std::string::npos)
+      t.fail_at("name", "a name without spaces, commas or quotes (it names series.csv's columns)");
+    const Vec<D> lo = t.vec<D>("min"), hi = t.vec<D>("max"), v = t.vec<D>("velocity");
+    const char* axes = "xyz";
+    int held = 0;
+    if (t.has("components")) {
+      const std::string c = t.string("components");
+      if (c == "all") {
+        held = (1 << D) - 1;
+      } else if (c.size() == 1 && c[0] >= 'x' && c[0] < 'x' + D) {
+        held = 1 << (c[0] - 'x');
+      } else {
+        t.fail_at("components", fmt::format("\"{}\": one of \"all\", {}", c,
+                                            D == 3 ? "\"x\", \"y\", \"z\"" : "\"x\", \"y\""));
+      }
+    } else {
+      held = (1 << D) - 1;
+    }
+    pv.components = static_cast<std::uint8_t>(held);
+    // The nodes in the box: at least one per axis, inside the grid.
+    for (int d = 0; d < D; ++d) {
+      if (!(hi[d] >= lo[d]))
+        t.fail_at("max", fmt::format("max[{}] = {} is below min[{}] = {}", d, hi[d], d, lo[d]));
+      const double tol = 1e-9 * s.cell_size;
+      const double first = std::ceil((lo[d] - s.origin[d] - tol) / s.cell_size);
+      const double last = std::floor((hi[d] - s.origin[d] + tol) / s.cell_size);
+      if (first > last || last < 0.0 || first > s.cells[d])
+        t.fail_at("min",
+                  fmt::format("the box [{}, {}] along {} holds no grid node inside the grid (nodes every "
+                              "{} m from {})",
+                              lo[d], hi[d], axes[d], s.cell_size, s.origin[d]));
+      pv.min[static_cast<std::size_t>(d)] = lo[d];
+      pv.max[static_cast<std::size_t>(d)] = hi[d];
+      pv.velocity[static_cast<std::size_t>(d)] = v[d];
+    }
+    s.prescribed.push_back(pv);
   }
 }
 
@@ -125,6 +193,7 @@ void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
                                           "stage \"{}\" runs the explicit integrator",
                                           explicit_stage->name));
   parse_pressures(root, s, explicit_stage);
+  parse_prescribed(root, s, explicit_stage);
   if (!implicit_stage) return;
 
   // What the implicit integrator does not support (yet).

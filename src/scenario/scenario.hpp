@@ -219,6 +219,8 @@ struct ScenarioCommon {
   Geometry geometry = Geometry::PlaneStrain;
   // [[pressure]]: pressures on bodies' faces that move with the material (implicit stages).
   std::vector<BoundaryPressure> pressures;
+  // [[prescribed_velocity]]: grid nodes driven at a constant velocity (implicit stages).
+  std::vector<PrescribedVelocity> prescribed;
   bool any_implicit() const {
     for (const Stage& st : stages)
       if (st.integrator == IntegratorKind::Implicit) return true;

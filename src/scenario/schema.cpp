@@ -73,6 +73,11 @@ void add_model_sections(std::vector<Section>& s) {
             .type = Type::Tables,
             .def = none(),
             .doc = "pressures on faces of bodies that move with the material (implicit stages only)"},
+           {.name = "prescribed_velocity",
+            .type = Type::Tables,
+            .def = none(),
+            .doc = "grid nodes in a box driven at a constant velocity, with their force reported "
+                   "(a footing pressed at a rate; implicit stages only)"},
            {.name = "solver",
             .type = Type::Table,
             .def = derived("required without [[stage]]"),

@@ -87,6 +87,36 @@ void add_run_sections(std::vector<Section>& s) {
             .doc = "linear ramp from the start of the run (t = 0); 0: the full pressure at once"},
        }});
   s.push_back(
+      {"prescribed_velocity",
+       "prescribed_velocity",
+       {
+           {.name = "name",
+            .type = Type::String,
+            .def = derived("\"prescribed<i>\""),
+            .doc = "names the boundary in series.csv's force columns (force_<name>_x, ...) and summary.json"},
+           {.name = "min",
+            .type = Type::Vector,
+            .unit = "m",
+            .range = kCoordinate,
+            .doc = "the low corner of the box whose grid nodes are driven"},
+           {.name = "max",
+            .type = Type::Vector,
+            .unit = "m",
+            .range = kCoordinate,
+            .doc = "the high corner; the box holds at least one grid node"},
+           {.name = "velocity",
+            .type = Type::Vector,
+            .unit = "m/s",
+            .range = kVelocity,
+            .doc = "the nodes' velocity (quasi-static: displacement per unit of the stage's pseudo-time)"},
+           {.name = "components",
+            .type = Type::Choice,
+            .def = derived("\"all\""),
+            .choices = "all|x|y|z",
+            .doc = "the components prescribed; the others stay free (\"all\": a rough footing; the normal "
+                   "axis alone: a smooth one)"},
+       }});
+  s.push_back(
       {"solver",
        "solver",
        {
@@ -269,7 +299,8 @@ void add_run_sections(std::vector<Section>& s) {
            {.name = "duration",
             .unit = "s",
             .range = Range::positive(kMaxTime),
-            .doc = "the stage ends at this time at the latest"},
+            .doc = "the stage's length: an implicit stage ends at this time; an explicit one runs whole time "
+                   "steps, at least one, the last of which may pass it by less than a step"},
            {.name = "gravity_ramp_time",
             .unit = "s",
             .def = value(0),

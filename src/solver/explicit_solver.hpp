@@ -19,6 +19,7 @@
 #include "solver/boundary.hpp"
 #include "solver/contact.hpp"
 #include "solver/grid_fields.hpp"
+#include "solver/implicit_settings.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
 #include "solver/velocity_transfer.hpp"
@@ -93,6 +94,7 @@ struct SolverClock {
   double ramp_start = 0.0;
   double gravity_ramp_time = 0.0;
   EnergyTotals energy;
+  BoundaryForces boundary_force{};  // the prescribed velocities' forces (implicit_settings.hpp)
 };
 
 // Quantities summed over the particles on demand.

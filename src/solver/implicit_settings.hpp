@@ -1,8 +1,11 @@
 // What a scenario says about the implicit integrator (González Acosta et al. 2020, §2, eq. 3-11,
 // 47-48) and the geometry of a 2D grid (App. A1). Plain data: the scenario parses it
-// ([implicit], [stage.implicit], [grid] geometry, [[pressure]]), the implicit integrator
+// ([implicit], [stage.implicit], [grid] geometry, [[pressure]], [[prescribed_velocity]]), the
+// implicit integrator
 // (src/implicit) reads it.
 #pragma once
+#include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -78,5 +81,21 @@ struct BoundaryPressure {
   double pressure = 0.0;   // [Pa] at the end of the ramp
   double ramp_time = 0.0;  // linear ramp from the start of the run, t = 0 [s]; 0: at once
 };
+
+// Grid nodes moved at a constant velocity (a rigid footing, plate or wall driven at a rate:
+// displacement control): every node with mass inside the box [min, max] has the chosen
+// components of its displacement increment prescribed, du = v dt (Dirichlet conditions like the
+// walls'); the others stay free (a smooth footing holds only the normal one). The force the
+// nodes exert on the material (the supports' reactions, -R on the held rows) is reported.
+inline constexpr int kMaxPrescribed = 4;  // [[prescribed_velocity]] tables per scenario
+struct PrescribedVelocity {
+  std::string name;
+  std::array<double, 3> min{}, max{}, velocity{};  // [m], [m], [m/s]; D components used
+  std::uint8_t components = 0b111;                 // bit c: component c is prescribed
+};
+
+// The prescribed boundaries' forces on the material, D per boundary [N/m in 2D, N per radian
+// axisymmetric, N in 3D], at the integrator's time (kept with the clock for the work's trapezoid).
+using BoundaryForces = std::array<double, 3 * kMaxPrescribed>;
 
 }  // namespace skred
