@@ -246,9 +246,23 @@ class Integrators {
 
 }  // namespace
 
+// Scenarios of at least this many points (by the estimate) say what their set-up is doing:
+// filling 10^7 points took 34 s in silence (fuzzing).
+constexpr double kSetupReportPoints = 1e6;
+
 template <int D>
 RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt) {
+  const auto setup_start = Clock::now();
+  const bool report_setup = opt.progress && estimate_size(s).points >= kSetupReportPoints;
+  const auto setup = [&](const std::string& what) {
+    if (!report_setup) return;
+    fmt::print(stderr, "set-up: {} ({:.1f} s)\n", what,
+               std::chrono::duration<double>(Clock::now() - setup_start).count());
+    std::fflush(stderr);
+  };
+  setup(fmt::format("filling the bodies with about {:.3g} points", estimate_size(s).points));
   Particles<D> particles = build_particles(s);
+  if (s.initial_stress.rule != K0Rule::None) setup("the initial stress");
   apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
   Integrators<D> integrators(s, particles, opt.threads);
   Integrator<D>* solver = &integrators.use(s.stages.front());
@@ -394,7 +408,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     };
     if (begins) sample();
     if (begins && k == 0 && unstable.ok) {
+      setup("the first frame");
       write_frame();
+      setup("done; the time loop starts");
       at.next_output = s.output_interval;
       at.next_series = s.series_interval;
     }
