@@ -1,5 +1,6 @@
 // The implicit integrator's life between steps: stages, clock, totals, smoothed stresses, and
-// the step with its cuts. The step's phases are in implicit_step.cpp, its loads in loads.cpp.
+// the step with its cuts. The step's phases are in implicit_step.cpp
+// (map, Newton, commit) and equilibrium.cpp (residual, tangent), its loads in loads.cpp.
 #include "implicit/implicit_solver.hpp"
 
 #include <fmt/core.h>

@@ -142,7 +142,7 @@ class ImplicitSolver final : public Integrator<D> {
   }
   static constexpr int kMaxStencil = D == 3 ? 64 : 16;  // 4^D (cubic B-spline, GIMP quadrature)
   static constexpr int kMaxBox = D == 3 ? 125 : 25;     // (4 + 1)^D
-  // implicit_step.cpp
+  // implicit_step.cpp (and equilibrium.cpp: point_strain to assemble)
   StepStatus map_step();
   void held_components();
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
