@@ -227,6 +227,7 @@ TEST_F(IoTest, SummaryJsonIsValidAndEscaped) {
       {"cells", "1600"},
       {"wall_seconds", "null"},
       {"particle_updates_per_second", "null"},
+      {"memory", R"({"peak_bytes": null, "bytes_per_point": null})"},
       {"threads", "8"},
       {"scenario", R"("slope \"A\".toml")"},
       {"interpolation", "\"gimp\""},

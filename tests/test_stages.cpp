@@ -85,6 +85,8 @@ TEST(InitialStress, K0FromOverburdenMatchesRhoGDepth) {
         column_text(std::string("end_time = 0.1\n[initial_stress]\nk0 = ") + rule + "\n", 1e6, 0.3),
         "k0.toml");
     Particles<2> P = build_particles(s);
+    EXPECT_TRUE(P.Fe.empty());  // Fe and its reference stress only when the frames ask for them
+    P.track_elastic_F();
     EXPECT_TRUE(P.stress_ref.empty());  // no reference stress stored until one is set
     EXPECT_EQ(P.reference_stress(0), PointStress<2>::Zero());
     apply_initial_stress(s, P);

@@ -58,8 +58,10 @@ struct Particles {
   std::vector<std::int16_t> body;      // index into the scenario's body table (see kMaxBodies)
   std::vector<PointState> state;       // constitutive state (plastic strain, yield flag)
   // Elastic part of F (F = Fe Fp, Post eq. 67-74), identity at the reference state, and the
-  // stress of that reference state (sigma_initial of Post eq. 77). The reference stress is
-  // stored only once an initial stress is set (see set_reference_stress); empty, it is zero.
+  // stress of that reference state (sigma_initial of Post eq. 77). Both are post-processing only
+  // (no law reads them): Fe is stored once track_elastic_F() is called (a run whose frames hold
+  // Fe, Fp or stress_from_Fe), the reference stress once an initial stress is set while Fe is
+  // tracked (set_reference_stress); empty, the reference stress is zero.
   std::vector<Mat<D>> Fe;
   std::vector<PointStress<D>> stress_ref;
   // Plastic shear strain at the start of the stage (like x_ref; set by the StageTracker),
@@ -99,7 +101,7 @@ struct Particles {
         ParticleField<Pt, std::int16_t>{"material", &Pt::material, +[] { return std::int16_t{0}; }},
         ParticleField<Pt, std::int16_t>{"body", &Pt::body, +[] { return std::int16_t{0}; }},
         ParticleField<Pt, PointState>{"state", &Pt::state, +[] { return PointState{}; }},
-        ParticleField<Pt, Mat<D>>{"Fe", &Pt::Fe, +[] { return Mat<D>(Mat<D>::Identity()); }},
+        ParticleField<Pt, Mat<D>>{"Fe", &Pt::Fe, +[] { return Mat<D>(Mat<D>::Identity()); }, true},
         ParticleField<Pt, PointStress<D>>{"stress_ref", &Pt::stress_ref,
                                           +[] { return PointStress<D>(PointStress<D>::Zero()); }, true},
         ParticleField<Pt, double>{"plastic_ref", &Pt::plastic_ref, +[] { return 0.0; }},
@@ -322,8 +324,15 @@ struct Particles {
   PointStress<D> reference_stress(std::size_t p) const {
     return stress_ref.empty() ? PointStress<D>::Zero() : stress_ref[p];
   }
-  // Makes the current stresses the reference state of Fe (after an initial stress is set).
-  void set_reference_stress() { stress_ref = stress; }
+  // Makes the current stresses the reference state of Fe (after an initial stress is set), if
+  // Fe is tracked.
+  void set_reference_stress() {
+    if (!Fe.empty()) stress_ref = stress;
+  }
+  // Starts tracking Fe for every point, from Fe = I now (the reference state of Post eq. 77).
+  void track_elastic_F() {
+    if (Fe.empty()) Fe.assign(size(), Mat<D>::Identity());
+  }
   // Starts tracking F_split = F G for every point, from F_split = I now (G = F^-1).
   void enable_splitting() {
     if (!split_gauge.empty()) return;

@@ -358,7 +358,8 @@ void ImplicitSolver<D>::commit_step(double dt) {
     P_.stress[p] = stored_stress<D>(to_voigt(R * to_matrix(after) * R.transpose()));
     P_.state[p] = trial_state_[p];
     P_.F[p] = dF * P_.F[p];
-    P_.Fe[p] = (Mat<D>::Identity() + sym_block<D>(Sym3(deps_[p] - trial_plastic_[p]))) * P_.Fe[p];
+    if (!P_.Fe.empty())  // tracked for the frames that hold Fe, Fp or stress_from_Fe
+      P_.Fe[p] = (Mat<D>::Identity() + sym_block<D>(Sym3(deps_[p] - trial_plastic_[p]))) * P_.Fe[p];
     if (axi) P_.hoop[p] *= dF3(2, 2);
     P_.x[p] += dx;
     if (dyn) {

@@ -165,6 +165,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"cells\": {},\n{}"
       "  \"wall_seconds\": {},\n"
       "  \"particle_updates_per_second\": {},\n"
+      "  \"memory\": {{\"peak_bytes\": {}, \"bytes_per_point\": {}}},\n"
       "  \"threads\": {},\n"
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
@@ -178,7 +179,8 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_string(s.status), json_string(s.message), s.steps, json_number(s.simulated_time),
       json_number(s.end_time), s.particles, s.cells,
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
-      json_number(s.wall_seconds), json_number(s.particle_updates_per_second), s.threads,
+      json_number(s.wall_seconds), json_number(s.particle_updates_per_second),
+      json_number(s.peak_memory_bytes), json_number(s.memory_bytes_per_point), s.threads,
       json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
       limit_equilibrium_json(s), json_number(s.time_step), implicit_json(s), phases_json(s.phase_seconds),
       stages_json(s.stages), json_string(s.version), json_string(s.git_commit));

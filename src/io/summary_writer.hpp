@@ -63,6 +63,9 @@ struct Summary {
   std::vector<std::pair<std::string, double>> phase_seconds = {};
   int dimension = 2;                          // written (after cells) only when 3
   std::string version = {}, git_commit = {};  // of the skred that ran (written last)
+  // The process's peak resident memory, and that peak less the resident memory before the points
+  // were made, per point (the points' and the grid's cost; run/memory_use.hpp). NaN: unknown.
+  double peak_memory_bytes = NAN, memory_bytes_per_point = NAN;
   // The velocity transfer and volumetric strain the run used (written after the scheme when
   // set; "auto" resolved): xpic_order and xpic_period [h/c] for "xpic", pic_fraction for "flip".
   std::string velocity_transfer = {}, volumetric_strain = {};

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "run/memory_use.hpp"
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
@@ -16,20 +17,6 @@
 #include "solver/explicit_solver.hpp"
 
 namespace skred {
-
-double peak_rss_bytes() {
-  std::ifstream f("/proc/self/status");
-  std::string key;
-  while (f >> key) {
-    if (key == "VmHWM:") {
-      double kb = 0;
-      f >> kb;
-      return kb * 1024.0;
-    }
-    std::getline(f, key);
-  }
-  return 0.0;
-}
 
 namespace {
 
@@ -151,10 +138,12 @@ BenchResult run_column(const BenchOptions& opt) {
 }  // namespace
 
 BenchResult run_bench(const BenchOptions& opt) {
+  const double idle = current_rss_bytes();  // before any point or node exists
   if (opt.problem == "column") {
     BenchResult res = opt.dim == 3 ? run_column<3>(opt) : run_column<2>(opt);
     res.median = sorted(res.updates_per_second)[res.updates_per_second.size() / 2];
     res.peak_rss_bytes = peak_rss_bytes();
+    res.idle_rss_bytes = idle;
     return res;
   }
   // A block filling the lower three quarters of a square box, 4 points per cell.
@@ -202,6 +191,7 @@ BenchResult run_bench(const BenchOptions& opt) {
   }
   res.median = sorted(res.updates_per_second)[res.updates_per_second.size() / 2];
   res.peak_rss_bytes = peak_rss_bytes();
+  res.idle_rss_bytes = idle;
   return res;
 }
 

@@ -45,16 +45,14 @@ struct BenchResult {
   std::vector<double> updates_per_second;  // one per repeat
   double median = 0.0;
   double peak_rss_bytes = 0.0;
-  double runout = 0.0;  // column: front advance after the timed steps [m]
-  long yielding = 0;    // column: points whose last stress update was plastic
+  double idle_rss_bytes = 0.0;  // resident before the bench built anything
+  double runout = 0.0;          // column: front advance after the timed steps [m]
+  long yielding = 0;            // column: points whose last stress update was plastic
   std::string status = "completed";
   // Seconds per phase of the time step over the timed steps of all repeats (in step order).
   std::vector<std::pair<std::string, double>> phase_seconds;
 };
 
 BenchResult run_bench(const BenchOptions& opt);
-
-// Peak resident set size of this process in bytes (VmHWM), 0 if unknown.
-double peak_rss_bytes();
 
 }  // namespace skred

@@ -22,6 +22,7 @@
 #include "run/checkpointing.hpp"
 #include "run/density_trigger.hpp"
 #include "run/dilation_continuum.hpp"
+#include "run/memory_use.hpp"
 #include "run/slide_measures.hpp"
 #include "run/slope_stability.hpp"
 #include "run/stability.hpp"
@@ -35,81 +36,6 @@ namespace skred {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
-
-template <int D>
-SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
-  SolverSettings<D> st;
-  st.interpolation = s.interpolation;
-  st.quadrature_points = s.quadrature_points;
-  st.scheme = s.scheme;
-  st.dt = scenario_time_step(s);
-  st.gravity = s.gravity;
-  st.gravity_ramp_time = s.gravity_ramp_time;
-  st.boundaries = s.boundaries;
-  st.pic_fraction = s.pic_fraction;
-  // Contact (Paper III §C.2.7): every body its own fields when a pair has contact or a body
-  // is rigid; pairs without a [[contact]] entry stay bonded; hierarchy in body order, each
-  // dilated continuum right after its parent (Paper III §C.3.2).
-  const bool rigid = std::any_of(s.bodies.begin(), s.bodies.end(), [](const auto& b) { return b.rigid; });
-  if (!s.contacts.empty() || rigid) {
-    st.contact.resize(static_cast<int>(s.bodies.size()));
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      st.contact.rigid[b] = s.bodies[b].rigid;
-      st.contact.rigid_velocity[b] = s.bodies[b].velocity;
-      if (s.bodies[b].rigid)
-        st.contact.outline_normal[b] = [shape = s.bodies[b].shape](const Vec<D>& x) {
-          return shape_normal(shape, x);
-        };
-    }
-    for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
-    st.contact.order.clear();
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-      st.contact.parent[b] = s.bodies[b].dilated_from;
-      if (s.bodies[b].dilated_from >= 0) continue;
-      st.contact.order.push_back(static_cast<int>(b));
-      for (std::size_t d = 0; d < s.bodies.size(); ++d)
-        if (s.bodies[d].dilated_from == static_cast<int>(b)) st.contact.order.push_back(static_cast<int>(d));
-    }
-  }
-  st.velocity_transfer = s.velocity_transfer;
-  st.hyperelastic = s.hyperelastic;
-  st.xpic_order = s.xpic_order;
-  st.xpic_period = s.xpic_period * stable_time_step(s);  // seconds
-  st.volumetric_averaging = s.volumetric_averaging;
-  st.centre_shear = s.centre_shear;
-  return st;
-}
-
-template <int D>
-ImplicitModel<D> implicit_model(const ScenarioOf<D>& s) {
-  ImplicitModel<D> m;
-  m.grid = scenario_grid(s);
-  m.interpolation = s.interpolation;
-  m.quadrature_points = s.quadrature_points;
-  m.gravity = s.gravity;
-  m.boundaries = s.boundaries;
-  m.geometry = s.geometry;
-  m.pressures = s.pressures;
-  m.volumetric_averaging = s.volumetric_averaging;
-  m.prescribed = s.prescribed;
-  return m;
-}
-
-template <int D>
-double stage_time_step(const ScenarioOf<D>& s, const Stage& st) {
-  if (st.integrator == IntegratorKind::Explicit) return scenario_time_step(s);
-  if (st.implicit.analysis == ImplicitAnalysis::Dynamic) return implicit_time_step(s, st);
-  return st.duration / std::max(1, st.implicit.load_steps);
-}
-
-template <int D>
-GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
-  GridGeometry<D> grid;
-  grid.origin = s.origin;
-  grid.h = s.cell_size;
-  grid.cells = s.cells;
-  return grid;
-}
 
 namespace {
 
@@ -253,6 +179,7 @@ constexpr double kSetupReportPoints = 1e6;
 template <int D>
 RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt) {
   const auto setup_start = Clock::now();
+  const double idle_bytes = current_rss_bytes();  // before the points and the grid exist
   const bool report_setup = opt.progress && estimate_size(s).points >= kSetupReportPoints;
   const auto setup = [&](const std::string& what) {
     if (!report_setup) return;
@@ -293,8 +220,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd);
   std::vector<Sym3> smoothed;
   const VtuOptions vtu_options{s.output_fields, s.output_compression};
-  const bool wants_split = std::ranges::any_of(
-      s.output_fields, [](const std::string& f) { return f == "Fe" || f == "Fp" || f == "stress_from_Fe"; });
+  const bool wants_split = output_fields::wants_elastic_split(s.output_fields);
   auto write_frame = [&]() {
     const int frame = static_cast<int>(at.frame_times.size());
     at.frame_times.push_back(solver->time());
@@ -560,6 +486,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.dimension = D;
   sum.wall_seconds = res.wall_seconds;
   sum.particle_updates_per_second = res.particle_updates_per_second;
+  sum.peak_memory_bytes = peak_rss_bytes();
+  if (n > 0 && sum.peak_memory_bytes > 0.0 && idle_bytes > 0.0)
+    sum.memory_bytes_per_point = (sum.peak_memory_bytes - idle_bytes) / static_cast<double>(n);
   sum.threads = solver->threads();
   sum.scenario = s.source;
   sum.interpolation = to_string(s.interpolation);
@@ -614,14 +543,6 @@ RunResult run_simulation(const AnyScenario& s, const fs::path& outdir, const Run
   return std::visit([&](const auto& sc) { return run_simulation(sc, outdir, opt); }, s);
 }
 
-template SolverSettings<2> solver_settings<2>(const Scenario&);
-template SolverSettings<3> solver_settings<3>(const Scenario3&);
-template ImplicitModel<2> implicit_model<2>(const Scenario&);
-template ImplicitModel<3> implicit_model<3>(const Scenario3&);
-template double stage_time_step<2>(const Scenario&, const Stage&);
-template double stage_time_step<3>(const Scenario3&, const Stage&);
-template GridGeometry<2> scenario_grid<2>(const Scenario&);
-template GridGeometry<3> scenario_grid<3>(const Scenario3&);
 template RunResult run_simulation<2>(const Scenario&, const fs::path&, const RunOptions&);
 template RunResult run_simulation<3>(const Scenario3&, const fs::path&, const RunOptions&);
 

@@ -111,6 +111,7 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
       return true;
     });
   }
+  if (output_fields::wants_elastic_split(s.output_fields)) p.track_elastic_F();  // Post eq. 67-77
   return p;
 }
 

@@ -58,8 +58,9 @@ double measure(const Shape3& shape) {
 template <int D>
 double bytes_per_point() {
   std::size_t bytes = 0;
-  Particles<D>().for_each_field(
-      [&](const auto& f, const auto&) { bytes += sizeof(typename std::decay_t<decltype(f)>::value_type); });
+  Particles<D>().for_each_field([&](const auto& f, const auto&) {  // optional fields: off by default
+    if (!f.optional) bytes += sizeof(typename std::decay_t<decltype(f)>::value_type);
+  });
   return static_cast<double>(bytes) + 64.0 * D;
 }
 

@@ -33,6 +33,14 @@ inline std::vector<std::string> split(std::string_view list) {
   return names;
 }
 
+// Whether a frame holds a field of the multiplicative split F = Fe Fp (Post eq. 67-77): only
+// then do the points track Fe (Particles::track_elastic_F).
+inline bool wants_elastic_split(const std::vector<std::string>& fields) {
+  for (const std::string& f : fields)
+    if (f == "Fe" || f == "Fp" || f == "stress_from_Fe") return true;
+  return false;
+}
+
 inline const std::vector<std::string>& all() {
   static const std::vector<std::string> names = split(kAll);
   return names;

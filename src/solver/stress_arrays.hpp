@@ -40,11 +40,11 @@ template <class A>
 SKRED_INLINE void prefetch_block(const A& S, long q, long n) {
   if (q + kPointBlock > n) return;
   const char* f = reinterpret_cast<const char*>(S.F + q);
-  const char* fe = reinterpret_cast<const char*>(S.Fe + q);
   const char* st = reinterpret_cast<const char*>(S.stress + q);
-  for (std::size_t o = 0; o < kPointBlock * sizeof(*S.F); o += 64) {
-    __builtin_prefetch(f + o, 1);
-    __builtin_prefetch(fe + o, 1);
+  for (std::size_t o = 0; o < kPointBlock * sizeof(*S.F); o += 64) __builtin_prefetch(f + o, 1);
+  if (S.Fe) {
+    const char* fe = reinterpret_cast<const char*>(S.Fe + q);
+    for (std::size_t o = 0; o < kPointBlock * sizeof(*S.F); o += 64) __builtin_prefetch(fe + o, 1);
   }
   for (std::size_t o = 0; o < kPointBlock * sizeof(*S.stress); o += 64) __builtin_prefetch(st + o, 1);
 }
@@ -56,7 +56,7 @@ struct StressArrays {
   const double* __restrict volume0;
   const std::int16_t* __restrict material;
   Mat<D>* __restrict F;
-  Mat<D>* __restrict Fe;
+  Mat<D>* __restrict Fe;  // null when Fe is not tracked (Particles::track_elastic_F)
   PointStress<D>* __restrict stress;
   PointState* __restrict state;
   const Material* mats;
@@ -67,15 +67,16 @@ struct StressArrays {
       : volume0(P.volume0.data()),
         material(P.material.data()),
         F(P.F.data()),
-        Fe(P.Fe.data()),
+        Fe(P.Fe.empty() ? nullptr : P.Fe.data()),
         stress(P.stress.data()),
         state(P.state.data()),
         mats(materials.data()),
         single(materials.size() == 1) {}
 
   SKRED_INLINE StressUpdateResult update(long p, const Mat<D>& grad_v, double dt) const {
+    Mat<D> untracked = Mat<D>::Identity();  // Fe's update when Fe is not stored (dropped)
     return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
-                                  F[p], Fe[p]);
+                                  F[p], Fe ? Fe[p] : untracked);
   }
   // update() with its stored and dissipated work summed into `work` and `dissipation`, and
   // the point recorded in `bad` (the lowest so far) if it is not sound.

@@ -133,30 +133,36 @@ SKRED_INLINE unsigned update_block(const StressArrays<3>& S, long p0, const Sel&
 
   // F <- dF F, Fe <- (I + d_eps - d_eps_p) Fe, V = det F V0
   double* const fd = S.F[p0].data();
-  double* const hd = S.Fe[p0].data();
-  V8 fv[9], hv[9];
+  V8 fv[9];
   load_mat(fd, fv);
-  load_mat(hd, hv);
-  V8 f[3][3], h[3][3];
+  V8 f[3][3];
   for (int i = 0; i < 3; ++i)
-    for (int j = 0; j < 3; ++j) {
-      f[i][j] = fv[i + 3 * j];
-      h[i][j] = hv[i + 3 * j];
-    }
+    for (int j = 0; j < 3; ++j) f[i][j] = fv[i + 3 * j];
   const M8 keep = lanes::lanes_of(done);
-  V8 ee[6];
-  for (int k = 0; k < 6; ++k) ee[k] = plastic ? e[k] - ep[k] : e[k];
-  const V8 em[3][3] = {{ee[0], ee[3], ee[5]}, {ee[3], ee[1], ee[4]}, {ee[5], ee[4], ee[2]}};
   V8 fn[3][3];
   for (int i = 0; i < 3; ++i)
     for (int j = 0; j < 3; ++j) {
       fn[i][j] = f[i][j] + g[i][0] * f[0][j] + g[i][1] * f[1][j] + g[i][2] * f[2][j];
       fv[i + 3 * j] = keep ? fn[i][j] : f[i][j];
-      const V8 hn = h[i][j] + em[i][0] * h[0][j] + em[i][1] * h[1][j] + em[i][2] * h[2][j];
-      hv[i + 3 * j] = keep ? hn : h[i][j];
     }
   store_mat(fd, fv);
-  store_mat(hd, hv);
+  V8 ee[6];  // the elastic strain increment d_eps - d_eps_p
+  for (int k = 0; k < 6; ++k) ee[k] = plastic ? e[k] - ep[k] : e[k];
+  if (S.Fe) {  // tracked only for the frames that hold Fe, Fp or stress_from_Fe
+    double* const hd = S.Fe[p0].data();
+    V8 hv[9];
+    load_mat(hd, hv);
+    V8 h[3][3];
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) h[i][j] = hv[i + 3 * j];
+    const V8 em[3][3] = {{ee[0], ee[3], ee[5]}, {ee[3], ee[1], ee[4]}, {ee[5], ee[4], ee[2]}};
+    for (int i = 0; i < 3; ++i)
+      for (int j = 0; j < 3; ++j) {
+        const V8 hn = h[i][j] + em[i][0] * h[0][j] + em[i][1] * h[1][j] + em[i][2] * h[2][j];
+        hv[i + 3 * j] = keep ? hn : h[i][j];
+      }
+    store_mat(hd, hv);
+  }
   const V8 detf = fn[0][0] * (fn[1][1] * fn[2][2] - fn[1][2] * fn[2][1]) -
                   fn[0][1] * (fn[1][0] * fn[2][2] - fn[1][2] * fn[2][0]) +
                   fn[0][2] * (fn[1][0] * fn[2][1] - fn[1][1] * fn[2][0]);

@@ -1,0 +1,30 @@
+#include "run/memory_use.hpp"
+
+#include <fstream>
+#include <string>
+
+namespace skred {
+
+namespace {
+
+// The value of `key` (e.g. "VmHWM:", in kB) in /proc/self/status, in bytes; 0 if absent.
+double status_bytes(const char* key) {
+  std::ifstream f("/proc/self/status");
+  std::string k;
+  while (f >> k) {
+    if (k == key) {
+      double kb = 0;
+      f >> kb;
+      return kb * 1024.0;
+    }
+    std::getline(f, k);
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double peak_rss_bytes() { return status_bytes("VmHWM:"); }
+double current_rss_bytes() { return status_bytes("VmRSS:"); }
+
+}  // namespace skred

@@ -1,0 +1,13 @@
+// The process's memory as the kernel counts it (/proc/self/status), for `skred bench` and
+// summary.json: the peak resident set and the resident set now, whose difference over a run is
+// what the run's points and grid cost beyond the idle process (code, libraries, PETSc).
+#pragma once
+
+namespace skred {
+
+// Peak resident set size of this process in bytes (VmHWM), 0 if unknown.
+double peak_rss_bytes();
+// Resident set size of this process now in bytes (VmRSS), 0 if unknown.
+double current_rss_bytes();
+
+}  // namespace skred
