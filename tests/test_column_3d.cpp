@@ -2,7 +2,8 @@
 //  - the Mohr-Coulomb column of `skred bench --problem column` (phi = 30, c = 0.5 kPa,
 //    K0 = nu/(1 - nu) initial stress, Thesis eq. 5.6-5.7) as a slab two cells thick between
 //    roller z walls must reproduce the 2D plane-strain run of the same column (runout, front
-//    travel and final height within 2 %, gravity work per metre of thickness within 2 %);
+//    travel and final height within 2 %, gravity work per metre of thickness within 2 %), and
+//    no point of it may move or be moving along z at the end (to round-off);
 //  - a square column collapsing in both horizontal directions spreads symmetrically: runout
 //    along x and z (and towards - and +) and the deposit's extents agree to one cell, and no
 //    mass is lost.
@@ -13,9 +14,11 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <fmt/format.h>
 
+#include "run/checkpointing.hpp"
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
 #include "scenario/build.hpp"
@@ -72,15 +75,25 @@ interval = 2.5
                      three_d ? "z_min = \"roller\"\nz_max = \"roller\"" : "");
 }
 
+// Runs the scenario; with `end`, the points as the run left them (from the checkpoint that a
+// run with checkpoints writes at its end).
 template <int D>
-RunResult run(const ScenarioOf<D>& s, const std::string& name) {
+RunResult run(const ScenarioOf<D>& s, const std::string& name, Particles<D>* end = nullptr) {
   const fs::path out = skred::test::fresh_temp_dir(name);
   RunOptions opt;
   opt.progress = false;
   opt.threads = 2;
+  if (end) opt.checkpoint_every = 1L << 40;  // none on the way, one at the end
   RunResult r = run_simulation(s, out, opt);
   EXPECT_TRUE(fs::exists(out / "particles_000001.vtu"));
   EXPECT_TRUE(fs::exists(out / "grid_000001.vtr"));
+  if (end && r.completed) {
+    SolverClock clock;
+    RunProgress<D> at;
+    std::vector<SeriesRow> series;
+    load_checkpoint(checkpoint_file(out), s, *end, clock, at, series);
+    EXPECT_EQ(clock.steps, r.steps);  // the run's last state
+  }
   fs::remove_all(out);
   return r;
 }
@@ -97,7 +110,8 @@ TEST(Column3D, SlabWithRollerSidesReproducesThePlaneStrainRun) {
   const Scenario3& s3 = std::get<Scenario3>(any3);
   EXPECT_EQ(s3.cell_count(), 30L * 14 * 2);
   const RunResult r2 = run(std::get<Scenario>(any2), "plane");
-  const RunResult r3 = run(s3, "slab");
+  Particles<3> end;
+  const RunResult r3 = run(s3, "slab", &end);
   ASSERT_TRUE(r2.completed) << r2.message;
   ASSERT_TRUE(r3.completed) << r3.message;
   EXPECT_EQ(r3.particles, 4 * r2.particles);  // two cells of 2 points each along z
@@ -117,8 +131,32 @@ TEST(Column3D, SlabWithRollerSidesReproducesThePlaneStrainRun) {
   EXPECT_LE(rel(m3.max_displacement, m2.max_displacement), 0.02);
   EXPECT_LE(rel(m3.height_end, m2.height_end), 0.02);
   EXPECT_LE(rel(m3.gravity_work / thickness, m2.gravity_work), 0.02);
-  EXPECT_EQ(m3.runout_z_min, 0.0);  // nothing moves across the slab
-  EXPECT_EQ(m3.runout_z_max, 0.0);
+  // Nothing moves across the slab. The roller z walls hold the nodes on z = 0 and 0.5 m, and the
+  // slab is its own mirror image about z = 0.25 m, so the middle nodes get no z force either: every
+  // point must end where it started in z (its lattice position, (k + 1/2) h/2), at rest in z, to
+  // round-off (measured: |u_z| = 0, |v_z| <= 1.1e-16 m/s). The runout along z, asserted 0 before,
+  // cannot tell: the slab fills the grid between its z walls (with z_max = "fixed" it stays 0
+  // while points move 3.7 cm along z and these bounds fail).
+  ASSERT_EQ(end.size(), static_cast<std::size_t>(r3.particles));
+  const double height = 3.0, speed = std::sqrt(9.81 * height);  // the problem's length and speed
+  double dz = 0.0, vz = 0.0, off_lattice = 0.0, fzz = 0.0;
+  for (std::size_t p = 0; p < end.size(); ++p) {
+    dz = std::max(dz, std::abs(end.x[p][2] - end.x_ref[p][2]));
+    vz = std::max(vz, std::abs(end.v[p][2]));
+    const double q = kCell / 2, k = std::floor(end.x_ref[p][2] / q);
+    off_lattice = std::max(off_lattice, std::abs(end.x_ref[p][2] - (k + 0.5) * q));
+    fzz = std::max(fzz, std::abs(end.F[p](2, 2) - 1.0));
+  }
+  std::printf("slab at the end: max |u_z| %.2e m, max |v_z| %.2e m/s, max |F_zz - 1| %.3g\n", dz, vz, fzz);
+  EXPECT_LE(off_lattice, 1e-12);
+  EXPECT_LE(dz, 1e-9 * height);
+  EXPECT_LE(vz, 1e-9 * speed);
+  // Not asserted: F_zz - 1 is not zero, up to 0.062 (measured). The cell-averaged volumetric
+  // strain (the slide default; volumetric_averaging.hpp) adds (div_c - div_p) / d to the diagonal
+  // of each point's velocity gradient, d = 3 here: the z axis takes a third of the correction
+  // although the grid (v_z = 0) does not strain the slab along z, while the 2D run adds a half to
+  // xx and yy and nothing to zz. With volumetric_strain = "point" F_zz stays exactly 1 and the
+  // slab meets the plane-strain run more closely (front travel within 0.03 %, not 0.3 %).
 }
 
 TEST(Column3D, SquareColumnSpreadsSymmetricallyInXAndZ) {

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -11,6 +12,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bishop_reference.hpp"
 #include "run/slope_stability.hpp"
 #include "run/strength_reduction.hpp"
 #include "slope_texts.hpp"
@@ -38,7 +40,9 @@ fs::path fifty_metre_slope(const fs::path& dir) {
 }  // namespace
 
 // Measured (docs/studies/2026-11-28-mpm-slopes-against-limit-equilibrium.md): from [0.5, 0.7] in three
-// bisections the slope stands at 0.575 and fails at 0.6, Bishop's F = 0.587 lying between.
+// bisections the slope stands at 0.575 and fails at 0.6, Bishop's F = 0.587 lying between. The
+// F that skred computes (on the points' columns of 5 m) is checked against the independent
+// reference on the example's polygon (bishop_reference.hpp): measured 0.5874 against 0.5882.
 TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
   const fs::path dir = test::fresh_temp_dir("fos");
   FosOptions opt;
@@ -51,7 +55,10 @@ TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
   EXPECT_DOUBLE_EQ(r.runs[2].factor, 0.6);
   ASSERT_TRUE(std::isfinite(r.stands) && std::isfinite(r.fails));
   EXPECT_NEAR(r.fails - r.stands, 0.025, 1e-12);  // three halvings of [0.5, 0.7]
-  ASSERT_NEAR(r.limit_equilibrium, 0.59, 0.01);
+  const double reference =
+      test::bishop::critical_circle(test::slope_50m_ground(test::reference_soil(18.0, 5e3)), 1).factor;
+  std::printf("50 m slope: Bishop's F %.4f, the reference's %.4f\n", r.limit_equilibrium, reference);
+  ASSERT_NEAR(r.limit_equilibrium, reference, 0.01 * reference);
   // The MPM's onset within 5 % of limit equilibrium's: the whole bracket, 5 % of F wide at
   // most, inside F -5 % ... F +5 %.
   EXPECT_GE(r.stands, 0.95 * r.limit_equilibrium);
@@ -78,7 +85,8 @@ TEST(FactorOfSafety, FiftyMetreSlopeFailsWhereBishopSays) {
 }
 
 // Layered ground against the MPM: the slope example at 1 m cells on a weak base layer (c = 3 kPa,
-// phi = 10 deg) into which its critical circle dips (Bishop's F = 0.706). Measured (docs/method.md,
+// phi = 10 deg) into which its critical circle dips (Bishop's F = 0.706; the independent
+// reference on the bodies' polygons, bishop_reference.hpp, 0.7108). Measured (docs/method.md,
 // "Limit equilibrium"): the MPM's onset lies between f = 0.6625 and 0.694 on these cells. With the
 // strength divided by 0.9 F the slope must stand (Bishop's F 1.11), by 1.1 F fail (0.91).
 TEST(FactorOfSafety, ASlopeOnAWeakLayerFailsWhereBishopSays) {
@@ -87,7 +95,13 @@ TEST(FactorOfSafety, ASlopeOnAWeakLayerFailsWhereBishopSays) {
   std::ofstream(file) << test::two_body_slope(test::mohr_coulomb_material("base", 10.0, 3000.0), 1.0);
   const SlopeStability le = slope_stability(load_scenario(file.string()));
   ASSERT_TRUE(le.computed) << le.why_not;
-  ASSERT_NEAR(le.critical.factor, 0.706, 0.005);
+  const double reference =
+      test::bishop::critical_circle(
+          test::two_body_slope_ground(test::reference_soil(18.0, 5e3), test::reference_soil(10.0, 3e3)), 1)
+          .factor;
+  std::printf("10 m slope on a weak layer: Bishop's F %.4f, the reference's %.4f\n", le.critical.factor,
+              reference);
+  ASSERT_NEAR(le.critical.factor, reference, 0.01 * reference);
   EXPECT_LT(le.critical.circle.yc - le.critical.circle.radius, 4.0) << "the circle dips into the weak layer";
   FosOptions opt;
   opt.low = 0.9 * le.critical.factor, opt.high = 1.1 * le.critical.factor;
