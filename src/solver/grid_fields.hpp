@@ -11,13 +11,14 @@ namespace skred {
 
 template <int D>
 struct GridFields {
-  GridArray<double> mass;            // m_i = sum N_ip m_p (Thesis eq. 2.53)
-  GridArray<Vec<D>> momentum;        // p_i = sum N_ip m_p v_p (eq. 2.54)
-  GridArray<Vec<D>> velocity;        // v_i^k = p_i / m_i under the velocity conditions (eq. 2.23)
-  GridArray<Vec<D>> internal_force;  // f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51)
-  // a_i = (f_i^int + f_i^ext) / m_i (eq. 2.49, 2.52), with f_i^ext = m_i g formed in the grid
-  // update; after the boundary conditions (v_i^{k+1} - p_i / m_i) / dt, the velocity change
-  // handed to the particles (eq. 2.56), so that they obey the walls too.
+  GridArray<double> mass;      // m_i = sum N_ip m_p (Thesis eq. 2.53)
+  GridArray<Vec<D>> momentum;  // p_i = sum N_ip m_p v_p (eq. 2.54)
+  GridArray<Vec<D>> velocity;  // v_i^k = p_i / m_i under the velocity conditions (eq. 2.23)
+  // First f_i^int = -sum sigma_p V_p grad N_ip (eq. 2.51), summed by the stress phase; the grid
+  // update turns it in place into a_i = (f_i^int + f_i^ext) / m_i (eq. 2.49, 2.52), with
+  // f_i^ext = m_i g; after the boundary conditions (v_i^{k+1} - p_i / m_i) / dt, the velocity
+  // change handed to the particles (eq. 2.56), so that they obey the walls too. (One array for
+  // both: nothing reads the force once the acceleration is formed.)
   GridArray<Vec<D>> acceleration;
   GridArray<Vec<D>> velocity_move;  // (v_i^k + v_i^{k+1}) / 2: moves the points (eq. 2.55)
   // s_i, the part of a_i with which the walls stop a node: at the boundary nodes every component
@@ -41,9 +42,7 @@ struct GridFields {
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.
   void resize(std::size_t n, bool pic, bool remap, bool xpic = false) {
-    for (auto* f :
-         {&momentum, &velocity, &internal_force, &acceleration, &velocity_move, &stopped_acceleration})
-      f->resize(n);
+    for (auto* f : {&momentum, &velocity, &acceleration, &velocity_move, &stopped_acceleration}) f->resize(n);
     mass.resize(n);
     if (pic || xpic) velocity_next.resize(n);
     if (xpic) xpic_work.resize(n);

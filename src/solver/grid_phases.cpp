@@ -82,7 +82,7 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
   else
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
-      const Vec<D> a = m > 0.0 ? Vec<D>(f.internal_force[i] / m + g) : Vec<D>::Zero();
+      const Vec<D> a = m > 0.0 ? Vec<D>(f.acceleration[i] / m + g) : Vec<D>::Zero();
       f.acceleration[i] = a;
       f.velocity_move[i] = f.velocity[i] + half_dt * a;
     });
@@ -118,7 +118,7 @@ void ExplicitSolver<D>::damped_accelerations(GridFields<D>& f) {
     const double m = f.mass[i];
     const Vec<D>& v = f.velocity[i];
     Vec<D> a = Vec<D>::Zero(), damp = Vec<D>::Zero();
-    if (m > 0.0) a = f.internal_force[i] / m + g;
+    if (m > 0.0) a = f.acceleration[i] / m + g;
     if (m > 0.0 && !shared_node(i)) {
       for (int d = 0; d < D; ++d)
         damp[d] = v[d] > 0.0 ? -alpha * std::abs(a[d]) : v[d] < 0.0 ? alpha * std::abs(a[d]) : 0.0;

@@ -49,7 +49,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       StressArrays<D> S(P, materials_);
       if constexpr (kSizeAhead<D, K>) S.det_f = det_f_.data();
-      Vec<D>* const forces = f.internal_force.data();
+      Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       const Vec<D>* __restrict vel = f.velocity.data();
       double work = 0.0, dissipation = 0.0;
@@ -115,7 +115,7 @@ template <class K>
 void ExplicitSolver<D>::internal_force(const K& kernel) {
   timer_.time(Phase::InternalForce, [&] {
     for_each_continuum([&](GridFields<D>& f, auto sel) {
-      Vec<D>* const forces = f.internal_force.data();
+      Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       if (!settings_.volumetric_averaging)
         return p2g_internal_force(transfer_, kernel, particles_, forces, sel);

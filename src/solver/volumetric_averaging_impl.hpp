@@ -95,7 +95,7 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
         A.volume[p] = r.volume;
       }
       cell_sums(sel, A.mean.data(), A.mean_sum.data(), A.mean_volume_sum.data());
-      Vec<D>* const forces = f.internal_force.data();
+      Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       p2g_internal_force(transfer_, kernel, P, forces, sel,
                          [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); });
