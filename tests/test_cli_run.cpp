@@ -105,6 +105,25 @@ TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {
   EXPECT_FALSE(fs::exists(d / "out" / "summary.json"));
 }
 
+// summary.json's peak memory: above the idle process, per point, so bytes_per_point x points
+// stays below the whole peak (the idle process is not counted) and above the points' own
+// arrays (x, x_ref, v, half0, F, stress, state, mass, volume0: at least 150 bytes in 2D).
+TEST(CliRun, SummaryReportsThePeakMemoryPerPoint) {
+  TempDir d;
+  write(d / "discs.toml", short_discs());
+  ASSERT_EQ(sh(kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1").code, 0);
+  const std::string summary = read(d / "out" / "summary.json");
+  std::smatch peak, per_point, points;
+  ASSERT_TRUE(std::regex_search(summary, peak, std::regex(R"("peak_bytes": ([0-9.e+]+))"))) << summary;
+  ASSERT_TRUE(std::regex_search(summary, per_point, std::regex(R"("bytes_per_point": ([0-9.e+]+))")))
+      << summary;
+  ASSERT_TRUE(std::regex_search(summary, points, std::regex(R"("particles": (\d+))"))) << summary;
+  const double n = std::stod(points[1]);
+  ASSERT_GT(n, 0.0);
+  EXPECT_LT(std::stod(per_point[1]) * n, std::stod(peak[1]));
+  EXPECT_GT(std::stod(per_point[1]), 150.0);
+}
+
 TEST(CliRun, AnOutputFolderHoldingARunIsRefusedUnlessOverwrite) {
   TempDir d;
   write(d / "discs.toml", short_discs());
