@@ -64,10 +64,10 @@ double bytes_per_point() {
   return static_cast<double>(bytes) + 64.0 * D;
 }
 
-// Grid fields per node (docs/method.md: 120 B in 2D, 176 B in 3D with every scheme's arrays)
-// plus one scatter buffer of the second thread.
+// Grid fields per node (solver/grid_fields.hpp: the mass and six vectors, 104 B in 2D and
+// 152 B in 3D with every scheme's arrays) plus one scatter buffer of the second thread.
 template <int D>
-constexpr double kBytesPerNode = D == 2 ? 152.0 : 208.0;
+constexpr double kBytesPerNode = D == 2 ? 136.0 : 184.0;
 
 }  // namespace
 
