@@ -69,6 +69,35 @@ inline std::string with_transfer(std::string text, const std::string& lines) {
   return text;
 }
 
+// R2's column: width 0.02 m, height H = 0.1 m, cells of 5 mm, rho = 1800, E = 1 MPa, nu = 0,
+// on a fixed base between rollers (the implicit and axisymmetric tests); `solver` and later tables
+// are appended.
+inline std::string r2_column_text(const std::string& solver) {
+  return R"(
+[grid]
+size = [0.02, 0.1]
+cell_size = 0.005
+[[material]]
+name = "soil"
+model = "linear-elastic"
+density = 1800.0
+young = 1e6
+poisson = 0.0
+[[body]]
+name = "column"
+material = "soil"
+shape = "rectangle"
+min = [0.0, 0.0]
+max = [0.02, 0.1]
+[gravity]
+acceleration = [0, -9.81]
+[boundary]
+x_min = "roller"
+x_max = "roller"
+y_min = "fixed"
+)" + solver;
+}
+
 inline GridGeometry<2> grid2(double h, int nx, int ny) {
   GridGeometry<2> g;
   g.h = h;

@@ -121,8 +121,8 @@ TEST(DilationContinuum, ScenarioAddsTheContinuum) {
   // An empty continuum is harmless: the solver steps, its volume per mass is the sand's.
   ExplicitSolver<2> solver(scenario_grid(s), P, stage_materials(s, s.stages[0]), st, 1);
   EXPECT_TRUE(solver.step().ok);
-  EXPECT_GT(solver.settings().contact.volume_per_mass[2], 0.0);
-  EXPECT_EQ(solver.settings().contact.volume_per_mass[2], solver.settings().contact.volume_per_mass[1]);
+  EXPECT_GT(solver.volume_per_mass()[2], 0.0);
+  EXPECT_EQ(solver.volume_per_mass()[2], solver.volume_per_mass()[1]);
   // Hierarchy with a body after the sand: the dilated sand comes before it.
   std::string text = kColumn;
   text.insert(text.find("[[contact]]"),

@@ -356,11 +356,16 @@ TEST(ImplicitScenario, EveryErrorNamesItsKey) {
        edit(axisymmetric, "origin = [0, 0]", "origin = [-1, 0]") +
            "[solver]\nend_time = 1.0\nintegrator = \"implicit\"\n",
        "grid.origin"},
-      {"axisymmetric explicit run", axisymmetric + "[solver]\nend_time = 1.0\n", "grid.geometry"},
-      {"axisymmetric with one explicit stage",
-       axisymmetric + "[solver]\nintegrator = \"implicit\"\n[[stage]]\nduration = 1.0\nintegrator = "
-                      "\"explicit\"\n",
-       "grid.geometry"},
+      {"axisymmetric axis held fixed",
+       edit(axisymmetric, "x_min = \"roller\"", "x_min = \"fixed\"") + "[solver]\nend_time = 1.0\n",
+       "boundary.x_min"},
+      {"axisymmetric with splitting",
+       edit(axisymmetric, "shape = \"rectangle\"", "split = true\nshape = \"rectangle\"") +
+           "[solver]\nend_time = 1.0\n",
+       "body[0].split"},
+      {"axisymmetric with cell-centre shear",
+       axisymmetric + "[solver]\nend_time = 1.0\nscheme = \"usf\"\nshear_strain = \"cell-centre\"\n",
+       "solver.shear_strain"},
       {"geometry in 3D",
        "[grid]\nsize = [2.0, 2.0, 2.0]\ncell_size = 0.5\ngeometry = \"plane-strain\"\n[[material]]\nname = "
        "\"s\"\nmodel = \"linear-elastic\"\ndensity = 2000.0\nyoung = 1e7\npoisson = 0.3\n[[body]]\nmaterial "
@@ -471,8 +476,9 @@ TEST(ImplicitScenario, EveryErrorNamesItsKey) {
   EXPECT_NE(message("[stage.implicit] on an explicit stage")
                 .find("runs the explicit integrator; set integrator = \"implicit\""),
             std::string::npos);
-  EXPECT_NE(message("axisymmetric explicit run")
-                .find("axisymmetric runs need integrator = \"implicit\" for every stage"),
+  EXPECT_NE(message("axisymmetric axis held fixed").find("the axis r = 0, a symmetry line"),
+            std::string::npos);
+  EXPECT_NE(message("axisymmetric with splitting").find("not available in axisymmetric geometry"),
             std::string::npos);
   EXPECT_NE(message("pressure with the explicit integrator")
                 .find("pressures are applied by the implicit integrator only"),

@@ -49,6 +49,7 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
   st.xpic_period = s.xpic_period * stable_time_step(s);  // seconds
   st.volumetric_averaging = s.volumetric_averaging;
   st.centre_shear = s.centre_shear;
+  st.geometry = s.geometry;
   return st;
 }
 

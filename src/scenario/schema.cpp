@@ -112,7 +112,7 @@ void add_model_sections(std::vector<Section>& s) {
                     .def = derived("\"plane-strain\""),
                     .choices = "plane-strain|axisymmetric",
                     .doc = "2D only: \"axisymmetric\" makes x the radius r (origin x >= 0) and y the axis; "
-                           "masses and volumes are per radian; every stage needs integrator = \"implicit\""},
+                           "masses and volumes are per radian; the axis x = 0 is a roller"},
                }});
   s.push_back({"material", "material",
                concat(

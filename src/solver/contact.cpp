@@ -116,7 +116,7 @@ void ExplicitSolver<D>::couple_start(Field&& field, bool shift) {
 template <int D>
 void ExplicitSolver<D>::body_grid_update() {
   const ContactSettings<D>& c = settings_.contact;
-  const bool pic = forms_velocity_next();
+  const bool pic = transfer_rule_.forms_velocity_next();
   for (int b = 0; b < c.bodies(); ++b) {
     BodyFields<D>& f = bodies_[static_cast<std::size_t>(b)];
     if (c.rigid[static_cast<std::size_t>(b)]) {
@@ -225,7 +225,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     double volume = 0.0;
     for (int k = 0; k < count; ++k)
       volume += bodies_[static_cast<std::size_t>(present[k])].mass[i] *
-                c.volume_per_mass[static_cast<std::size_t>(present[k])];
+                volume_per_mass_[static_cast<std::size_t>(present[k])];
     // A dilated continuum (Paper III §C.3.2) that fills less than kDilatedFill of the support
     // of every node within two (nearby_max_mass) moves with its parent at this node: merged into it
     // (mass, momentum and mass gradient added; the velocities joined as a bonded pair's), and given its
@@ -237,7 +237,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     for (int k = 0; k < all; ++k) ids[k] = present[k], merged[k] = k;
     for (int k = 0; k < all && !c.parent.empty(); ++k) {
       const auto b = static_cast<std::size_t>(ids[k]);
-      if (c.parent[b] < 0 || nearby_max_mass<D>(g, bodies_[b].mass.data(), i, ij) * c.volume_per_mass[b] >=
+      if (c.parent[b] < 0 || nearby_max_mass<D>(g, bodies_[b].mass.data(), i, ij) * volume_per_mass_[b] >=
                                  kDilatedFill * support)
         continue;
       int j = 0;
@@ -317,7 +317,7 @@ void ExplicitSolver<D>::contact() {
   if (!contact_on()) return;
   timer_.time(Phase::Contact, [&] {
     const double dt = settings_.dt;
-    const bool pic = forms_velocity_next();
+    const bool pic = transfer_rule_.forms_velocity_next();
     // v_i^k,b as the points' accelerations see it: the mapped velocity, not the coupled one
     const auto base = [](const BodyFields<D>& f, std::size_t i) {
       return Vec<D>(f.momentum[i] / f.mass[i] + f.velocity_shift[i]);
@@ -338,7 +338,7 @@ void ExplicitSolver<D>::contact() {
 // Each body's reference volume per unit mass, from its points.
 template <int D>
 void ExplicitSolver<D>::prepare_contact() {
-  ContactSettings<D>& c = settings_.contact;
+  const ContactSettings<D>& c = settings_.contact;
   std::vector<double> mass(static_cast<std::size_t>(c.bodies()), 0.0), volume(mass);
   const auto& P = particles_;
   // A dilated continuum's points count with its parent's (Paper III §C.3.2).
@@ -352,9 +352,9 @@ void ExplicitSolver<D>::prepare_contact() {
     volume[family(b)] += P.volume0[p];
   }
   for (BodyFields<D>& f : bodies_) f.velocity_shift.resize(grid().node_count());
-  c.volume_per_mass.assign(mass.size(), 0.0);
+  volume_per_mass_.assign(mass.size(), 0.0);
   for (std::size_t b = 0; b < mass.size(); ++b)
-    c.volume_per_mass[b] = mass[family(b)] > 0.0 ? volume[family(b)] / mass[family(b)] : 0.0;
+    volume_per_mass_[b] = mass[family(b)] > 0.0 ? volume[family(b)] / mass[family(b)] : 0.0;
   // The outline normals of the fixed rigid bodies at every node, once (they do not move).
   outline_normals_.assign(mass.size(), {});
   for (std::size_t b = 0; b < mass.size() && b < c.outline_normal.size(); ++b) {

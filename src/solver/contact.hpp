@@ -50,12 +50,10 @@ struct ContactSettings {
   std::vector<double> friction;
   // Body ids in the master-slave hierarchy (Paper III §C.2.7): order[0] is the master.
   std::vector<int> order;
-  // Per body id: reference volume per unit mass (1 / mean density of its points), set by the
-  // solver from the points; turns a nodal mass into the volume it fills.
-  std::vector<double> volume_per_mass;
   // Per body id (may be empty): the body a dilated continuum takes its points from (Paper III
-  // §C.3.2), else -1. The two share one volume_per_mass, from the points of both, which stays
-  // the same as points move from one to the other (and is there while the continuum is empty).
+  // §C.3.2), else -1. The two share one volume per mass (ExplicitSolver::volume_per_mass), from
+  // the points of both, which stays the same as points move from one to the other (and is there
+  // while the continuum is empty).
   std::vector<int> parent;
 
   int bodies() const { return static_cast<int>(rigid.size()); }

@@ -54,6 +54,10 @@ struct SolverSettings {
   // Selective integration of shear, grad N at the cell's centre (Thesis §4.5; USF only;
   // selective_shear.hpp).
   bool centre_shear = false;
+  // A 2D grid's geometry: plane strain, or axisymmetric with x the radius r and y the axis
+  // (Acosta App. A1: masses and volumes per radian, the hoop strain v_r / r in the stress update and
+  // -V sigma_theta N / r in the radial internal force; stress_phase_impl.hpp).
+  Geometry geometry = Geometry::PlaneStrain;
   // Map each body's mass and momentum beside the centre-of-mass fields (for contact).
   bool body_fields = false;
   // Multi-continuum contact (Paper III §C.2.7; contact.hpp): empty, every body shares the
@@ -164,6 +168,9 @@ class ExplicitSolver {
   bool contact_on() const { return settings_.contact.enabled(); }
   // The contact work of the last step, normal and friction parts (ContactLoss).
   const ContactLoss& contact_step() const { return contact_step_; }
+  // Per body id: reference volume per unit mass (1 / mean density of its points, prepare_contact),
+  // which turns a nodal mass into the volume it fills.
+  const std::vector<double>& volume_per_mass() const { return volume_per_mass_; }
   // What the walls took in the last step, over every continuum (WallEnergy's work, work_sum and
   // rule_dissipation; the rest of it is not summed).
   const WallEnergy& wall_step() const { return wall_step_; }
@@ -198,14 +205,14 @@ class ExplicitSolver {
   // Checkpoint and restart: the state to save, and restoring it with the current stage's
   // materials. The next step maps the grid afresh from the particles, which gives the same
   // points bit for bit as the fused map (test FusedMapEqualsAFreshMapEveryStep).
-  SolverClock clock() const { return {time_, steps_, ramp_start_, settings_.gravity_ramp_time, energy_}; }
+  SolverClock clock() const { return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_}; }
   void restore(const SolverClock& c, std::vector<Material> materials) {
     materials_ = std::move(materials);
     for (Material& m : materials_) m.prepare();
     time_ = c.time;
     steps_ = c.steps;
     ramp_start_ = c.ramp_start;
-    settings_.gravity_ramp_time = c.gravity_ramp_time;
+    gravity_ramp_time_ = c.gravity_ramp_time;
     energy_ = c.energy;
     grid_mapped_ = false;
   }
@@ -268,35 +275,11 @@ class ExplicitSolver {
   // XPIC(m): the nodal velocity the points take, into velocity_next (before m_i, p_i are cleared).
   template <class K>
   void xpic_grid_velocity(const K& kernel);
-  // The PIC share of the particle update: pic_fraction for FLIP, 1 for APIC and for XPIC on its
-  // filter steps, 0 on XPIC's other steps (xpic_period) and for the affine FLIP.
-  double pic_share() const {
-    if (settings_.velocity_transfer == VelocityTransfer::Xpic) return filter_step_ ? 1.0 : 0.0;
-    if (settings_.velocity_transfer == VelocityTransfer::Aflip) return 0.0;
-    return settings_.velocity_transfer == VelocityTransfer::Flip ? settings_.pic_fraction : 1.0;
-  }
-  // Whether the step from time_ to time_ + dt filters the velocity (XPIC): every step without a
-  // period, else the steps that cross a multiple of it. Taken from the time alone, so a restart
-  // filters on the same steps.
-  bool filters_at(double t) const {
-    const double T = settings_.xpic_period, dt = settings_.dt;
-    return T <= 0.0 || std::floor((t + dt) / T) > std::floor(t / T);
-  }
-  // Whether the grid update forms v_i^{k+1} = p_i / m_i + dt a_i (velocity_next): for a PIC share
-  // of FLIP and for the C_p of APIC and the affine FLIP (XPIC forms its own, xpic_grid_velocity).
-  bool forms_velocity_next() const { return settings_.pic_fraction > 0.0 || carries_affine(); }
-  // Whether the points carry an affine velocity C_p that the maps scatter (APIC, the affine FLIP).
-  bool carries_affine() const {
-    return settings_.velocity_transfer == VelocityTransfer::Apic ||
-           settings_.velocity_transfer == VelocityTransfer::Aflip;
-  }
-  // Whether the transfer's booked loss is taken from the FLIP update (FLIP without a PIC share,
-  // APIC and the affine FLIP), or from the new velocity (the PIC share, XPIC): which form of the walls' share
-  // of the lumped mass's loss pairs with it (wall_update_loss in explicit_solver_impl.hpp).
-  bool update_from_flip() const {
-    return carries_affine() ||
-           (settings_.velocity_transfer == VelocityTransfer::Flip && settings_.pic_fraction <= 0.0) ||
-           (settings_.velocity_transfer == VelocityTransfer::Xpic && !filter_step_);
+  bool axisymmetric() const { return D == 2 && settings_.geometry == Geometry::Axisymmetric; }
+  // The mean normal stress the cell-averaged volumetric strain pairs with: over the in-plane axes,
+  // and the hoop axis too in axisymmetric geometry (volumetric_averaging.hpp).
+  double mean_stress(const PointStress<D>& s) const {
+    return axisymmetric() ? (s[0] + s[1] + s[2]) / 3.0 : sym_block<D>(s).trace() / D;
   }
   void clear_mass_momentum();
   // The grid phases per body in a run with contact (contact.cpp).
@@ -324,14 +307,17 @@ class ExplicitSolver {
   Transfer<D> transfer_;
   Particles<D>& particles_;
   std::vector<Material> materials_;
-  SolverSettings<D> settings_;
+  const SolverSettings<D> settings_;    // as constructed: the run's state is in the members below
+  VelocityTransferRule transfer_rule_;  // the particle velocity update (velocity_transfer.hpp)
+  double gravity_ramp_time_;            // the current stage's gravity ramp (begin_stage)
   Boundaries<D> boundaries_;
   WallBox<D> walls_;
   std::array<bool, 2 * D> stopping_walls_{};  // the sides that stopped a node this step (WallEnergy)
   GridFields<D> fields_;
   std::vector<BodyFields<D>> bodies_;
-  NodeBox<D> body_box_;               // where the body fields were last written
-  std::vector<double> contact_sums_;  // per-thread work sums of the contact phase
+  NodeBox<D> body_box_;                  // where the body fields were last written
+  std::vector<double> contact_sums_;     // per-thread work sums of the contact phase
+  std::vector<double> volume_per_mass_;  // per body (volume_per_mass())
   // Per body: the outline normal at each node of a fixed rigid body with an outline (else empty)
   std::vector<std::vector<Vec<D>>> outline_normals_;
   ContactLoss contact_step_;  // the last step's contact work
@@ -340,7 +326,6 @@ class ExplicitSolver {
   // True when the grid's mass and momentum and the stored weighting functions are those of
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
-  bool filter_step_ = true;              // this step filters the velocity (XPIC; filters_at)
   std::size_t mapped_points_ = 0;        // the number of points the map was made for
   std::vector<double> node_mass_;        // nodal mass of the smoothing (eq. 4.18)
   std::vector<Sym3> node_stress_;        // nodal stresses for smoothing (eq. 4.18)

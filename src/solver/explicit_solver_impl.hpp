@@ -89,7 +89,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     : transfer_((grid.bspline_dofs = settings.interpolation == Interpolation::Bspline, grid), threads),
       particles_(particles),
       materials_(std::move(materials)),
-      settings_(settings) {
+      settings_(settings),
+      gravity_ramp_time_(settings.gravity_ramp_time) {
   for (Material& m : materials_) {
     m.hyperelastic = settings_.hyperelastic;
     m.prepare();
@@ -103,11 +104,20 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
     walls_.lo[d] = closed_lo ? lo : -INFINITY;
     walls_.hi[d] = closed_hi ? hi : INFINITY;
   }
-  const VelocityTransfer vt = settings_.velocity_transfer;
-  const bool pic = forms_velocity_next(), xpic = vt == VelocityTransfer::Xpic;
+  // Axisymmetric geometry: every point carries its hoop stretch (from 1 if no stage set it), and
+  // the cell-averaged volumetric strain takes the hoop axis.
+  if (axisymmetric()) {
+    if (particles_.hoop.size() != particles_.size()) particles_.hoop.assign(particles_.size(), 1.0);
+    volumetric_.axes = 3;
+  }
+  transfer_rule_ =
+      VelocityTransferRule(settings_.velocity_transfer, settings_.pic_fraction, settings_.xpic_order,
+                           settings_.xpic_period, settings_.dt, settings_.scheme);
+  const bool pic = transfer_rule_.forms_velocity_next(),
+             xpic = transfer_rule_.kind() == VelocityTransfer::Xpic;
   fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, xpic);
   // APIC's and the affine FLIP's affine velocities start at zero; other transfers carry none.
-  if (carries_affine())
+  if (transfer_rule_.carries_affine())
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   else
     particles_.affine.clear();
@@ -145,12 +155,12 @@ StepStatus ExplicitSolver<D>::map_grid() {
 template <int D>
 template <class K, class Scheme>
 StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
-  gravity_now_ = gravity_at<D>(settings_.gravity, settings_.gravity_ramp_time, time_ - ramp_start_);
-  filter_step_ = filters_at(time_);
+  gravity_now_ = gravity_at<D>(settings_.gravity, gravity_ramp_time_, time_ - ramp_start_);
+  transfer_rule_.begin_step(time_);
   status_ = StepStatus{};
   det_f_fresh_ = false;  // (written by this step's stress phase, if at all)
   if (mapped_points_ != particles_.size()) grid_mapped_ = false;
-  if (carries_affine() && particles_.affine.size() != particles_.size())
+  if (transfer_rule_.carries_affine() && particles_.affine.size() != particles_.size())
     particles_.affine.resize(particles_.size(), Mat<D>::Zero());
   const bool fresh = !grid_mapped_;
   if (fresh && !map_mass_momentum(kernel)) return status_;
@@ -270,8 +280,8 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const double alpha = pic_share();
-    const double w = settings_.scheme == StressScheme::Averaged ? 1.0 : 0.5;  // particle_velocity
+    const double alpha = transfer_rule_.pic_share();
+    const double w = transfer_rule_.loss_weight();  // particle_velocity
     ScatterBuffers<D>& buffers = transfer_.scatter();
     double lost = 0.0;  // to the transfer
     for_each_continuum([&](GridFields<D>& f, auto sel) {
@@ -282,7 +292,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
       const double* __restrict pmass = P.mass.data();
       const Vec<D>* __restrict acc = f.acceleration.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
-      Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
+      Mat<D>* const affine = transfer_rule_.carries_affine() ? P.affine.data() : nullptr;
       Vec<D>* const remap = f.momentum_remap.data();  // zero: see remap_velocity
       // One loop per transfer kind (an affine velocity or not), so the FLIP loop carries no affine branch.
       const auto loop = [&](auto apic_tag) {
@@ -349,7 +359,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const StressArrays<D> S(P, materials_);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
-      const Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
+      const Mat<D>* const affine = transfer_rule_.carries_affine() ? P.affine.data() : nullptr;
       const bool averaging = settings_.volumetric_averaging;  // cell-averaged volumetric strain
       if (averaging) cell_divergence(kernel, vnew, sel);
       const VolumetricAveraging<D>& A = volumetric_;
@@ -370,9 +380,20 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
           typename K::Shape sh;
           kernel.load(shape[p], g, x[p], half0[p], sh);
           Mat<D> grad_v = averaging ? A.grad[p] : gather_gradient(sh, strides, vnew);  // (cell_divergence's)
-          if (averaging) grad_v.diagonal().array() += A.correction(static_cast<std::size_t>(p));
+          const double corr = averaging ? A.correction(static_cast<std::size_t>(p)) : 0.0;
+          if (averaging) grad_v.diagonal().array() += corr;
           const Vec<D> vmove = gather(sh, strides, vel);
-          const auto r = S.update(p, grad_v, dt_stress);
+          StressUpdateResult r;
+          if constexpr (D == 2) {
+            if (S.hoop)  // axisymmetric: with the hoop rate v_r / r at x^k
+              r = S.update_axisymmetric(
+                  p, grad_v, (averaging ? A.hoop_rate[p] : gather(sh, strides, vnew)[0] / x[p][0]) + corr,
+                  dt_stress);
+            else
+              r = S.update(p, grad_v, dt_stress);
+          } else {
+            r = S.update(p, grad_v, dt_stress);
+          }
           work += r.strain_energy;
           dissipation += r.dissipation;
           mdx += pmass[p] * dt * vmove;
@@ -418,7 +439,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
     auto& P = particles_;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
-    const double alpha = pic_share();
+    const double alpha = transfer_rule_.pic_share(), w = transfer_rule_.loss_weight();  // particle_velocity
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
     double lost = 0.0;  // to the transfer
@@ -436,9 +457,9 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnext = f.velocity_next.data();
       const Vec<D>* __restrict stopped = f.stopped_acceleration.data();
-      const bool from_flip = update_from_flip();
+      const bool from_flip = transfer_rule_.update_from_flip();
       const std::array<bool, 2 * D> stopping = stopping_walls_;
-      Mat<D>* const affine = carries_affine() ? P.affine.data() : nullptr;
+      Mat<D>* const affine = transfer_rule_.carries_affine() ? P.affine.data() : nullptr;
       Vec<D> mdx = Vec<D>::Zero();
       long bad = LONG_MAX;
       double affine_ke = 0.0;  // the new C_p's share of the kinetic energy (particle_velocity)
@@ -470,7 +491,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
           gather_pair(sh, strides, acc, vel, acc_p, vmove);
           if (affine) lost += affine_trial_energy(sh, g, strides, x[p], affine[p], acc, dt, pmass[p]);
           const Vec<D> vp = particle_velocity<K>(sh, g, strides, x[p], v[p], dt, acc_p, vnext, alpha,
-                                                 affine ? affine + p : nullptr, pmass[p], 0.5, lost);
+                                                 affine ? affine + p : nullptr, pmass[p], w, lost);
           if (std::array<unsigned, D> layers;
               const unsigned near = near_stopping_sides<K::S>(g.h, walls_, stopping, x[p]))
             if (boundaries_.template block_layers<K::S>(sh.base, near, layers))
@@ -510,12 +531,12 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
 template <int D>
 template <class K>
 void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
-  if (settings_.velocity_transfer != VelocityTransfer::Xpic || !filter_step_) return;
+  if (!transfer_rule_.filters()) return;
   const double dt = settings_.dt;
   for_each_continuum([&](GridFields<D>& f, auto sel) {
     Vec<D>* const star = f.velocity_next.data();  // v*_i, then v_i^{k+1} - p_i / m_i + v*_i in place
-    xpic_velocity(transfer_, kernel, particles_, f.mass.data(), f.momentum.data(), settings_.xpic_order, star,
-                  fields_.xpic_work.data(), sel);
+    xpic_velocity(transfer_, kernel, particles_, f.mass.data(), f.momentum.data(),
+                  transfer_rule_.xpic_order(), star, fields_.xpic_work.data(), sel);
     const Vec<D>* __restrict acc = f.acceleration.data();
     transfer_.for_box([&](std::size_t i) { star[i] += dt * acc[i]; });
     boundaries_.constrain_velocity(f.velocity_next, transfer_.box());

@@ -92,11 +92,12 @@ void ExplicitSolver<D>::continuum_grid_update(GridFields<D>& f) {
   wall_step_.work_sum += walls.work_sum;
   wall_step_.rule_dissipation += walls.rule_dissipation;
   // USF: the walls' share of the lumped mass's loss, its nodal half (the points': wall_update_loss)
-  if (settings_.scheme == StressScheme::USF)
-    energy_.transfer_dissipation += update_from_flip() ? walls.update_loss_change : walls.update_loss_end;
+  if (transfer_rule_.walls_share_at_nodes())
+    energy_.transfer_dissipation +=
+        transfer_rule_.update_from_flip() ? walls.update_loss_change : walls.update_loss_end;
   for (int side = 0; side < 2 * D; ++side)
     stopping_walls_[side] = stopping_walls_[side] || walls.stopping[side];
-  if (forms_velocity_next())  // v_i^{k+1} for the PIC share of the particle update, or APIC's
+  if (transfer_rule_.forms_velocity_next())  // v_i^{k+1} for the PIC share of the particle update, or APIC's
     transfer_.for_box([&](std::size_t i) {
       const double m = f.mass[i];
       f.velocity_next[i] = m > 0.0 ? Vec<D>(f.momentum[i] / m + dt * f.acceleration[i]) : Vec<D>::Zero();

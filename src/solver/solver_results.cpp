@@ -43,7 +43,7 @@ ParticleTotals<D> ExplicitSolver<D>::totals() const {
 template <int D>
 double ExplicitSolver<D>::affine_kinetic_energy() const {
   const auto& P = particles_;
-  if (!carries_affine() || P.affine.size() != P.size()) return 0.0;
+  if (!transfer_rule_.carries_affine() || P.affine.size() != P.size()) return 0.0;
   return with_kernel<D>(settings_.interpolation, settings_.quadrature_points, [&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
     const GridGeometry<D>& g = grid();
@@ -149,7 +149,7 @@ template <int D>
 void ExplicitSolver<D>::begin_stage(std::vector<Material> materials, double gravity_ramp_time) {
   materials_ = std::move(materials);
   for (Material& m : materials_) m.prepare();
-  settings_.gravity_ramp_time = gravity_ramp_time;
+  gravity_ramp_time_ = gravity_ramp_time;
   ramp_start_ = time_;
   reset_reference();
   // Plastic state that a stage held elastic did not track: the volume strain is ln det F, and

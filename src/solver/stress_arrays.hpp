@@ -59,6 +59,9 @@ struct StressArrays {
   Mat<D>* __restrict Fe;  // null when Fe is not tracked (Particles::track_elastic_F)
   PointStress<D>* __restrict stress;
   PointState* __restrict state;
+  // Axisymmetric geometry (2D, x the radius): the hoop stretch F_theta_theta = r / r_0 of each
+  // point (Particles::hoop); null in plane strain and 3D.
+  double* __restrict hoop;
   const Material* mats;
   bool single;              // one material: the ids need not be read
   double* det_f = nullptr;  // if set, update_booked and the 3D lanes write each updated point's det F
@@ -70,6 +73,7 @@ struct StressArrays {
         Fe(P.Fe.empty() ? nullptr : P.Fe.data()),
         stress(P.stress.data()),
         state(P.state.data()),
+        hoop(P.hoop.empty() ? nullptr : P.hoop.data()),
         mats(materials.data()),
         single(materials.size() == 1) {}
 
@@ -78,11 +82,46 @@ struct StressArrays {
     return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
                                   F[p], Fe ? Fe[p] : untracked);
   }
+  // The axisymmetric update (Acosta App. A1, eq. 32): the in-plane grad v and the hoop rate
+  // v_r / r of the point make a 3 x 3 gradient whose third axis is the hoop direction, and the
+  // point is updated as a 3D point with F_theta_theta = hoop (stress_update.hpp); its volume per
+  // radian is det F hoop V0.
+  SKRED_INLINE StressUpdateResult update_axisymmetric(long p, const Mat<D>& grad_v, double hoop_rate,
+                                                      double dt) const {
+    static_assert(D == 2, "axisymmetric geometry is 2D");
+    Mat3 g3 = Mat3::Zero();
+    g3.template topLeftCorner<2, 2>() = grad_v;
+    g3(2, 2) = hoop_rate;
+    Mat3 F3 = embed3<2>(F[p], hoop[p]);
+    Mat3 Fe3 = embed3<2>(Fe ? Fe[p] : Mat<2>(Mat<2>::Identity()), 1.0);  // (in-plane Fe only)
+    Sym3 s = full_stress<2>(stress[p]);
+    const StressUpdateResult r =
+        update_point_stress<3>(mats[single ? 0 : material[p]], g3, dt, volume0[p], s, state[p], F3, Fe3);
+    stress[p] = s.template head<4>();
+    F[p] = F3.template topLeftCorner<2, 2>();
+    hoop[p] = F3(2, 2);
+    if (Fe) Fe[p] = Fe3.template topLeftCorner<2, 2>();
+    return r;
+  }
+  // update() or, where hoop_rate is given (axisymmetric), update_axisymmetric(), with its stored
+  // and dissipated work booked as update_booked does.
+  SKRED_INLINE StressUpdateResult update_booked(long p, const Mat<D>& grad_v, double hoop_rate, double dt,
+                                                double& work, double& dissipation, long& bad) const {
+    if constexpr (D == 2)
+      if (hoop) {
+        const StressUpdateResult r = update_axisymmetric(p, grad_v, hoop_rate, dt);
+        return book(p, r, work, dissipation, bad);
+      }
+    return update_booked(p, grad_v, dt, work, dissipation, bad);
+  }
   // update() with its stored and dissipated work summed into `work` and `dissipation`, and
   // the point recorded in `bad` (the lowest so far) if it is not sound.
   SKRED_INLINE StressUpdateResult update_booked(long p, const Mat<D>& grad_v, double dt, double& work,
                                                 double& dissipation, long& bad) const {
-    const StressUpdateResult r = update(p, grad_v, dt);
+    return book(p, update(p, grad_v, dt), work, dissipation, bad);
+  }
+  SKRED_INLINE StressUpdateResult book(long p, const StressUpdateResult& r, double& work, double& dissipation,
+                                       long& bad) const {
     if (det_f) det_f[p] = F[p].determinant();
     work += r.strain_energy;
     dissipation += r.dissipation;

@@ -49,6 +49,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       StressArrays<D> S(P, materials_);
       if constexpr (kSizeAhead<D, K>) S.det_f = det_f_.data();
+      [[maybe_unused]] const bool axisymmetric = S.hoop != nullptr;
       Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       const Vec<D>* __restrict vel = f.velocity.data();
@@ -67,10 +68,13 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
           typename K::Shape sh[kPointBlock];
           Mat<D> m[kPointBlock];
           [[maybe_unused]] typename K::Shape centre[centre_shear ? kPointBlock : 1];
+          [[maybe_unused]] double hoop_rate[D == 2 ? kPointBlock : 1] = {};  // v_r / r (axisymmetric)
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
             kernel.load(shape[p], g, P.x[p], P.half0[p], sh[p - p0]);
             m[p - p0] = gather_gradient(sh[p - p0], strides, vel);
+            if constexpr (D == 2)
+              if (axisymmetric) hoop_rate[p - p0] = gather(sh[p - p0], strides, vel)[0] / P.x[p][0];
             if constexpr (centre_shear)
               if (!centre_shear_gradient(kernel, g, strides, P.x[p], P.half0[p], P.F[p], vel, centre[p - p0],
                                          m[p - p0]))
@@ -82,8 +86,15 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
               in_lanes = lanes3d::update_block(S, p0, sel, m, dt_stress, work, dissipation, bad);
           for (long p = p0; p < p1; ++p) {
             if (!sel(p) || ((in_lanes >> (p - p0)) & 1u)) continue;
-            const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
-            m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
+            if constexpr (D == 2) {
+              const auto r =
+                  S.update_booked(p, m[p - p0], hoop_rate[p - p0], dt_stress, work, dissipation, bad);
+              m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
+              if (axisymmetric) hoop_rate[p - p0] = -r.volume * S.stress[p][2] / P.x[p][0];  // hoop force
+            } else {
+              const auto r = S.update_booked(p, m[p - p0], dt_stress, work, dissipation, bad);
+              m[p - p0] = -r.volume * sym_block<D>(S.stress[p]);
+            }
           }
           for (long p = p0; p < p1; ++p) {
             if (!sel(p)) continue;
@@ -94,6 +105,8 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
               m[p - p0] = normal;
             }
             scatter_gradient(sh[p - p0], strides, m[p - p0], force);
+            if constexpr (D == 2)  // axisymmetric: -V sigma_theta N_i / r on the radial component (eq. 30)
+              if (axisymmetric) scatter(sh[p - p0], strides, Vec<D>(hoop_rate[p - p0], 0.0), force);
             span.add(sh[p - p0].base);
           }
         }
@@ -118,11 +131,13 @@ void ExplicitSolver<D>::internal_force(const K& kernel) {
       Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       if (!settings_.volumetric_averaging)
-        return p2g_internal_force(transfer_, kernel, particles_, forces, sel);
+        return p2g_internal_force(transfer_, kernel, particles_, forces, sel, NoPressureShift{},
+                                  axisymmetric());
       cell_pressure(sel);  // the cell's mean pressure in place of the point's (volumetric_averaging.hpp)
-      p2g_internal_force(transfer_, kernel, particles_, forces, sel, [&](long q) {
-        return volumetric_.pressure_correction(static_cast<std::size_t>(q));
-      });
+      p2g_internal_force(
+          transfer_, kernel, particles_, forces, sel,
+          [&](long q) { return volumetric_.pressure_correction(static_cast<std::size_t>(q)); },
+          axisymmetric());
     });
   });
 }

@@ -5,7 +5,8 @@
 // cell's volume-weighted mean pressure m_c in place of the point's own, sigma_p + (m_c - m_p) I,
 // so that the stress power of the points equals the work of the nodal forces (per cell,
 // sum V_p m_p (div_c - div_p) = sum V_p (m_c - m_p) div_p). m = tr(sigma)/d over the d in-plane
-// axes: in plane strain the in-plane trace is the volumetric strain.
+// axes: in plane strain the in-plane trace is the volumetric strain; in axisymmetric geometry
+// the hoop axis is the third (d = 3, div = tr grad v + v_r / r).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -27,6 +28,10 @@ struct VolumetricAveraging {
   std::vector<std::uint32_t> cell;
   std::vector<Mat<D>> grad;
   std::vector<double> div, mean, volume;
+  // Axisymmetric geometry (2D): the volumetric strain and the mean stress take the hoop axis too
+  // (axes = 3), and each point's hoop rate v_r / r is kept beside its grad v.
+  int axes = D;
+  std::vector<double> hoop_rate;
   // The cell sums, made in parallel and the same for any thread count (ExplicitSolver::cell_sums):
   // per chunk of kSumChunk points (a fixed size, not a thread's share) its runs of consecutive
   // points in one cell, each summed in point order (the points are sorted by cell, so a cell's
@@ -46,6 +51,7 @@ struct VolumetricAveraging {
     const std::size_t nodes = g.node_count();
     for (auto* a : {&div_sum, &volume_sum, &mean_sum, &mean_volume_sum})
       if (a->size() != nodes) a->assign(nodes, 0.0);
+    if (axes != D) hoop_rate.resize(points);
     if (cell.size() != points) {
       cell.resize(points), grad.resize(points), div.resize(points), mean.resize(points),
           volume.resize(points);
@@ -97,10 +103,10 @@ struct VolumetricAveraging {
     return static_cast<std::uint32_t>(c);
   }
 
-  // The correction to point p's grad v: (div_c - div_p)/d on the diagonal.
+  // The correction to point p's grad v: (div_c - div_p)/d on the diagonal (d = axes).
   double correction(std::size_t p) const {
     const std::uint32_t c = cell[p];
-    return (div_sum[c] / volume_sum[c] - div[p]) / D;
+    return (div_sum[c] / volume_sum[c] - div[p]) / axes;
   }
   // The correction to point p's stress in the force: m_c - m_p on the diagonal.
   double pressure_correction(std::size_t p) const {

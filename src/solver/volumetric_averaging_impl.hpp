@@ -34,6 +34,7 @@ void ExplicitSolver<D>::cell_divergence(const K& kernel, const Vec<D>* vel, Sel 
   VolumetricAveraging<D>& A = volumetric_;
   A.resize(g, P.size());
   const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
+  const bool axi = axisymmetric();
 #pragma omp parallel for num_threads(threads()) schedule(static)
   for (long p = 0; p < n; ++p) {
     if (!sel(p)) continue;
@@ -42,6 +43,10 @@ void ExplicitSolver<D>::cell_divergence(const K& kernel, const Vec<D>* vel, Sel 
     A.cell[p] = VolumetricAveraging<D>::cell_of(g, P.x[p]);
     A.grad[p] = gather_gradient(sh, strides, vel);
     A.div[p] = A.grad[p].trace();
+    if (axi) {  // the hoop rate v_r / r (Acosta App. A1, eq. 32)
+      A.hoop_rate[p] = gather(sh, strides, vel)[0] / P.x[p][0];
+      A.div[p] += A.hoop_rate[p];
+    }
     A.volume[p] = P.volume(static_cast<std::size_t>(p));
   }
   cell_sums(sel, A.div.data(), A.div_sum.data(), A.volume_sum.data());
@@ -62,7 +67,7 @@ void ExplicitSolver<D>::cell_pressure(Sel sel) {
     if (!sel(p)) continue;
     A.cell[p] = VolumetricAveraging<D>::cell_of(g, P.x[p]);
     A.volume[p] = P.volume(static_cast<std::size_t>(p));
-    A.mean[p] = sym_block<D>(P.stress[p]).trace() / D;
+    A.mean[p] = mean_stress(P.stress[p]);
   }
   cell_sums(sel, A.mean.data(), A.mean_sum.data(), A.mean_volume_sum.data());
 }
@@ -89,16 +94,23 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       for (long p = 0; p < n; ++p) {
         if (!sel(p)) continue;
         Mat<D> grad_v = A.grad[p];  // (cell_divergence's)
-        grad_v.diagonal().array() += A.correction(static_cast<std::size_t>(p));
-        const auto r = S.update_booked(p, grad_v, dt_stress, work, dissipation, bad);
-        A.mean[p] = sym_block<D>(S.stress[p]).trace() / D;
+        const double corr = A.correction(static_cast<std::size_t>(p));
+        grad_v.diagonal().array() += corr;
+        StressUpdateResult r;
+        if constexpr (D == 2)
+          r = S.update_booked(p, grad_v, S.hoop ? A.hoop_rate[p] + corr : 0.0, dt_stress, work, dissipation,
+                              bad);
+        else
+          r = S.update_booked(p, grad_v, dt_stress, work, dissipation, bad);
+        A.mean[p] = mean_stress(S.stress[p]);
         A.volume[p] = r.volume;
       }
       cell_sums(sel, A.mean.data(), A.mean_sum.data(), A.mean_volume_sum.data());
       Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
-      p2g_internal_force(transfer_, kernel, P, forces, sel,
-                         [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); });
+      p2g_internal_force(
+          transfer_, kernel, P, forces, sel,
+          [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); }, axisymmetric());
       energy_.strain_energy += work;
       energy_.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);

@@ -121,10 +121,11 @@ struct NoPressureShift {};
 
 // f_i^int = -sum_p sigma_p V_p grad N_ip (eq. 2.51) from the points' current stresses (of
 // the points `sel` selects), into a zeroed array f; with `shift`, sigma_p + shift(q) I (the cell
-// pressure of solver/volumetric_averaging.hpp).
+// pressure of solver/volumetric_averaging.hpp). Axisymmetric (2D, x the radius; Acosta App. A1
+// eq. 30): also -V_p sigma_theta N_ip / r_p on the radial component.
 template <int D, class K, class Sel = AllPoints, class Shift = NoPressureShift>
 void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, Vec<D>* f, Sel sel = {},
-                        Shift shift = {}) {
+                        Shift shift = {}, [[maybe_unused]] bool axisymmetric = false) {
   const long n = static_cast<long>(P.size());
   const typename K::Packed* __restrict shape = T.weights().template get<K>(P.size());
   ScatterBuffers<D>& S = T.scatter();
@@ -139,9 +140,17 @@ void p2g_internal_force(Transfer<D>& T, const K& kernel, const Particles<D>& P, 
       typename K::Shape sh;
       kernel.load(shape[q], T.grid(), P.x[q], P.half0[q], sh);
       Mat<D> sigma = sym_block<D>(P.stress[q]);
-      if constexpr (!std::is_same_v<Shift, NoPressureShift>) sigma.diagonal().array() += shift(q);
-      const Mat<D> sv = -P.volume(static_cast<std::size_t>(q)) * sigma;
+      double s_shift = 0.0;
+      if constexpr (!std::is_same_v<Shift, NoPressureShift>) {
+        s_shift = shift(q);
+        sigma.diagonal().array() += s_shift;
+      }
+      const double V = P.volume(static_cast<std::size_t>(q));
+      const Mat<D> sv = -V * sigma;
       scatter_gradient(sh, T.strides(), sv, force);
+      if constexpr (D == 2)
+        if (axisymmetric)
+          scatter(sh, T.strides(), Vec<D>(-V * (P.stress[q][2] + s_shift) / P.x[q][0], 0.0), force);
       span.add(sh.base);
     }
     S.touched(t, span);
