@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .labels import display, label, unit_of  # noqa: F401  (unit_of: for callers)
+from .scenario_info import read_scenario
 
 
 class PostError(Exception):
@@ -188,8 +189,8 @@ def load_frame(outdir, step=-1, view=None):
         raise PostError(f"step {step} out of range: {outdir} has frames 0..{len(index) - 1}")
     i, t, p = index[step]
     frame = read_frame(p, t, i, view)
-    summary = read_summary(outdir)
-    if summary and (summary.get("implicit") or {}).get("geometry") == "axisymmetric":
+    _, scenario = read_scenario(outdir)
+    if scenario and (scenario.get("grid") or {}).get("geometry") == "axisymmetric":
         frame.axes = ("r", "y")  # the r-y section: x is the radius (grid.geometry, App. A1)
     return frame
 
