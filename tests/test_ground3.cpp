@@ -307,6 +307,14 @@ TEST(Ground3, BadRastersAreErrorsNamingTheFileAndCell) {
   EXPECT_NE(ground("[1000, 5000]").find("key 'body[1].bottom': cannot open raster file"), std::string::npos);
   write(toml, kHead + "[[body]]\nmaterial = \"sand\"\nshape = \"layer\"\n");
   EXPECT_NE(error_of(toml).find("key 'body[0].shape': a layer needs `top`"), std::string::npos);
+  // A profile where a 3D layer takes a raster; the map keys in a 2D file.
+  write(toml, kHead + "[[body]]\nmaterial = \"sand\"\nshape = \"layer\"\ntop = [[0, 5], [40, 5]]\n");
+  EXPECT_NE(error_of(toml).find("key 'body[0].top': expected the name of a raster file"), std::string::npos)
+      << error_of(toml);
+  std::string flat = kHead;
+  flat.replace(flat.find("[40.0, 24.0, 12.0]"), 18, "[40.0, 24.0]");
+  write(toml, flat + "[ground]\nsurface = [[0, 5], [40, 5]]\nrotation = 30\n");
+  EXPECT_NE(error_of(toml).find("key 'ground.rotation': 3D only"), std::string::npos) << error_of(toml);
 }
 
 TEST(Ground3, CheckReportsEachLayersVolumeAndPoints) {
