@@ -327,3 +327,13 @@ TEST(Ground3, CheckReportsEachLayersVolumeAndPoints) {
   EXPECT_NE(out.find("layer rock: volume 528 m^3, 3840 points"), std::string::npos) << out;
   EXPECT_NE(out.find("layer clay: volume "), std::string::npos) << out;
 }
+
+// The example from rasters loads, its rasters are whole and its clay has the mantle's volume.
+TEST(Ground3, ValleySlopeExampleLoads) {
+  const Scenario3 s = std::get<Scenario3>(
+      load_any_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/valley_slope_3d.toml"));
+  ASSERT_EQ(s.bodies.size(), 2u);
+  // A mantle 3 m thick over the 48 m x 16 m footprint, a little less where the slope cuts it.
+  EXPECT_NEAR(layer_volume(std::get<Layer3>(s.bodies[0].shape)), 3.0 * 48 * 16, 0.05 * 3.0 * 48 * 16);
+  EXPECT_GT(count_points(s, s.bodies[1]), 0u);
+}
