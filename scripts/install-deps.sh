@@ -11,9 +11,11 @@ run_only=false
 # python3-setuptools, python3-wheel: installing python/ (skred_post) offline with
 # `pip install --no-build-isolation ./python` (and its test); libpetsc-real-dev, pkg-config: the
 # implicit integrator's linear solves (PETSc's KSP with MUMPS, src/implicit); libopenblas0-openmp:
-# the BLAS under MUMPS (Debian's reference BLAS factorises 3 times slower; measured 2026-12-02).
+# the BLAS under MUMPS (Debian's reference BLAS factorises 3 times slower; measured 2026-12-02);
+# libgdal-dev: 3D ground from elevation rasters (GeoTIFF, CRS; src/scenario/raster.cpp; 27 s).
 pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev zlib1g-dev
-      python3-numpy python3-matplotlib python3-pil libpetsc-real-dev pkg-config libopenblas0-openmp)
+      python3-numpy python3-matplotlib python3-pil libpetsc-real-dev pkg-config libopenblas0-openmp
+      libgdal-dev)
 $run_only || pkgs+=(libgtest-dev chromium clang-format python3-pip python3-setuptools python3-wheel)
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 # VTK for Python: Debian's python3-vtk9, or the VTK of ParaView's python3-paraview, which

@@ -56,6 +56,16 @@ void print_check(const ScenarioOf<D>& s, bool force) {
     fmt::print("particles: {}\n", build_particles(s).size());
   else
     fmt::print("particles: about {:.3g} (estimated from the shapes)\n", z.points);
+  if constexpr (D == 3)  // per layer from rasters: its volume and points
+    for (const Body3& b : s.bodies)
+      if (const auto* l = std::get_if<Layer3>(&b.shape)) {
+        const double v = layer_volume(*l);
+        fmt::print("layer {}: volume {:.6g} m^3, {}\n", b.name, v,
+                   z.points <= kCountPointsUpTo
+                       ? fmt::format("{} points", count_points(s, b))
+                       : fmt::format("about {:.3g} points (from its volume)",
+                                     v * std::pow(b.particles_per_cell / s.cell_size, 3)));
+      }
   const double dt = scenario_time_step(s);
   double explicit_steps = 0.0;  // of the explicit stages (the implicit ones' steps are above)
   bool any_explicit = false;

@@ -36,7 +36,7 @@ bool shape_contains(const Shape3& shape, const Vec<3>& x);
 // The outward unit normal of a shape at x (shape_normal.cpp): the gradient of the signed
 // distance to its outline (round a corner outside it, the nearest face's inside). Rectangles,
 // polygons, discs; boxes, spheres. Zero for the other shapes (layers, cylinders, extruded
-// polygons), which have no outline normal here.
+// polygons; 3D layers), which have no outline normal here.
 Vec<2> shape_normal(const Shape& shape, const Vec<2>& x);
 Vec<3> shape_normal(const Shape3& shape, const Vec<3>& x);
 
@@ -53,6 +53,9 @@ double polygon_area(const Polygon& p);
 // Area of a layer: the integral of max(0, min(top, surface) - bottom) over its x range
 // (exact: the integrand is linear between the profiles' points and their crossings).
 double layer_area(const Layer& l);
+// Volume of a 3D layer: the integral of max(0, min(top, surface) - bottom) over its extent (the
+// midpoint rule on 1024 x 1024 columns).
+double layer_volume(const Layer3& l);
 
 // Short multi-line human summary (grid, materials, bodies, gravity, boundaries, solver and
 // output settings), as printed by `skred check`. Ends with a newline.

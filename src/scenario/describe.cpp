@@ -115,6 +115,10 @@ std::string shape_summary(const Shape3& shape) {
         } else if constexpr (std::is_same_v<T, Cylinder>) {
           return fmt::format("cylinder centre {} axis {} radius {} m length {} m", vec(sh.center),
                              vec(sh.axis), sh.radius, sh.length);
+        } else if constexpr (std::is_same_v<T, Layer3>) {
+          return fmt::format("layer between rasters {} and {}{}, volume {:.6g} m^3", sh.top->file,
+                             sh.bottom ? sh.bottom->file : "the grid's bottom",
+                             sh.surface ? " below the ground surface" : "", layer_volume(sh));
         } else {
           return fmt::format("polygon with {} vertices, area {} m^2, extruded over z {} to {}",
                              sh.section.vertices.size(), std::abs(polygon_area(sh.section)), sh.z_min,

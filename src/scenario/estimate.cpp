@@ -47,6 +47,8 @@ double measure(const Shape3& shape) {
           return 4.0 / 3.0 * M_PI * std::pow(sh.radius, 3);
         else if constexpr (std::is_same_v<T, Cylinder>)
           return M_PI * sh.radius * sh.radius * sh.length;
+        else if constexpr (std::is_same_v<T, Layer3>)
+          return layer_volume(sh);
         else
           return std::abs(polygon_area(sh.section)) * (sh.z_max - sh.z_min);
       },

@@ -458,8 +458,8 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
   parse_materials(root, s);
   if constexpr (D == 2)
     scenario_detail::parse_ground(root, s);
-  else if (root.has("ground"))
-    root.fail_at("ground", "layered ground is 2D only for now");
+  else
+    scenario_detail::parse_ground3(root, s);
   s.later_body_wins = root.choice<bool>("body_overlap", {{"error", false}, {"later-wins", true}}, false);
   scenario_detail::parse_bodies<D>(root, s);
   scenario_detail::check_overlaps<D>(root, s);

@@ -92,13 +92,16 @@ void parse_ground(const TableReader& root, Scenario& s);
 Layer parse_layer(const TableReader& b, const Scenario& s);
 template <int D>
 void check_overlaps(const TableReader& root, const ScenarioOf<D>& s);
+// The same in 3D from elevation rasters (parser_ground3.cpp).
+void parse_ground3(const TableReader& root, Scenario3& s);
+Layer3 parse_layer3(const TableReader& b, const Scenario3& s);
 
 // The time step against the stable explicit step (Thesis §2.2) and the steps each stage takes
 // (parser_time_step.cpp).
 template <int D>
 void check_time_step(const TableReader& root, const ScenarioOf<D>& s);
 
-// A 3D body's shape (box, extruded polygon, cylinder, sphere) from its [[body]] table.
+// A 3D body's shape (box, extruded polygon, cylinder, sphere, layer) from its [[body]] table.
 Shape3 parse_shape3(const TableReader& b, const Scenario3& s);
 // The [x, y] vertices of a polygon (2D body or the section of an extruded one), each checked
 // against the grid's x-y extent `lo`-`hi`.

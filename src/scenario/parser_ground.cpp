@@ -161,6 +161,8 @@ void parse_ground(const TableReader& root, Scenario& s) {
   const auto g = root.table("ground", false);
   if (!g) return;
   g->allow_declared();
+  for (const char* key : {"origin", "rotation"})
+    if (g->has(key)) g->fail_at(key, "3D only: it places the rasters of a 3D [ground] on the map");
   if (!g->has("surface")) g->fail_missing("surface");
   s.ground_surface = read_profile(*g, "surface", s);
 }

@@ -1,4 +1,5 @@
-// The [[body]] shapes of a 3D scenario: box, polygon (extruded along z), cylinder, sphere.
+// The [[body]] shapes of a 3D scenario: box, polygon (extruded along z), cylinder, sphere, layer
+// (from rasters, parser_ground3.cpp).
 // docs/scenario.md documents their keys.
 #include <cmath>
 
@@ -73,14 +74,16 @@ Shape3 parse_sphere(const TableReader& b, const Scenario3& s) {
 }  // namespace
 
 Shape3 parse_shape3(const TableReader& t, const Scenario3& s) {
-  enum class Kind { Box, Polygon, Cylinder, Sphere };
+  enum class Kind { Box, Polygon, Cylinder, Sphere, Layer };
   const Kind kind = t.choice<Kind>("shape", {{"box", Kind::Box},
                                              {"polygon", Kind::Polygon},
                                              {"cylinder", Kind::Cylinder},
-                                             {"sphere", Kind::Sphere}});
+                                             {"sphere", Kind::Sphere},
+                                             {"layer", Kind::Layer}});
   const char* section = kind == Kind::Box        ? "body (box)"
                         : kind == Kind::Polygon  ? "body (extruded polygon)"
                         : kind == Kind::Cylinder ? "body (cylinder)"
+                        : kind == Kind::Layer    ? "body (layer)"
                                                  : "body (sphere)";
   t.allow_declared(&schema::section(section));
   const TableReader shape = t.follows(section);
@@ -88,6 +91,7 @@ Shape3 parse_shape3(const TableReader& t, const Scenario3& s) {
     case Kind::Box: return parse_box(shape, s);
     case Kind::Polygon: return parse_extruded(shape, s);
     case Kind::Cylinder: return parse_cylinder(shape, s);
+    case Kind::Layer: return parse_layer3(shape, s);
     case Kind::Sphere: break;
   }
   return parse_sphere(shape, s);

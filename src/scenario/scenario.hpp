@@ -2,6 +2,7 @@
 // (docs/scenario.md documents every key). Solvers never see the parser, only these structs.
 #pragma once
 #include <array>
+#include <memory>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -67,7 +68,25 @@ struct Sphere {
   Vec<3> center;
   double radius = 0.0;
 };
-using Shape3 = std::variant<Box, ExtrudedPolygon, Cylinder, Sphere>;
+// An elevation raster on the scenario's horizontal plane: y(x, z), bilinear between the
+// raster's cell centres and constant across its outer half cells (scenario/raster.hpp reads it).
+struct ElevationRaster {
+  std::string file;  // for messages
+  int columns = 0, rows = 0;
+  std::vector<double> heights;  // row-major from the file's first (upper) row; NaN: no data
+  // Scenario (x, z) to fractional (column, row) of the cell centres:
+  // column = to_cell[0] + to_cell[1] x + to_cell[2] z, row = to_cell[3] + to_cell[4] x + to_cell[5] z.
+  std::array<double, 6> to_cell{};
+  std::string crs;  // the coordinate reference system as WKT; empty: none given
+  double at(double x, double z) const;
+};
+// The ground between two elevation rasters over the grid's horizontal extent, and below the
+// ground surface if there is one: bottom(x, z) <= y < top(x, z) and y < surface(x, z).
+struct Layer3 {
+  std::shared_ptr<const ElevationRaster> top, bottom, surface;  // no bottom: the grid's bottom
+  Vec<3> lo = Vec<3>::Zero(), hi = Vec<3>::Zero();              // its bounding box
+};
+using Shape3 = std::variant<Box, ExtrudedPolygon, Cylinder, Sphere, Layer3>;
 
 template <int D>
 using ShapeOf = std::conditional_t<D == 2, Shape, Shape3>;
@@ -199,6 +218,11 @@ struct ScenarioCommon {
   bool max_points_given = false;  // [splitting] max_points set (not 10 x the initial points)
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
+  // The ground surface of a 3D scenario ([ground] surface, a raster), and where the rasters' map
+  // coordinates (easting, northing) of scenario x = z = 0 lie and the angle from east to +x.
+  std::shared_ptr<const ElevationRaster> ground_raster;
+  Vec<2> map_origin = Vec<2>::Zero();
+  double map_rotation = 0.0;  // [rad], counter-clockwise seen from above
 
   // [[contact]] pairs; the master-slave hierarchy is the order of the [[body]] tables, each
   // dilated continuum right after its parent (Paper III §C.3.2). Holds the pairs of the

@@ -61,7 +61,10 @@ void add_model_sections(std::vector<Section>& s) {
             .choices = "error|later-wins",
             .doc = "where two bodies overlap: an error naming both and the overlap area, or the "
                    "later body (in file order) keeps the points there"},
-           {.name = "ground", .type = Type::Table, .def = none(), .doc = "the ground surface profile (2D)"},
+           {.name = "ground",
+            .type = Type::Table,
+            .def = none(),
+            .doc = "the ground surface: a profile (2D) or a raster (3D)"},
            {.name = "splitting",
             .type = Type::Table,
             .def = none(),
@@ -172,8 +175,9 @@ void add_model_sections(std::vector<Section>& s) {
            {.name = "shape",
             .type = Type::Choice,
             .choices = "rectangle|polygon|disc|layer|box|cylinder|sphere",
-            .doc = "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere; "
-                   "each adds its own keys, below"},
+            .doc =
+                "2D: rectangle, polygon, disc, layer; 3D: box, polygon (extruded), cylinder, sphere, layer; "
+                "each adds its own keys, below"},
        }});
   s.push_back({"body.velocity_sine",
                "body-velocity-sine",
@@ -224,7 +228,18 @@ void add_model_sections(std::vector<Section>& s) {
                    {.name = "surface",
                     .type = Type::Profile,
                     .unit = "m",
-                    .doc = "the ground surface y(x); every layer lies below it"},
+                    .doc = "the ground surface y(x), or y(x, z) in 3D; every layer lies below it"},
+                   {.name = "origin",
+                    .type = Type::Vector,
+                    .unit = "m",
+                    .def = derived("[0, 0]"),
+                    .doc = "3D: [easting, northing], the map point of scenario x = z = 0"},
+                   {.name = "rotation",
+                    .unit = "deg",
+                    .def = value(0),
+                    .range = Range::closed(-360, 360),
+                    .doc = "3D: the angle from east to +x, counter-clockwise seen from above; z lies 90 "
+                           "degrees clockwise from x (x east: z south)"},
                }});
   s.push_back({"body (layer)",
                "body-layer",
@@ -233,7 +248,7 @@ void add_model_sections(std::vector<Section>& s) {
                     .type = Type::Profile,
                     .unit = "m",
                     .def = derived("the ground surface"),
-                    .doc = "the layer's upper boundary y(x), clipped to the ground surface"},
+                    .doc = "the layer's upper boundary y(x) (3D: y(x, z)), clipped to the ground surface"},
                    {.name = "bottom",
                     .type = Type::Profile,
                     .unit = "m",
@@ -364,7 +379,7 @@ const char* to_string(Type t) {
     case Type::Tables: return "tables";
     case Type::K0: return "string or number";
     case Type::Side: return "string or table";
-    case Type::Profile: return "CSV file or [[x, y], ...]";
+    case Type::Profile: return "CSV file or [[x, y], ...]; 3D: raster file";
     case Type::BodyPair: return "[name, name] or \"all\"";
     case Type::Fields: return "string or [name, ...]";
   }

@@ -65,7 +65,7 @@ std::string allowed_text(const Key& k) {
     case Type::K0: return quoted_choices(k) + " or a number " + k.range.describe();
     case Type::Boolean: return "`true`, `false`";
     case Type::Side: return "see below";
-    case Type::Profile: return "x strictly increasing; inside the grid";
+    case Type::Profile: return "x strictly increasing; inside the grid; 3D: covers the grid";
     case Type::BodyPair: return "two different body names, or `\"all\"`";
     case Type::Fields: return "`\"default\"`, `\"all\"`, or a list of " + code_list(k.choices);
     case Type::String:

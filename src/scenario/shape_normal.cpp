@@ -134,6 +134,7 @@ Vec<3> shape_normal(const Shape3& shape, const Vec<3>& x) {
     const Vec<3> nz(0.0, 0.0, x[2] - e->z_min < e->z_max - x[2] ? -1.0 : 1.0);
     return right_angle_normal(in ? -d : d, Vec<3>(n[0], n[1], 0.0), dz, nz);
   }
+  if (std::holds_alternative<Layer3>(shape)) return Vec<3>::Zero();  // no outline here
   const auto& c = std::get<Cylinder>(shape);
   // The mantle (radial) and the end faces (along the axis), at right angles.
   const Vec<3> r = x - c.center;

@@ -73,6 +73,23 @@ double Profile::at(double x) const {
   return a[1] + (x - a[0]) * (b[1] - a[1]) / (b[0] - a[0]);
 }
 
+// Bilinear between the cell centres, the fractional cell clamped to them (constant across the
+// outer half cells).
+double ElevationRaster::at(double x, double z) const {
+  const auto axis = [](double u, int n, int& i, int& i1, double& t) {
+    u = std::clamp(u, 0.0, n - 1.0);
+    i = std::min(static_cast<int>(u), std::max(n - 2, 0));
+    i1 = std::min(i + 1, n - 1);
+    t = u - i;
+  };
+  int i, i1, j, j1;
+  double t, w;
+  axis(to_cell[0] + to_cell[1] * x + to_cell[2] * z, columns, i, i1, t);
+  axis(to_cell[3] + to_cell[4] * x + to_cell[5] * z, rows, j, j1, w);
+  const auto h = [&](int a, int b) { return heights[static_cast<std::size_t>(b) * columns + a]; };
+  return (1 - w) * ((1 - t) * h(i, j) + t * h(i1, j)) + w * ((1 - t) * h(i, j1) + t * h(i1, j1));
+}
+
 bool shape_contains(const Shape& shape, const Vec<2>& x) {
   if (const auto* r = std::get_if<Rectangle>(&shape))
     return x[0] >= r->min[0] && x[0] < r->max[0] && x[1] >= r->min[1] && x[1] < r->max[1];
@@ -90,6 +107,11 @@ bool shape_contains(const Shape3& shape, const Vec<3>& x) {
     const Vec<3> r = x - c->center;
     const double t = r.dot(c->axis);  // along the axis
     return std::abs(t) < 0.5 * c->length && (r - t * c->axis).squaredNorm() < c->radius * c->radius;
+  }
+  if (const auto* l = std::get_if<Layer3>(&shape)) {
+    if (!((x.array() >= l->lo.array()).all() && (x.array() < l->hi.array()).all())) return false;
+    return (!l->bottom || x[1] >= l->bottom->at(x[0], x[2])) && x[1] < l->top->at(x[0], x[2]) &&
+           (!l->surface || x[1] < l->surface->at(x[0], x[2]));
   }
   const auto& e = std::get<ExtrudedPolygon>(shape);
   return x[2] >= e.z_min && x[2] < e.z_max && polygon_contains(e.section, x.head<2>());
@@ -118,6 +140,7 @@ ShapeBox<3> bounding_box(const Shape3& shape) {
                 c->radius * std::sqrt(std::max(0.0, 1.0 - c->axis[d] * c->axis[d]));
     return {c->center - half, c->center + half};
   }
+  if (const auto* l = std::get_if<Layer3>(&shape)) return {l->lo, l->hi};
   const auto& e = std::get<ExtrudedPolygon>(shape);
   const ShapeBox<2> b = polygon_box(e.section);
   return {Vec<3>(b.lo[0], b.lo[1], e.z_min), Vec<3>(b.hi[0], b.hi[1], e.z_max)};
@@ -174,6 +197,21 @@ double layer_area(const Layer& l) {
     }
   }
   return area;
+}
+
+double layer_volume(const Layer3& l) {
+  // The midpoint rule on 1024 x 1024 columns of the layer's horizontal extent.
+  constexpr int n = 1024;
+  const double dx = (l.hi[0] - l.lo[0]) / n, dz = (l.hi[2] - l.lo[2]) / n;
+  double volume = 0.0;
+  for (int k = 0; k < n; ++k)
+    for (int i = 0; i < n; ++i) {
+      const double x = l.lo[0] + (i + 0.5) * dx, z = l.lo[2] + (k + 0.5) * dz;
+      double top = std::min(l.top->at(x, z), l.hi[1]);
+      if (l.surface) top = std::min(top, l.surface->at(x, z));
+      volume += std::max(0.0, top - std::max(l.lo[1], l.bottom ? l.bottom->at(x, z) : l.lo[1]));
+    }
+  return volume * dx * dz;
 }
 
 }  // namespace skred
