@@ -18,6 +18,7 @@
 
 #include "implicit/implicit_solver.hpp"
 #include "run/simulation.hpp"
+#include "run/slope_stability.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 #include "scenario/scenario.hpp"
@@ -223,4 +224,14 @@ TEST(AxisymmetricExplicit, GranularColumnRestsAndBalancesItsEnergyAsInPlaneStrai
       "granular column, h = 10 mm: balance %.4f axisymmetric, %.4f plane strain; runout %.3f / %.3f m\n",
       axi.balance, plane.balance, axi.result.stages[0].runout, plane.result.stages[0].runout);
   EXPECT_LT(std::abs(axi.balance), std::abs(plane.balance) + 0.005);
+}
+
+// skred check names the axis, and leaves out Bishop's circles, which are plane strain.
+TEST(AxisymmetricExplicit, CheckNamesTheAxisAndLeavesOutPlaneStrainCircles) {
+  const Scenario s = std::get<Scenario>(
+      load_any_scenario(std::string(SKRED_SOURCE_DIR) + "/examples/granular_column_axisymmetric.toml"));
+  EXPECT_NE(describe(s).find("x_min roller (the axis)"), std::string::npos) << describe(s);
+  const SlopeStability le = slope_stability(s);
+  EXPECT_FALSE(le.computed);
+  EXPECT_NE(le.why_not.find("axisymmetric"), std::string::npos) << le.why_not;
 }

@@ -50,6 +50,8 @@ SlopeStability slope_stability(const Scenario& s) {
   for (const Stage& st : s.stages)
     if (!st.elastic) stage = &st;
   if (!stage) return not_computed("every stage holds the materials elastic");
+  if (s.geometry == Geometry::Axisymmetric)  // Bishop's slices are plane strain
+    return not_computed("the circles are plane strain; this section is axisymmetric");
   if (s.gravity.norm() == 0.0) return not_computed("no gravity");
   if (!(s.gravity[1] < 0.0) || s.gravity[0] != 0.0) return not_computed("gravity is not along -y");
   std::vector<int> used;  // the deformable bodies' materials, in the order the bodies give them

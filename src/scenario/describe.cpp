@@ -228,8 +228,10 @@ std::string describe(const ScenarioOf<D>& s) {
   static const char* const names[6] = {"x_min", "x_max", "y_min", "y_max", "z_min", "z_max"};
   std::string sides;
   for (int k = 0; k < 2 * D; ++k)
-    sides += fmt::format("{}{} {}", k ? ", " : "", names[k],
-                         boundary_summary(s.boundaries[static_cast<std::size_t>(k)]));
+    sides += fmt::format(
+        "{}{} {}", k ? ", " : "", names[k],
+        boundary_summary(s.boundaries[static_cast<std::size_t>(k)]) +
+            (k == 0 && s.geometry == Geometry::Axisymmetric && s.origin[0] == 0.0 ? " (the axis)" : ""));
   line("boundaries: " + sides);
   std::string interp = to_string(s.interpolation);
   if (s.interpolation == Interpolation::GimpQuadrature)
