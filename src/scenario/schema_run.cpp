@@ -35,7 +35,10 @@ void add_run_sections(std::vector<Section>& s) {
       {"boundary",
        "boundary",
        {
-           {.name = "x_min", .type = Type::Side, .def = derived("\"free\""), .doc = "the wall x = origin_x"},
+           {.name = "x_min",
+            .type = Type::Side,
+            .def = derived("\"free\""),
+            .doc = "the wall x = origin_x (axisymmetric from x = 0: the axis, a roller)"},
            {.name = "x_max",
             .type = Type::Side,
             .def = derived("\"free\""),
