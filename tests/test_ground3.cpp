@@ -14,12 +14,14 @@
 #include <functional>
 #include <string>
 
+#include "gdal_test_util.hpp"
 #include "io_test_util.hpp"
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
 #include "temp_dir.hpp"
 
 using namespace skred;
+using skred::test::wkt_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -106,17 +108,6 @@ std::string error_of(const fs::path& file) {
     return e.what();
   }
   return "";
-}
-
-std::string wkt_of(const char* epsg) {
-  OGRSpatialReferenceH s = OSRNewSpatialReference(nullptr);
-  OSRSetFromUserInput(s, epsg);
-  char* w = nullptr;
-  OSRExportToWkt(s, &w);
-  std::string out = w;
-  CPLFree(w);
-  OSRDestroySpatialReference(s);
-  return out;
 }
 
 }  // namespace
