@@ -76,6 +76,22 @@ Scenario3 georeferenced(const fs::path& dir, double rotation) {
   return std::get<Scenario3>(load_any_scenario((dir / "s.toml").string()));
 }
 
+// The column held elastic for 0.1 s, then let go for 0.3 s.
+Scenario3 two_stages(const fs::path& dir) {
+  std::string text = column_text();
+  text.replace(text.find("end_time = 0.6"), 14, "");
+  write(dir / "s.toml", text + R"(
+[[stage]]
+name = "hold"
+duration = 0.1
+elastic = true
+[[stage]]
+name = "collapse"
+duration = 0.3
+)");
+  return std::get<Scenario3>(load_any_scenario((dir / "s.toml").string()));
+}
+
 using Dataset = std::unique_ptr<void, void (*)(GDALDatasetH)>;
 Dataset open(const fs::path& p) {
   GDALAllRegister();
@@ -183,18 +199,7 @@ TEST(HazardMaps, ColumnCollapseConservesTheVolumeAndListsTheMaps) {
 // run's arrival the second stage's in simulation time, its largest speed the larger of the two.
 TEST(HazardMaps, StagesWriteTheirOwnMaps) {
   const test::TempDir dir;
-  std::string text = column_text();
-  text.replace(text.find("end_time = 0.6"), 14, "");
-  write(dir.path() / "s.toml", text + R"(
-[[stage]]
-name = "hold"
-duration = 0.1
-elastic = true
-[[stage]]
-name = "collapse"
-duration = 0.3
-)");
-  const Scenario3 s = std::get<Scenario3>(load_any_scenario((dir.path() / "s.toml").string()));
+  const Scenario3 s = two_stages(dir.path());
   RunOptions opt;
   opt.progress = false;
   const fs::path out = dir.path() / "out";
@@ -221,6 +226,30 @@ duration = 0.3
     EXPECT_EQ(v[c], std::max(v1[c], v2[c]));
   }
   EXPECT_GT(arrived, 0);
+}
+
+// A run stopped in its second stage and resumed from the checkpoint writes the same maps, byte
+// for byte, as the run that went through (the maps are kept in the checkpoint).
+TEST(HazardMaps, AResumedRunWritesTheSameMaps) {
+  const test::TempDir dir;
+  const Scenario3 s = two_stages(dir.path());
+  RunOptions opt;
+  opt.progress = false;
+  opt.checkpoint_every = 1000000;  // only the final one
+  ASSERT_TRUE(run_simulation(s, dir.path() / "a", opt).completed);
+  RunOptions stop = opt;
+  stop.stop_at_step = 200;  // in the second stage (about 86 steps each 0.1 s)
+  ASSERT_TRUE(run_simulation(s, dir.path() / "b", stop).interrupted);
+  EXPECT_FALSE(fs::exists(dir.path() / "b/maps/max_speed.asc")) << "an interrupted run writes no run maps";
+  RunOptions again = opt;
+  again.restart = dir.path() / "b/checkpoint.skc";
+  ASSERT_TRUE(run_simulation(s, dir.path() / "b", again).completed);
+  for (const std::string& name : map_names())
+    for (const char* folder : {"maps/", "maps/stage_1/", "maps/stage_2/"}) {
+      const std::string f = folder + name + ".asc";
+      EXPECT_EQ(read(dir.path() / "a" / f), read(dir.path() / "b" / f)) << f;
+    }
+  EXPECT_NE(read(dir.path() / "b/summary.json").find("maps/stage_1/terrain.tif"), std::string::npos);
 }
 
 // The GeoTIFF and the .asc carry the [ground] raster's origin, cell size and CRS; rotated, the

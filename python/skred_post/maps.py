@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from .data import PostError
+from .scenario_info import read_scenario
 
 LABELS = {
     "deposit_thickness": ("deposit thickness", "m", "viridis"),
@@ -65,7 +66,7 @@ def plot_map(outdir, name, dpi=100, cmap=None, vrange=None):
     arrival, _, _ = read_asc(os.path.join(maps, "arrival_time.asc"))
     label, unit, default_cmap = LABELS[name]
     width, height = extent[1] - extent[0], extent[3] - extent[2]
-    fig, ax = plt.subplots(figsize=(8, max(3.0, min(10.0, 8 * height / width))), dpi=dpi)
+    fig, ax = plt.subplots(figsize=(8, max(4.0, min(10.0, 8 * height / width))), dpi=dpi)
     ax.imshow(hillshade(np.nan_to_num(terrain), cell), cmap="gray", extent=extent, vmin=0, vmax=1)
     shown = values.copy()
     if name in ("deposit_thickness", "max_speed", "max_displacement"):
@@ -83,8 +84,15 @@ def plot_map(outdir, name, dpi=100, cmap=None, vrange=None):
     x0, y0 = extent[0] + 0.05 * width, extent[2] + 0.06 * height
     ax.plot([x0, x0 + length], [y0, y0], color="black", linewidth=4, solid_capstyle="butt")
     ax.text(x0 + length / 2, y0 + 0.02 * height, f"{length:g} m", ha="center", va="bottom")
-    ax.set_xlabel("easting [m]")
-    ax.set_ylabel("northing [m]")
-    ax.set_title(f"{label}, seen from above; red: the runout outline")
+    scenario = read_scenario(outdir)[1] or {}
+    if scenario.get("ground", {}).get("rotation", 0.0) % 360.0 != 0.0:
+        # an ESRI grid cannot turn: a rotated scenario's .asc lies in its local frame
+        ax.set_xlabel("scenario x [m]")
+        ax.set_ylabel("scenario -z [m]")
+        ax.set_title(f"{label}, in the scenario's frame (the GeoTIFF lies on the map); red: runout")
+    else:
+        ax.set_xlabel("easting [m]")
+        ax.set_ylabel("northing [m]")
+        ax.set_title(f"{label}, seen from above; red: the runout outline")
     ax.set_aspect("equal")
     return fig
