@@ -14,12 +14,14 @@
 #include <functional>
 #include <string>
 
+#include "gdal_test_util.hpp"
 #include "io_test_util.hpp"
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
 #include "temp_dir.hpp"
 
 using namespace skred;
+using skred::test::wkt_of;
 namespace fs = std::filesystem;
 
 namespace {
@@ -106,17 +108,6 @@ std::string error_of(const fs::path& file) {
     return e.what();
   }
   return "";
-}
-
-std::string wkt_of(const char* epsg) {
-  OGRSpatialReferenceH s = OSRNewSpatialReference(nullptr);
-  OSRSetFromUserInput(s, epsg);
-  char* w = nullptr;
-  OSRExportToWkt(s, &w);
-  std::string out = w;
-  CPLFree(w);
-  OSRDestroySpatialReference(s);
-  return out;
 }
 
 }  // namespace
@@ -207,7 +198,8 @@ TEST(Ground3, GeoTiffWrittenByGdalReadsBackAsTheSameGround) {
       GDALRasterIO(GDALGetRasterBand(ds, 1), GF_Write, 0, 0, 21, 7, heights.data(), 21, 7, GDT_Float64, 0, 0),
       CE_None);
   GDALClose(ds);
-  for (const char* name : {"clay_base.prj", "rock.prj"}) write(dir / name, wkt);
+  write(dir / "clay_base.prj", "\n" + wkt + "\n");  // as gdalsrsinfo -o wkt writes it: a blank line first
+  write(dir / "rock.prj", wkt);
   std::string layers = kLayers;
   const auto load = [&](const std::string& surface) {
     write(dir / "s.toml",

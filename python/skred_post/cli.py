@@ -67,6 +67,15 @@ def cmd_render(a):
         out = a.output or os.path.join(pictures, field_slug(style) + ".gif")
         render_all(a.outdir, style, out, fps=a.fps, view=view, info_path=a.info)
         return 0
+    if a.map:
+        if a.view != "top":
+            raise PostError("--map draws a map seen from above: add --view top")
+        from .maps import plot_map
+        out = a.output or os.path.join(pictures, f"map_{a.map}.png")
+        save(plot_map(a.outdir, a.map, dpi=a.dpi, cmap=a.cmap if a.cmap != "viridis" else None,
+                      vrange=tuple(a.range) if a.range else None), out)
+        print(f"wrote {out}")
+        return 0
     frame = load_frame(a.outdir, a.step, view)
     check_style(frame, style)  # also picks the default field
     xlim, ylim = bounds([frame])
@@ -117,6 +126,8 @@ def parser():
     r.add_argument("--view", choices=["section", "top"], default="section",
                    help="3D runs: a section z = const (default) or the surface seen from above")
     r.add_argument("--section-z", type=float, help="3D section: z of the plane [m] (default: mid material)")
+    r.add_argument("--map", help="3D runs with --view top: the hazard map NAME (maps/NAME.asc) "
+                   "over a hillshade, with a scale bar and the runout outline")
     r.add_argument("--slab", type=float, help="3D section: thickness of the slab of points shown [m] (default: one voxel)")
     r.set_defaults(run=cmd_render)
     rep = sub.add_parser("report", help="self-contained HTML report")

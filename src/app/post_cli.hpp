@@ -60,6 +60,12 @@ class PostCommands {
         ->add_option("--slab", slab_,
                      "3D section: thickness of the slab of points drawn [m] (default: one voxel)")
         ->check(CLI::PositiveNumber);
+    render_
+        ->add_option("--map", map_,
+                     "3D runs, with --view top: the hazard map NAME (maps/NAME.asc) over a hillshade of the "
+                     "terrain, with a scale bar and the runout outline")
+        ->check(CLI::IsMember({"deposit_thickness", "height_change", "max_speed", "max_displacement",
+                               "arrival_time", "terrain"}));
 
     report_ = app.add_subcommand("report", "Write a self-contained HTML report of a run");
     report_->add_option("outdir", outdir_, "Output folder of `skred run`")
@@ -103,12 +109,13 @@ class PostCommands {
     opt("--view", view_);
     if (render_->count("--section-z")) opt("--section-z", num(section_z_));
     if (render_->count("--slab")) opt("--slab", num(slab_));
+    opt("--map", map_);
     return a;
   }
 
   CLI::App* render_ = nullptr;
   CLI::App* report_ = nullptr;
-  std::string outdir_, field_, output_, cmap_, info_, view_;
+  std::string outdir_, field_, output_, cmap_, info_, view_, map_;
   int step_ = -1, sample_ = 4, dpi_ = 100;
   bool all_ = false, series_ = false, arrows_ = false, crosses_ = false, slip_circle_ = false,
        stripes_ = false, checker_ = false;

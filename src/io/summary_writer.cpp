@@ -133,6 +133,13 @@ std::string limit_equilibrium_json(const Summary& s) {
                      json_number(c[2]), json_number(c[3]), json_number(c[4]));
 }
 
+std::string maps_json(const std::vector<std::string>& files) {
+  if (files.empty()) return "";
+  std::string out;
+  for (const std::string& f : files) out += fmt::format("{}\n    {}", out.empty() ? "" : ",", json_string(f));
+  return fmt::format("  \"maps\": [{}\n  ],\n", out);
+}
+
 std::string implicit_json(const Summary& s) {
   if (!s.implicit) return "";
   const Summary::Implicit& m = *s.implicit;
@@ -172,7 +179,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"scheme\": {},\n{}{}"
       "  \"time_step\": {},\n{}"
       "  \"phase_seconds\": {{{}}},\n"
-      "  \"stages\": [{}],\n"
+      "  \"stages\": [{}],\n{}"
       "  \"version\": {},\n"
       "  \"git_commit\": {}\n"
       "}}\n",
@@ -183,7 +190,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_number(s.peak_memory_bytes), json_number(s.memory_bytes_per_point), s.threads,
       json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
       limit_equilibrium_json(s), json_number(s.time_step), implicit_json(s), phases_json(s.phase_seconds),
-      stages_json(s.stages), json_string(s.version), json_string(s.git_commit));
+      stages_json(s.stages), maps_json(s.maps), json_string(s.version), json_string(s.git_commit));
   write_file_atomically(file, [&](std::ostream& os) { os << text; });
 }
 

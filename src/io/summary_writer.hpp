@@ -90,6 +90,9 @@ struct Summary {
     std::vector<std::pair<std::string, std::vector<double>>> forces = {};
   };
   std::optional<Implicit> implicit = {};
+  // 3D: the hazard maps' files relative to the output folder (written after "stages" as "maps"
+  // when there are any; run/map_files.hpp).
+  std::vector<std::string> maps = {};
 };
 
 // Writes `s` as one JSON object (keys named as the fields, in field order; "stages" is an

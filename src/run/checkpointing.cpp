@@ -83,6 +83,8 @@ void archive_run(A& a, SolverClock& c, RunProgress<D>& at) {
   at.finished.resize(n);
   for (StageMeasures& m : at.finished) archive_measures(a, m);
   if (at.in_stage) at.tracker.archive(a);
+  at.maps.archive(a);
+  a(at.map_files);
 }
 
 }  // namespace

@@ -11,6 +11,7 @@
 #include "io/checkpoint.hpp"
 #include "io/pvd_writer.hpp"
 #include "io/series_writer.hpp"
+#include "run/hazard_maps.hpp"
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
 
@@ -28,6 +29,8 @@ struct RunProgress {
   std::vector<StageMeasures> finished;  // measures of the finished stages
   StageTracker<D> tracker;              // of the current stage
   long checkpoint_every = 0;            // as the run was started (a resume keeps it)
+  HazardMaps maps;                      // 3D: the hazard maps so far (off in 2D)
+  std::vector<std::string> map_files;   // the stages' map files written so far
 };
 
 // Catches SIGINT/SIGTERM from now on (for the command line, before the scenario is read and

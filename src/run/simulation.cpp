@@ -22,6 +22,7 @@
 #include "run/checkpointing.hpp"
 #include "run/density_trigger.hpp"
 #include "run/dilation_continuum.hpp"
+#include "run/map_files.hpp"
 #include "run/memory_use.hpp"
 #include "run/slide_measures.hpp"
 #include "run/slope_stability.hpp"
@@ -217,7 +218,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                               .forces = force_columns(s)});
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
-  checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd);
+  if (!checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd))
+    if constexpr (D == 3) at.maps = start_hazard_maps(s, particles);  // run/hazard_maps.hpp
   std::vector<Sym3> smoothed;
   const VtuOptions vtu_options{s.output_fields, s.output_compression};
   const bool wants_split = output_fields::wants_elastic_split(s.output_fields);
@@ -306,6 +308,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                           st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
                           st.runout_thickness, s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
       if (measure != Stage::RestMeasure::Displacement) particles.x_rest = {};  // (its first row starts one)
+      if constexpr (D == 3) at.maps.begin_stage(particles, at.stage_start);
     }
     const long first_step = at.stage_first_step;
     const double stage_start = at.stage_start;
@@ -317,6 +320,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       SeriesRow row = series_row(*solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
                                  tracker.runout(particles));
       if (material_speed) row.material_speed = solver->material_mean_speed();
+      if constexpr (D == 3) at.maps.sample(particles, solver->time());
       series.add(row);
       if (std::string why = watch.check(t, solver->energy()); !why.empty())
         stop_unstable(std::move(why), offending_point(particles));
@@ -429,6 +433,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                          t.kinetic_energy, e.gravity_work, e.strain_energy,
                                          e.plastic_dissipation, ended_by));
     at.finished.back().rest_measure = to_string(measure);
+    if constexpr (D == 3) finish_stage_maps(s, particles, at.maps, k, outdir, at.map_files);
     at.in_stage = false;
     at.stage = k + 1;
     if (moved) break;  // the stages after it do not run
@@ -531,6 +536,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       sum.implicit->forces.emplace_back(s.prescribed[b].name, std::vector<double>(&f[3 * b], &f[3 * b] + D));
   }
   sum.stages = at.finished;
+  if constexpr (D == 3)
+    if (at.maps.enabled() && !stopped) {  // the run's maps (a resumed run writes them at its end)
+      sum.maps = at.map_files;
+      for (std::string& f : write_map_set(s, at.maps, at.maps.run(), outdir, "maps")) sum.maps.push_back(f);
+    }
   sum.phase_seconds = integrators.phase_seconds();
   sum.version = version();
   sum.git_commit = git_commit();

@@ -354,6 +354,8 @@ void parse_output(const TableReader& root, ScenarioCommon& s) {
                                                 "{:.0f} are allowed",
                                                 s.end_time / s.series_interval, s.end_time, kMaxSeriesRows));
     s.output_compression = o->boolean_or("compression", true);
+    s.output_maps = o->boolean_or("maps", true);
+    s.map_threshold = o->number_or("map_threshold", 0.0);
   }
   s.output_fields = parse_output_fields(o);
 }

@@ -183,6 +183,8 @@ RasterFile read_esri_ascii(const std::string& path) {
     wkt << p.rdbuf();
     std::string t = wkt.str();
     t.erase(t.find_last_not_of(" \t\r\n") + 1);
+    t.erase(0, std::min(t.size(),
+                        t.find_first_not_of(" \t\r\n")));  // (gdalsrsinfo -o wkt starts with a blank line)
     if (t.empty())
       throw RasterError(
           fmt::format("{}: cannot read its coordinate reference system: {} is empty", path, prj.string()));

@@ -257,6 +257,10 @@ struct ScenarioCommon {
   // order of output_fields::all(); and whether frames are zlib-compressed (output.compression).
   std::vector<std::string> output_fields = output_fields::defaults();
   bool output_compression = true;
+  // 3D: the hazard maps (output.maps; run/hazard_maps.hpp) and the displacement past which a
+  // point has moved (output.map_threshold; 0: half a cell).
+  bool output_maps = true;
+  double map_threshold = 0.0;
 };
 
 // A scenario in D dimensions (2: plane strain in x-y; 3: x, y, z with y vertical). The

@@ -427,6 +427,17 @@ void add_run_sections(std::vector<Section>& s) {
                     .def = derived("true"),
                     .doc = "zlib-compress the arrays of the particle and grid frames (VTK's "
                            "vtkZLibDataCompressor; ParaView reads both)"},
+                   {.name = "maps",
+                    .type = Type::Boolean,
+                    .def = derived("true"),
+                    .doc = "3D only: write the hazard maps (deposit thickness, change of height, largest "
+                           "speed and displacement, arrival time) as .asc and GeoTIFF under maps/"},
+                   {.name = "map_threshold",
+                    .unit = "m",
+                    .def = derived("cell_size / 2"),
+                    .range = Range::positive(1e6),
+                    .doc = "3D only: a point has moved once it lies further than this from its place at "
+                           "the stage start (the deposit and the arrival of the hazard maps)"},
                }});
 }
 
