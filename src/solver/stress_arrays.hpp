@@ -20,6 +20,15 @@ SKRED_INLINE bool sound_point(const StressUpdateResult& r, const V& stress) {
   return r.volume > 0.0 && std::isfinite(stress.sum());
 }
 
+// The axisymmetric update (Acosta App. A1, eq. 32): the in-plane grad v and the hoop rate v_r / r
+// of the point make a 3 x 3 gradient whose third axis is the hoop direction, and the point is
+// updated as a 3D point (update_point_stress<3>) with F_theta_theta = hoop; its volume per radian
+// is det F hoop V0. Fe (when tracked) keeps its in-plane part. Out of line: the 2D phases take it
+// in every instantiation, and inlined there the 3D update doubled their build time.
+StressUpdateResult update_point_axisymmetric(const Material& mat, const Mat<2>& grad_v, double hoop_rate,
+                                             double dt, double volume0, PointStress<2>& stress,
+                                             PointState& state, Mat<2>& F, Mat<2>* Fe, double& hoop);
+
 // Points per block of the stress phase: a block's gathers run first, then its material
 // updates, then its scatters, so the out-of-order core overlaps the independent points' long
 // update chains (docs/method.md, "The stress phase in blocks").
@@ -82,26 +91,12 @@ struct StressArrays {
     return update_point_stress<D>(mats[single ? 0 : material[p]], grad_v, dt, volume0[p], stress[p], state[p],
                                   F[p], Fe ? Fe[p] : untracked);
   }
-  // The axisymmetric update (Acosta App. A1, eq. 32): the in-plane grad v and the hoop rate
-  // v_r / r of the point make a 3 x 3 gradient whose third axis is the hoop direction, and the
-  // point is updated as a 3D point with F_theta_theta = hoop (stress_update.hpp); its volume per
-  // radian is det F hoop V0.
+  // The axisymmetric update (axisymmetric_update.cpp).
   SKRED_INLINE StressUpdateResult update_axisymmetric(long p, const Mat<D>& grad_v, double hoop_rate,
                                                       double dt) const {
     static_assert(D == 2, "axisymmetric geometry is 2D");
-    Mat3 g3 = Mat3::Zero();
-    g3.template topLeftCorner<2, 2>() = grad_v;
-    g3(2, 2) = hoop_rate;
-    Mat3 F3 = embed3<2>(F[p], hoop[p]);
-    Mat3 Fe3 = embed3<2>(Fe ? Fe[p] : Mat<2>(Mat<2>::Identity()), 1.0);  // (in-plane Fe only)
-    Sym3 s = full_stress<2>(stress[p]);
-    const StressUpdateResult r =
-        update_point_stress<3>(mats[single ? 0 : material[p]], g3, dt, volume0[p], s, state[p], F3, Fe3);
-    stress[p] = s.template head<4>();
-    F[p] = F3.template topLeftCorner<2, 2>();
-    hoop[p] = F3(2, 2);
-    if (Fe) Fe[p] = Fe3.template topLeftCorner<2, 2>();
-    return r;
+    return update_point_axisymmetric(mats[single ? 0 : material[p]], grad_v, hoop_rate, dt, volume0[p],
+                                     stress[p], state[p], F[p], Fe ? Fe + p : nullptr, hoop[p]);
   }
   // update() or, where hoop_rate is given (axisymmetric), update_axisymmetric(), with its stored
   // and dissipated work booked as update_booked does.
