@@ -92,9 +92,9 @@ TEST(PostSmoothing, NodeFieldsHoldMassVelocityAndStress) {
   std::fill(b.P.stress.begin(), b.P.stress.end(), stored_stress<2>(s0));
   std::vector<Sym3> out;
   b.solver->smoothed_stress(out);
-  const auto& m = b.solver->node_mass();
-  const auto& v = b.solver->node_velocity();
-  const auto& s = b.solver->node_stress();
+  const auto& m = b.solver->state().smoothing.mass;
+  const auto& v = b.solver->state().smoothing.velocity;
+  const auto& s = b.solver->state().smoothing.stress;
   ASSERT_EQ(m.size(), b.solver->grid().node_count());
   ASSERT_EQ(v.size(), m.size());
   ASSERT_EQ(s.size(), m.size());

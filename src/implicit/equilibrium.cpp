@@ -29,8 +29,8 @@ Sym3 ImplicitSolver<D>::point_strain(std::size_t p, const std::vector<double>& d
 // The law's update of point p for the strain increment de (eq. 6), kept as the trial state.
 template <int D>
 const Sym3& ImplicitSolver<D>::update_point(std::size_t p, const Sym3& de, bool tangent) {
-  const Material& mat = materials_[static_cast<std::size_t>(P_.material[p])];
-  LawResult res = evaluate(mat, full_stress<D>(P_.stress[p]), de, P_.state[p], tangent);
+  const Material& mat = state_.materials[static_cast<std::size_t>(state_.points.material[p])];
+  LawResult res = evaluate(mat, full_stress<D>(state_.points.stress[p]), de, state_.points.state[p], tangent);
   deps_[p] = de;
   trial_stress_[p] = res.stress;
   trial_plastic_[p] = res.plastic_strain;
@@ -67,7 +67,7 @@ void ImplicitSolver<D>::subtract_internal_force(std::size_t p, const Sym3& ws, d
 // q = m^T sigma / d (the explicit engine's solver/volumetric_averaging.hpp).
 template <int D>
 double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, bool tangent) {
-  const std::size_t n = P_.size();
+  const std::size_t n = state_.points.size();
   deps_.resize(n);
   trial_stress_.resize(n);
   trial_plastic_.resize(n);
@@ -77,7 +77,7 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   double* r = r_.data();
   timer_.time(ImplicitPhase::StressUpdate, [&] {
     if (!averaging()) {
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
       for (std::size_t p = 0; p < n; ++p) {
         const Sym3& s = update_point(p, point_strain(p, du), tangent);
         subtract_internal_force(p, volume_[p] * voigt_weighted(s), r);
@@ -88,10 +88,10 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
     const double d = m.sum();
     vol_corr_.resize(n);
     mean_.resize(n);
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
     for (std::size_t p = 0; p < n; ++p) deps_[p] = point_strain(p, du);
     const int cells = cells_.cells();
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 64)
+#pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
     for (int c = 0; c < cells; ++c) {
       const int q0 = cells_.start[c], q1 = cells_.start[c + 1];
       double theta = 0.0;
@@ -195,20 +195,20 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
   std::vector<double>& values = system_.values();
   std::fill(values.begin(), values.end(), 0.0);
   double* v = values.data();
-  const std::size_t n = P_.size();
+  const std::size_t n = state_.points.size();
   const auto point_WT = [&](std::size_t p) {
-    Mat6 WT = elastic ? elastic_tangent_[static_cast<std::size_t>(P_.material[p])] : tangent_[p];
+    Mat6 WT = elastic ? elastic_tangent_[static_cast<std::size_t>(state_.points.material[p])] : tangent_[p];
     WT.bottomRows<3>() *= 2.0;
     return Mat6(volume_[p] * WT);
   };
   if (!averaging()) {
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
     for (std::size_t p = 0; p < n; ++p) add_point_block(p, point_WT(p), false, nullptr, nullptr, v);
   } else {
     const Sym3 m = volumetric_axes();
     const double d = m.sum();
     const int cells = cells_.cells(), Kc = cells_.K;
-#pragma omp parallel for num_threads(threads_) schedule(dynamic, 64)
+#pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
     for (int c = 0; c < cells; ++c) {
       std::array<Vec<D>, kMaxBox> g, h;
       std::fill_n(g.begin(), Kc, Vec<D>::Zero());

@@ -29,6 +29,7 @@
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/integrator.hpp"
+#include "solver/mpm_state.hpp"
 
 namespace skred {
 
@@ -99,27 +100,16 @@ class ImplicitSolver final : public Integrator<D> {
 
   IntegratorKind kind() const override { return IntegratorKind::Implicit; }
   StepStatus step() override;
+  const MpmState<D>& state() const override { return state_; }
   void particles_changed() override {}
-  double time() const override { return time_; }
-  long steps() const override { return steps_; }
   double dt() const override { return dt_; }
-  const EnergyTotals& energy() const override { return energy_; }
-  ParticleTotals<D> totals() const override;
+  ParticleTotals<D> totals() const override { return particle_totals(state_.points, state_.threads); }
   double material_mean_speed() override { return totals().mean_speed; }
-  const GridGeometry<D>& grid() const override { return model_.grid; }
-  int threads() const override { return threads_; }
   bool sort_by_nearest_node() const override { return false; }
   bool contact_on() const override { return false; }
   void begin_stage(std::vector<Material> materials, double gravity_ramp_time) override;
   void set_local_damping(double) override {}
-  const std::vector<Material>& materials() const override { return materials_; }
-  void smoothed_stress(std::vector<Sym3>& out) override;
-  const std::vector<double>& node_mass() const override { return node_mass_; }
-  const std::vector<Vec<D>>& node_velocity() const override { return node_velocity_; }
-  const std::vector<Sym3>& node_stress() const override { return node_stress_; }
-  SolverClock clock() const override {
-    return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_, boundary_force_};
-  }
+  void smoothed_stress(std::vector<Sym3>& out) override { skred::smoothed_stress(state_, out); }
   void restore(const SolverClock& c, std::vector<Material> materials) override;
   std::vector<std::pair<std::string, double>> phase_seconds() const override { return timer_.report(); }
   StepReport last_step() const override { return report_; }
@@ -159,16 +149,12 @@ class ImplicitSolver final : public Integrator<D> {
   void commit_step(double dt);
   void commit_boundary_forces(double dt);
   void initial_acceleration();
+  void elastic_matrices();
 
   ImplicitModel<D> model_;
-  Particles<D>& P_;
-  std::vector<Material> materials_;
-  int threads_;
+  MpmState<D> state_;  // points, grid, materials, clock and energy totals (shared core)
   ImplicitSettings settings_;
   double dt_ = 0.0, end_time_ = 0.0;
-  double time_ = 0.0, ramp_start_ = 0.0, gravity_ramp_time_ = 0.0;
-  long steps_ = 0;
-  EnergyTotals energy_;
   ImplicitTotals totals_;
   StepReport report_;
   std::vector<double> history_;
@@ -188,7 +174,6 @@ class ImplicitSolver final : public Integrator<D> {
   // (-1: none) and the bits of the components it drives (not held by a wall).
   std::vector<std::int8_t> grid_prescribed_, prescribed_id_;
   std::vector<std::uint8_t> grid_driven_, driven_;
-  BoundaryForces boundary_force_{};          // at time_ (series.csv, the work's trapezoid)
   std::vector<double> mass_;                 // m_i per unknown (lumped, eq. 43)
   std::vector<double> v_bar_, a_bar_;        // v_i^t, a_i^t per unknown (eq. 43-44)
   std::vector<double> f_ext_, f_ext_start_;  // F_ext at t + dt and at t
@@ -204,11 +189,6 @@ class ImplicitSolver final : public Integrator<D> {
   std::vector<Mat6> tangent_;
   std::vector<double> vol_corr_, mean_;  // (theta_c - theta_p) / d and q_p (cell averaging)
   std::vector<Mat6> elastic_tangent_;    // per material
-
-  // Nodal fields of the last smoothed_stress() call.
-  std::vector<double> node_mass_;
-  std::vector<Vec<D>> node_velocity_;
-  std::vector<Sym3> node_stress_;
 };
 
 }  // namespace skred

@@ -32,45 +32,45 @@ double norm(const std::vector<double>& v) {
 // likewise, the unknowns (every node with mass, D each) and the matrix pattern.
 template <int D>
 StepStatus ImplicitSolver<D>::map_step() {
-  const GridGeometry<D>& g = model_.grid;
+  const GridGeometry<D>& g = state_.grid;
   long bad = -1;
-  with_kernel<D>(model_.interpolation, model_.quadrature_points, [&](const auto& kernel) {
+  with_kernel<D>(state_.interpolation, state_.quadrature_points, [&](const auto& kernel) {
     width_ = std::decay_t<decltype(kernel)>::StencilT::width;
-    bad = stencils_.build(kernel, g, P_, threads_);
+    bad = stencils_.build(kernel, g, state_.points, state_.threads);
   });
   if (bad >= 0) return {false, bad, "a point left the grid"};
-  const std::size_t n = P_.size();
+  const std::size_t n = state_.points.size();
   const int K = stencils_.K;
   grid_mass_.assign(g.node_count(), 0.0);
   double* gm = grid_mass_.data();
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
 #pragma omp atomic
-      gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * P_.mass[p];
+      gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * state_.points.mass[p];
     }
   // A node whose mass is round-off (a point's support ends on it) is no unknown: its equation
   // would balance round-off forces and pin the stress of the points around it.
   double m_max = 0.0;
-  for (std::size_t p = 0; p < n; ++p) m_max = std::max(m_max, P_.mass[p]);
+  for (std::size_t p = 0; p < n; ++p) m_max = std::max(m_max, state_.points.mass[p]);
   for (double& m : grid_mass_)
     if (m < 1e-10 * m_max) m = 0.0;
   volume_.resize(n);
-  for (std::size_t p = 0; p < n; ++p) volume_[p] = P_.volume(p);
+  for (std::size_t p = 0; p < n; ++p) volume_[p] = state_.points.volume(p);
   inv_r_.clear();
   if (axisymmetric()) {
     inv_r_.resize(n);
-    for (std::size_t p = 0; p < n; ++p) inv_r_[p] = 1.0 / P_.x[p][0];
+    for (std::size_t p = 0; p < n; ++p) inv_r_[p] = 1.0 / state_.points.x[p][0];
   }
   held_components();
   if (averaging()) {
-    const long wide = cells_.build(stencils_, width_, g, P_, volume_, inv_r_, threads_);
+    const long wide = cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads);
     if (wide >= 0)
       return {false, wide, "its stencil spreads beyond its cell's box (cell-averaged volumetric strain)"};
     dofs_.build(cells_.node.data(), static_cast<std::size_t>(cells_.cells()), cells_.S, width_, g, grid_mass_,
-                grid_held_, threads_);
+                grid_held_, state_.threads);
   } else {
-    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, threads_);
+    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, state_.threads);
   }
   const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
   totals_.max_unknowns = std::max(totals_.max_unknowns, static_cast<long>(dofs));
@@ -95,21 +95,21 @@ StepStatus ImplicitSolver<D>::map_step() {
     system_.set_coordinates(xyz);
   }
   if (!dynamic()) return {};
-  if (P_.acceleration.size() != n) initial_acceleration();
+  if (state_.points.acceleration.size() != n) initial_acceleration();
   v_bar_.assign(dofs, 0.0);
   a_bar_.assign(dofs, 0.0);
   double *vb = v_bar_.data(), *ab = a_bar_.data();
-#pragma omp parallel for num_threads(threads_) schedule(static)
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
       const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
       if (a < 0) continue;
-      const double wm = stencils_.N[p * K + k] * P_.mass[p];
+      const double wm = stencils_.N[p * K + k] * state_.points.mass[p];
       for (int c = 0; c < D; ++c) {
 #pragma omp atomic
-        vb[a * D + c] += wm * P_.v[p][c];
+        vb[a * D + c] += wm * state_.points.v[p][c];
 #pragma omp atomic
-        ab[a * D + c] += wm * P_.acceleration[p][c];
+        ab[a * D + c] += wm * state_.points.acceleration[p][c];
       }
     }
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
@@ -128,7 +128,7 @@ StepStatus ImplicitSolver<D>::map_step() {
 // box (du = v dt).
 template <int D>
 void ImplicitSolver<D>::held_components() {
-  const GridGeometry<D>& g = model_.grid;
+  const GridGeometry<D>& g = state_.grid;
   grid_held_.assign(g.node_count(), 0);
   grid_prescribed_.assign(model_.prescribed.empty() ? 0 : g.node_count(), -1);
   grid_driven_.assign(grid_prescribed_.size(), 0);
@@ -172,7 +172,7 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
   const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
   const bool elastic = settings_.iteration == ImplicitIteration::Elastic;
   history_.clear();
-  external_forces(time_ + dt, f_ext_);
+  external_forces(state_.clock.time + dt, f_ext_);
   du_.assign(dofs, 0.0);
   for (std::size_t a = 0; a < prescribed_id_.size(); ++a)  // du = v dt on the driven components
     if (prescribed_id_[a] >= 0)
@@ -272,9 +272,9 @@ bool ImplicitSolver<D>::within_a_cell(std::string& why) const {
     const Eigen::Map<const Vec<D>> u(&du_[a * D]);
     largest = std::max(largest, u.norm());
   }
-  if (largest <= model_.grid.h) return true;
+  if (largest <= state_.grid.h) return true;
   why = fmt::format("the converged increment moves a node by {:.3g} m, more than a cell ({:.3g} m)", largest,
-                    model_.grid.h);
+                    state_.grid.h);
   return false;
 }
 
@@ -282,20 +282,20 @@ bool ImplicitSolver<D>::within_a_cell(std::string& why) const {
 // the step's grid, so that Newmark starts from the equilibrium of eq. 3 at t.
 template <int D>
 void ImplicitSolver<D>::initial_acceleration() {
-  const std::size_t n = P_.size();
+  const std::size_t n = state_.points.size();
   const int K = stencils_.K;
   v_bar_.clear();  // residual() without inertia
-  external_forces(time_, f_ext_);
+  external_forces(state_.clock.time, f_ext_);
   du_.assign(static_cast<std::size_t>(dofs_.dofs()), 0.0);
   residual(du_, 1.0, false);
-  P_.acceleration.assign(n, Vec<D>::Zero());
+  state_.points.acceleration.assign(n, Vec<D>::Zero());
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
       const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
       if (a < 0) continue;
       for (int c = 0; c < D; ++c)
-        P_.acceleration[p][c] += stencils_.N[p * K + k] * r_[static_cast<std::size_t>(a) * D + c] /
-                                 mass_[static_cast<std::size_t>(a) * D + c];
+        state_.points.acceleration[p][c] += stencils_.N[p * K + k] * r_[static_cast<std::size_t>(a) * D + c] /
+                                            mass_[static_cast<std::size_t>(a) * D + c];
     }
 }
 
@@ -306,7 +306,7 @@ void ImplicitSolver<D>::initial_acceleration() {
 // omits the dt); quasi-static: v_p = 0. The energies follow Thesis eq. 4.16 and 5.13.
 template <int D>
 void ImplicitSolver<D>::commit_step(double dt) {
-  const std::size_t n = P_.size();
+  const std::size_t n = state_.points.size();
   const int K = stencils_.K;
   const bool dyn = dynamic(), axi = axisymmetric();
   std::vector<double>& a_new = ddu_;  // (free after the last iteration)
@@ -318,11 +318,13 @@ void ImplicitSolver<D>::commit_step(double dt) {
         if (!dofs_.held(a, c)) a_new[i] = 4.0 / (dt * dt) * du_[i] - 4.0 / dt * v_bar_[i] - a_bar_[i];
       }
   }
-  if (axi && P_.hoop.size() != n) P_.hoop.assign(n, 1.0);
-  const Vec<D> g_mid = 0.5 * (gravity_at(model_.gravity, gravity_ramp_time_, time_ - ramp_start_) +
-                              gravity_at(model_.gravity, gravity_ramp_time_, time_ + dt - ramp_start_));
+  if (axi && state_.points.hoop.size() != n) state_.points.hoop.assign(n, 1.0);
+  const Vec<D> g_mid = 0.5 * (gravity_at(model_.gravity, state_.clock.gravity_ramp_time,
+                                         state_.clock.time - state_.clock.ramp_start) +
+                              gravity_at(model_.gravity, state_.clock.gravity_ramp_time,
+                                         state_.clock.time + dt - state_.clock.ramp_start));
   double strain = 0.0, plastic = 0.0, gravity = 0.0;
-#pragma omp parallel for num_threads(threads_) schedule(static) reduction(+ : strain, plastic, gravity)
+#pragma omp parallel for num_threads(state_.threads) schedule(static) reduction(+ : strain, plastic, gravity)
   for (std::size_t p = 0; p < n; ++p) {
     Vec<D> dx = Vec<D>::Zero(), acc = Vec<D>::Zero();
     Mat<D> grad = Mat<D>::Zero();
@@ -337,12 +339,12 @@ void ImplicitSolver<D>::commit_step(double dt) {
       u_r += N * u[0];
       if (dyn) acc += N * Eigen::Map<const Vec<D>>(&a_new[static_cast<std::size_t>(a) * D]);
     }
-    const Sym3 before = full_stress<D>(P_.stress[p]);
+    const Sym3 before = full_stress<D>(state_.points.stress[p]);
     const Sym3& after = trial_stress_[p];
     const Sym3 mid = 0.5 * volume_[p] * (before + after);
     strain += contract(mid, deps_[p] - trial_plastic_[p]);
     plastic += contract(mid, trial_plastic_[p]);
-    gravity += P_.mass[p] * g_mid.dot(dx);
+    gravity += state_.points.mass[p] * g_mid.dot(dx);
     // With the cell-averaged volumetric strain, dF takes the strain's correction too.
     const double corr = averaging() ? vol_corr_[p] : 0.0;
     const Mat<D> dF = Mat<D>::Identity() + grad + corr * Mat<D>::Identity();
@@ -355,34 +357,35 @@ void ImplicitSolver<D>::commit_step(double dt) {
     // O(strain) difference that the small-strain references, R6, would see.)
     const Eigen::JacobiSVD<Mat3> svd(dF3, Eigen::ComputeFullU | Eigen::ComputeFullV);
     const Mat3 R = svd.matrixU() * svd.matrixV().transpose();
-    P_.stress[p] = stored_stress<D>(to_voigt(R * to_matrix(after) * R.transpose()));
-    P_.state[p] = trial_state_[p];
-    P_.F[p] = dF * P_.F[p];
-    if (!P_.Fe.empty())  // tracked for the frames that hold Fe, Fp or stress_from_Fe
-      P_.Fe[p] = (Mat<D>::Identity() + sym_block<D>(Sym3(deps_[p] - trial_plastic_[p]))) * P_.Fe[p];
-    if (axi) P_.hoop[p] *= dF3(2, 2);
-    P_.x[p] += dx;
+    state_.points.stress[p] = stored_stress<D>(to_voigt(R * to_matrix(after) * R.transpose()));
+    state_.points.state[p] = trial_state_[p];
+    state_.points.F[p] = dF * state_.points.F[p];
+    if (!state_.points.Fe.empty())  // tracked for the frames that hold Fe, Fp or stress_from_Fe
+      state_.points.Fe[p] =
+          (Mat<D>::Identity() + sym_block<D>(Sym3(deps_[p] - trial_plastic_[p]))) * state_.points.Fe[p];
+    if (axi) state_.points.hoop[p] *= dF3(2, 2);
+    state_.points.x[p] += dx;
     if (dyn) {
-      P_.v[p] += 0.5 * dt * (P_.acceleration[p] + acc);  // eq. 41
-      P_.acceleration[p] = acc;
+      state_.points.v[p] += 0.5 * dt * (state_.points.acceleration[p] + acc);  // eq. 41
+      state_.points.acceleration[p] = acc;
     } else {
-      P_.v[p].setZero();
+      state_.points.v[p].setZero();
     }
   }
   // The pressures' work, trapezoidal over the step (their forces at t and t + dt).
   if (!model_.pressures.empty()) {
     std::vector<double> f0(du_.size(), 0.0), f1(du_.size(), 0.0);
-    pressure_forces(time_, f0);
-    pressure_forces(time_ + dt, f1);
+    pressure_forces(state_.clock.time, f0);
+    pressure_forces(state_.clock.time + dt, f1);
     double w = 0.0;
     for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
       for (int c = 0; c < D; ++c)
         if (!dofs_.held(a, c)) w += 0.5 * (f0[a * D + c] + f1[a * D + c]) * du_[a * D + c];
-    energy_.load_work += w;
+    state_.clock.energy.load_work += w;
   }
-  energy_.strain_energy += strain;
-  energy_.plastic_dissipation += plastic;
-  energy_.gravity_work += gravity;
+  state_.clock.energy.strain_energy += strain;
+  state_.clock.energy.plastic_dissipation += plastic;
+  state_.clock.energy.gravity_work += gravity;
   commit_boundary_forces(dt);
 }
 
@@ -400,9 +403,10 @@ void ImplicitSolver<D>::commit_boundary_forces(double dt) {
   for (std::size_t b = 0; b < model_.prescribed.size(); ++b)
     for (int c = 0; c < D; ++c) {
       const std::size_t k = 3 * b + static_cast<std::size_t>(c);
-      energy_.load_work += 0.5 * (boundary_force_[k] + f[k]) * model_.prescribed[b].velocity[c] * dt;
+      state_.clock.energy.load_work +=
+          0.5 * (state_.clock.boundary_force[k] + f[k]) * model_.prescribed[b].velocity[c] * dt;
     }
-  boundary_force_ = f;
+  state_.clock.boundary_force = f;
 }
 
 #define SKRED_IMPLICIT_STEP(D)                                       \

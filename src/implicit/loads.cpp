@@ -16,16 +16,16 @@ namespace skred {
 template <int D>
 void ImplicitSolver<D>::external_forces(double t, std::vector<double>& f) const {
   f.assign(static_cast<std::size_t>(dofs_.dofs()), 0.0);
-  const Vec<D> g = gravity_at(model_.gravity, gravity_ramp_time_, t - ramp_start_);
+  const Vec<D> g = gravity_at(model_.gravity, state_.clock.gravity_ramp_time, t - state_.clock.ramp_start);
   const int K = stencils_.K;
   double* fa = f.data();
-  const std::size_t n = g.squaredNorm() > 0.0 ? P_.size() : 0;
-#pragma omp parallel for num_threads(threads_) schedule(static)
+  const std::size_t n = g.squaredNorm() > 0.0 ? state_.points.size() : 0;
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
       const std::int32_t a = dofs_.active(static_cast<std::size_t>(stencils_.node[p * K + k]));
       if (a < 0) continue;
-      const double w = stencils_.N[p * K + k] * P_.mass[p];
+      const double w = stencils_.N[p * K + k] * state_.points.mass[p];
       for (int c = 0; c < D; ++c) {
 #pragma omp atomic
         fa[static_cast<std::size_t>(a) * D + c] += w * g[c];
@@ -44,7 +44,7 @@ void ImplicitSolver<D>::external_forces(double t, std::vector<double>& f) const 
 // the nodes with the linear (B-spline grids: the B-spline) weights at that edge point.
 template <int D>
 void ImplicitSolver<D>::pressure_forces(double t, std::vector<double>& f) const {
-  const GridGeometry<D>& g = model_.grid;
+  const GridGeometry<D>& g = state_.grid;
   for (const BoundaryPressure& pr : model_.pressures) {
     const double ramp = pr.ramp_time > 0.0 ? std::min(1.0, std::max(0.0, t / pr.ramp_time)) : 1.0;
     const double value = pr.pressure * ramp;
@@ -52,31 +52,34 @@ void ImplicitSolver<D>::pressure_forces(double t, std::vector<double>& f) const 
     const int axis = pr.side / 2;
     const bool hi = pr.side % 2 == 1;
     std::unordered_map<std::int64_t, std::size_t> outermost;
-    for (std::size_t p = 0; p < P_.size(); ++p) {
-      if (P_.body[p] != pr.body) continue;
+    for (std::size_t p = 0; p < state_.points.size(); ++p) {
+      if (state_.points.body[p] != pr.body) continue;
       std::int64_t key = 0;
       for (int d = 0; d < D; ++d) {
         if (d == axis) continue;
-        const double cell = 2.0 * P_.half0[p][d];
-        key = key * 4194304 + static_cast<std::int64_t>(std::lround((P_.x[p][d] - g.origin[d]) / cell - 0.5));
+        const double cell = 2.0 * state_.points.half0[p][d];
+        key = key * 4194304 +
+              static_cast<std::int64_t>(std::lround((state_.points.x[p][d] - g.origin[d]) / cell - 0.5));
       }
       auto [it, fresh] = outermost.try_emplace(key, p);
-      if (!fresh && (hi ? P_.x[p][axis] > P_.x[it->second][axis] : P_.x[p][axis] < P_.x[it->second][axis]))
+      if (!fresh && (hi ? state_.points.x[p][axis] > state_.points.x[it->second][axis]
+                        : state_.points.x[p][axis] < state_.points.x[it->second][axis]))
         it->second = p;
     }
     for (const auto& [key, p] : outermost) {
-      Vec<D> edge = P_.x[p];
-      edge[axis] += (hi ? 1.0 : -1.0) * P_.half0[p][axis] * std::abs(P_.F[p](axis, axis));
+      Vec<D> edge = state_.points.x[p];
+      edge[axis] +=
+          (hi ? 1.0 : -1.0) * state_.points.half0[p][axis] * std::abs(state_.points.F[p](axis, axis));
       double area = 1.0;
       for (int d = 0; d < D; ++d)
-        if (d != axis) area *= 2.0 * P_.half0[p][d] * std::abs(P_.F[p](d, d));
+        if (d != axis) area *= 2.0 * state_.points.half0[p][d] * std::abs(state_.points.F[p](d, d));
       if (axisymmetric()) area *= edge[0];
       Vec<D> force = Vec<D>::Zero();
       force[axis] = (hi ? -1.0 : 1.0) * value * area;
       auto spread = [&](const auto& kernel) {
         using St = typename std::decay_t<decltype(kernel)>::StencilT;
         St st;
-        if (!kernel(g, edge, P_.half0[p], P_.F[p], st)) return;
+        if (!kernel(g, edge, state_.points.half0[p], state_.points.F[p], st)) return;
         const StencilOffsets<D, St::width> offsets(g);
         for (int k = 0; k < St::size; ++k) {
           const std::int32_t a = dofs_.active(st.base + offsets.off[static_cast<std::size_t>(k)]);
@@ -85,7 +88,7 @@ void ImplicitSolver<D>::pressure_forces(double t, std::vector<double>& f) const 
             f[static_cast<std::size_t>(a) * D + c] += st.w[static_cast<std::size_t>(k)] * force[c];
         }
       };
-      if (model_.interpolation == Interpolation::Bspline)
+      if (state_.interpolation == Interpolation::Bspline)
         spread(BsplineKernel<D>{});
       else
         spread(LinearKernel<D>{});

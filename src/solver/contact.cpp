@@ -189,7 +189,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
            c.rigid_velocity[b].squaredNorm() > 0.0;
   };
   const auto moving_outline_normal = [&](std::size_t b, std::size_t i) {
-    return c.outline_normal[b](Vec<D>(g.node_position(i) - time_ * c.rigid_velocity[b]));
+    return c.outline_normal[b](Vec<D>(g.node_position(i) - state_.clock.time * c.rigid_velocity[b]));
   };
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
   std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
@@ -331,7 +331,7 @@ void ExplicitSolver<D>::contact() {
         },
         [](const BodyFields<D>& f, std::size_t i) { return f.velocity[i]; });
     contact_step_ = loss;
-    energy_.contact_work += loss.normal + loss.friction;
+    state_.clock.energy.contact_work += loss.normal + loss.friction;
   });
 }
 
@@ -340,7 +340,7 @@ template <int D>
 void ExplicitSolver<D>::prepare_contact() {
   const ContactSettings<D>& c = settings_.contact;
   std::vector<double> mass(static_cast<std::size_t>(c.bodies()), 0.0), volume(mass);
-  const auto& P = particles_;
+  const auto& P = state_.points;
   // A dilated continuum's points count with its parent's (Paper III §C.3.2).
   const auto family = [&](std::size_t b) {
     return b < c.parent.size() && c.parent[b] >= 0 ? static_cast<std::size_t>(c.parent[b]) : b;
@@ -369,7 +369,7 @@ void ExplicitSolver<D>::prepare_contact() {
 template <int D>
 void ExplicitSolver<D>::rigid_velocity() {
   const ContactSettings<D>& c = settings_.contact;
-  auto& P = particles_;
+  auto& P = state_.points;
   const long n = static_cast<long>(P.size());
 #pragma omp parallel for num_threads(threads()) schedule(static)
   for (long p = 0; p < n; ++p) {

@@ -21,7 +21,7 @@ long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
   const ContactSettings<D>& c = settings_.contact;
   const GridGeometry<D>& g = grid();
   const NodeStrides<D> strides = transfer_.strides();
-  auto& P = particles_;
+  auto& P = state_.points;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
   typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());

@@ -21,28 +21,19 @@ class ExplicitIntegrator final : public Integrator<D> {
   const ExplicitSolver<D>& solver() const { return solver_; }
 
   IntegratorKind kind() const override { return IntegratorKind::Explicit; }
+  const MpmState<D>& state() const override { return solver_.state(); }
   StepStatus step() override { return solver_.step(); }
   void particles_changed() override { solver_.particles_changed(); }
-  double time() const override { return solver_.time(); }
-  long steps() const override { return solver_.steps(); }
   double dt() const override { return solver_.dt(); }
-  const EnergyTotals& energy() const override { return solver_.energy(); }
   ParticleTotals<D> totals() const override { return solver_.totals(); }
   double material_mean_speed() override { return solver_.material_mean_speed(); }
-  const GridGeometry<D>& grid() const override { return solver_.grid(); }
-  int threads() const override { return solver_.threads(); }
   bool sort_by_nearest_node() const override { return solver_.sort_by_nearest_node(); }
   bool contact_on() const override { return solver_.contact_on(); }
   void begin_stage(std::vector<Material> materials, double gravity_ramp_time) override {
     solver_.begin_stage(std::move(materials), gravity_ramp_time);
   }
   void set_local_damping(double alpha) override { solver_.set_local_damping(alpha); }
-  const std::vector<Material>& materials() const override { return solver_.materials(); }
   void smoothed_stress(std::vector<Sym3>& out) override { solver_.smoothed_stress(out); }
-  const std::vector<double>& node_mass() const override { return solver_.node_mass(); }
-  const std::vector<Vec<D>>& node_velocity() const override { return solver_.node_velocity(); }
-  const std::vector<Sym3>& node_stress() const override { return solver_.node_stress(); }
-  SolverClock clock() const override { return solver_.clock(); }
   void restore(const SolverClock& c, std::vector<Material> materials) override {
     solver_.restore(c, std::move(materials));
   }

@@ -1,7 +1,10 @@
 // The explicit dynamic MPM/GIMP solver (Thesis §2.2.1 and §4.4). One call to step()
 // advances the particles by one time step; each phase of the step is one member function,
-// and a scheme type (scheme.hpp) orders them. The maps between points and grid are the
-// transfer layer's (src/transfer).
+// and a scheme type (scheme.hpp) orders them. It advances the state shared with the implicit
+// integrator (mpm_state.hpp: points, grid, materials, clock) and owns what only its step
+// needs: the grid fields, the transfer with its stored weights, the velocity transfer rule, the
+// walls and the contact. The maps between points and grid are the transfer layer's
+// (src/transfer); the grid phases are functions of one continuum's fields (grid_phases.hpp).
 #pragma once
 #include <algorithm>
 #include <array>
@@ -19,7 +22,9 @@
 #include "solver/boundary.hpp"
 #include "solver/contact.hpp"
 #include "solver/grid_fields.hpp"
+#include "solver/grid_phases.hpp"
 #include "solver/implicit_settings.hpp"
+#include "solver/mpm_state.hpp"
 #include "solver/phase_timer.hpp"
 #include "solver/scheme.hpp"
 #include "solver/velocity_transfer.hpp"
@@ -66,59 +71,6 @@ struct SolverSettings {
   ContactSettings<D> contact;
 };
 
-// Running totals kept by the solver (energy bookkeeping, Thesis eq. 4.15-4.17, 5.13).
-struct EnergyTotals {
-  double strain_energy = 0.0;  // stored: sum of V (sigma^{k+1} + sigma^k)/2 : (d_eps - d_eps_p) (eq. 4.16)
-  double gravity_work = 0.0;   // sum of m_p g . d_x_p (eq. 5.13, incremental form)
-  double plastic_dissipation = 0.0;  // plastic work (zero for elastic materials)
-  // Work of the contact impulses against the mean relative velocities of each step (Paper
-  // III §C.2.7; ContactLoss): friction (>= 0) plus the normal part (small, either sign).
-  double contact_work = 0.0;
-  // Energy the walls took: Coulomb friction (eq. 5.8-5.11), the no-slip of fixed walls and
-  // the motion stopped at every wall; >= 0 at every node and step (boundary.hpp, WallEnergy).
-  // (Friction between bodies is in contact_work.)
-  double friction_work = 0.0;
-  // Kinetic energy the velocity transfer took from the FLIP update (eq. 2.56), per step
-  // sum (1/2) m_p (|v_p^FLIP|^2 - |v_p^{k+1}|^2): the PIC share, XPIC and APIC (whose affine
-  // velocity's own kinetic energy is not counted in eq. 4.15); zero for pure FLIP.
-  double transfer_dissipation = 0.0;
-  // Work of the local (Cundall) damping of an equilibrium stage, per step
-  // -dt sum_i f_i^damp . (v_i^k + v_i^{k+1}) / 2 (grid_update); zero when it is off.
-  double damping_work = 0.0;
-  // Work of the boundary pressures (implicit stages, [[pressure]]), per step
-  // sum_i (f_i^t + f_i^{t+dt}) / 2 . du_i: energy supplied, like the gravity work.
-  double load_work = 0.0;
-};
-
-// The solver's state between two steps beyond the particles and the scenario, for a
-// checkpoint: clock, gravity ramp of the stage (what begin_stage set) and energy totals.
-struct SolverClock {
-  double time = 0.0;
-  long steps = 0;
-  double ramp_start = 0.0;
-  double gravity_ramp_time = 0.0;
-  EnergyTotals energy;
-  BoundaryForces boundary_force{};  // the prescribed velocities' forces (implicit_settings.hpp)
-};
-
-// Quantities summed over the particles on demand.
-template <int D>
-struct ParticleTotals {
-  double mass = 0.0;
-  double kinetic_energy = 0.0;  // eq. 4.15
-  Vec<D> momentum = Vec<D>::Zero();
-  double mean_speed = 0.0;  // mass-weighted mean speed, eq. 5.12
-  double max_speed = 0.0;
-  long yielding = 0;  // points whose last stress update was plastic
-};
-
-// Outcome of one step. A step that fails names the first offending particle.
-struct StepStatus {
-  bool ok = true;
-  long particle = -1;
-  std::string reason;
-};
-
 // Positions of the closed (fixed, roller, frictional) walls; +-inf on free sides.
 template <int D>
 struct WallBox {
@@ -147,10 +99,12 @@ class ExplicitSolver {
   // grid as a step starts (eq. 2.53-2.54); step() does this itself when needed.
   StepStatus map_grid();
 
-  double time() const { return time_; }
-  long steps() const { return steps_; }
+  // The points, grid, materials and clock it advances (mpm_state.hpp).
+  const MpmState<D>& state() const { return state_; }
+  double time() const { return state_.clock.time; }
+  long steps() const { return state_.clock.steps; }
   double dt() const { return settings_.dt; }
-  const EnergyTotals& energy() const { return energy_; }
+  const EnergyTotals& energy() const { return state_.clock.energy; }
   ParticleTotals<D> totals() const;
   // The mean speed the material moves with: sum_p m_p |sum_i N_ip v_i| / sum_p m_p, v_i = p_i / m_i
   // under the velocity conditions (eq. 2.23), from the map the next step starts from (made here
@@ -179,23 +133,18 @@ class ExplicitSolver {
   // Seconds spent in each phase since the solver was made.
   const PhaseTimer& phase_times() const { return timer_; }
 
-  // Grid-smoothed particle stresses (Thesis eq. 4.18-4.19): stresses mapped to the nodes
-  // weighted by mass, then interpolated back. `out` is resized to the particle count.
-  void smoothed_stress(std::vector<Sym3>& out);
-
-  // Nodal fields of the last smoothed_stress() call, flat-indexed like grid(), for the grid
-  // output file: mass m_i, velocity sum N_ip m_p v_p / m_i and stress sigma_i (eq. 4.18).
-  const std::vector<double>& node_mass() const { return node_mass_; }
-  const std::vector<Vec<D>>& node_velocity() const { return node_velocity_; }
-  const std::vector<Sym3>& node_stress() const { return node_stress_; }
+  // Grid-smoothed particle stresses (Thesis eq. 4.18-4.19; mpm_state.hpp). `out` is resized to
+  // the particle count; the nodal fields of the call are in state().smoothing.
+  void smoothed_stress(std::vector<Sym3>& out) { skred::smoothed_stress(state_, out); }
 
   // Starts a new stage at the current time: the materials (the stage's strength, or held
   // elastic) and the gravity ramp (Thesis eq. 4.13, measured from now; 0: full gravity)
   // change, and displacements, gravity work, strain energy and plastic dissipation are
-  // measured from here.
-  void begin_stage(std::vector<Material> materials, double gravity_ramp_time);
-  void reset_reference();
-  const std::vector<Material>& materials() const { return materials_; }
+  // measured from here (mpm_state.hpp).
+  void begin_stage(std::vector<Material> materials, double gravity_ramp_time) {
+    skred::begin_stage(state_, std::move(materials), gravity_ramp_time);
+  }
+  const std::vector<Material>& materials() const { return state_.materials; }
   // Local (non-viscous, Cundall type) damping of the current stage, 0 <= alpha < 1 (0: off):
   // each node feels -alpha |f_i| sign(v_i^k) per component, f_i its unbalanced force
   // (grid_update). A stage setting: the run driver sets it as each stage begins or resumes.
@@ -205,15 +154,11 @@ class ExplicitSolver {
   // Checkpoint and restart: the state to save, and restoring it with the current stage's
   // materials. The next step maps the grid afresh from the particles, which gives the same
   // points bit for bit as the fused map (test FusedMapEqualsAFreshMapEveryStep).
-  SolverClock clock() const { return {time_, steps_, ramp_start_, gravity_ramp_time_, energy_}; }
+  // (The explicit solver prescribes no velocities: it reports no boundary force.)
+  SolverClock clock() const { return state_.clock; }
   void restore(const SolverClock& c, std::vector<Material> materials) {
-    materials_ = std::move(materials);
-    for (Material& m : materials_) m.prepare();
-    time_ = c.time;
-    steps_ = c.steps;
-    ramp_start_ = c.ramp_start;
-    gravity_ramp_time_ = c.gravity_ramp_time;
-    energy_ = c.energy;
+    skred::restore(state_, c, std::move(materials));
+    state_.clock.boundary_force = {};
     grid_mapped_ = false;
   }
 
@@ -238,7 +183,22 @@ class ExplicitSolver {
 
   // Phases of one step (Thesis §2.2.1, §4.4), called in order by the scheme types. Each is
   // one tight parallel loop over the points or over the box of grid nodes; a phase that
-  // finds a failing point sets status_ (phase_ok) and returns false.
+  // finds a failing point sets status_ (phase_ok) and returns false. What each reads and
+  // writes (points: state_.points; grid: fields_, or each body's with contact; the grid
+  // phases are functions of one continuum's fields, grid_phases.hpp):
+  //   map_mass_momentum            x_p, m_p, v_p (, half0, F)  -> m_i, p_i; the stored N_ip
+  //   nodal_velocity               m_i, p_i                   -> v_i^k
+  //   stress_update_and_internal_force
+  //                                v_i^k; x_p, F_p, sigma_p   -> sigma_p, F_p, state; f_i^int;
+  //                                                              strain energy, plastic work
+  //   internal_force               sigma_p, V_p               -> f_i^int
+  //   grid_update                  m_i, p_i, v_i^k, f_i^int   -> a_i, v_move, v_i^{k+1}; wall work
+  //   contact                      each body's v_i, a_i       -> a_i, v_move, v_i^{k+1}; contact work
+  //   velocity_and_remap           a_i (, v_i^{k+1}); v_p     -> v_p (, C_p); p~_i
+  //   remap_velocity               m_i, p~_i                  -> v~_i; m_i, p_i cleared
+  //   stress_update_move_and_map   v~_i, v_move; x_p, F_p     -> sigma_p, F_p, x_p; next m_i, p_i
+  //   velocity_move_and_map        a_i, v_move (, v_i^{k+1})  -> v_p (, C_p), x_p; next m_i, p_i;
+  //                                                              gravity work
   template <class K>
   bool map_mass_momentum(const K& kernel);  // eq. 2.53-2.54
   template <class K>
@@ -262,8 +222,7 @@ class ExplicitSolver {
   void internal_force(const K& kernel);          // eq. 2.51
   void grid_update();                            // eq. 2.49, 5.8-5.11
   void continuum_grid_update(GridFields<D>& f);  // grid_update of one continuum's fields
-  void damped_accelerations(GridFields<D>& f);   // grid_update's first loop with local damping
-  bool shared_node(std::size_t i) const;         // with contact: more than one continuum at node i
+  GridStep<D> grid_step() const;                 // what the grid phases read (grid_phases.hpp)
   void contact();                                // Paper III §C.2.7, C.36
   template <class K>
   void velocity_and_remap(const K& kernel);  // eq. 2.56, §4.4 step 6
@@ -301,15 +260,10 @@ class ExplicitSolver {
   template <class K>
   long move_and_map_rigid(const K& kernel, Extent<D>& all);
 
-  template <class K>
-  void smoothed_stress_with(const K& kernel, std::vector<Sym3>& out);
-
+  MpmState<D> state_;  // points, grid, materials, clock and energy totals (shared core)
   Transfer<D> transfer_;
-  Particles<D>& particles_;
-  std::vector<Material> materials_;
   const SolverSettings<D> settings_;    // as constructed: the run's state is in the members below
   VelocityTransferRule transfer_rule_;  // the particle velocity update (velocity_transfer.hpp)
-  double gravity_ramp_time_;            // the current stage's gravity ramp (begin_stage)
   Boundaries<D> boundaries_;
   WallBox<D> walls_;
   std::array<bool, 2 * D> stopping_walls_{};  // the sides that stopped a node this step (WallEnergy)
@@ -327,20 +281,13 @@ class ExplicitSolver {
   // the particles' current state: the last phase of a step maps the next step's.
   bool grid_mapped_ = false;
   std::size_t mapped_points_ = 0;        // the number of points the map was made for
-  std::vector<double> node_mass_;        // nodal mass of the smoothing (eq. 4.18)
-  std::vector<Sym3> node_stress_;        // nodal stresses for smoothing (eq. 4.18)
-  std::vector<Vec<D>> node_velocity_;    // nodal velocities mapped with the smoothing
   GridArray<Vec<D>> material_velocity_;  // v_i of material_mean_speed(), over the box
   // det F_p^{k+1} of every point, written by the stress phase (3D GIMP) for the move phase of the
   // same step, which then need not read F (docs/method.md, "det F from the stress phase"); fresh
   // from that phase to the end of the step (the move is the step's last phase).
   std::vector<double> det_f_;
   bool det_f_fresh_ = false;
-  double time_ = 0.0;
-  double ramp_start_ = 0.0;  // time at which the gravity ramp starts
-  long steps_ = 0;
   Vec<D> gravity_now_ = Vec<D>::Zero();
-  EnergyTotals energy_;
   double local_damping_ = 0.0;
   VolumetricAveraging<D> volumetric_;  // cell sums of the volumetric averaging
   StepStatus status_;

@@ -86,12 +86,12 @@ SKRED_INLINE Vec<D> particle_velocity(const Shape& sh, const GridGeometry<D>& g,
 template <int D>
 ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
                                   std::vector<Material> materials, SolverSettings<D> settings, int threads)
-    : transfer_((grid.bspline_dofs = settings.interpolation == Interpolation::Bspline, grid), threads),
-      particles_(particles),
-      materials_(std::move(materials)),
-      settings_(settings),
-      gravity_ramp_time_(settings.gravity_ramp_time) {
-  for (Material& m : materials_) {
+    : state_(particles, grid, settings.interpolation, settings.quadrature_points, std::move(materials),
+             threads),
+      transfer_(state_.grid, threads),
+      settings_(settings) {
+  state_.clock.gravity_ramp_time = settings.gravity_ramp_time;
+  for (Material& m : state_.materials) {
     m.hyperelastic = settings_.hyperelastic;
     m.prepare();
   }
@@ -107,7 +107,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   // Axisymmetric geometry: every point carries its hoop stretch (from 1 if no stage set it), and
   // the cell-averaged volumetric strain takes the hoop axis.
   if (axisymmetric()) {
-    if (particles_.hoop.size() != particles_.size()) particles_.hoop.assign(particles_.size(), 1.0);
+    if (state_.points.hoop.size() != state_.points.size())
+      state_.points.hoop.assign(state_.points.size(), 1.0);
     volumetric_.axes = 3;
   }
   transfer_rule_ =
@@ -118,9 +119,9 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
   fields_.resize(g.node_count(), pic, settings_.scheme != StressScheme::USF, xpic);
   // APIC's and the affine FLIP's affine velocities start at zero; other transfers carry none.
   if (transfer_rule_.carries_affine())
-    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
+    state_.points.affine.resize(state_.points.size(), Mat<D>::Zero());
   else
-    particles_.affine.clear();
+    state_.points.affine.clear();
   if (contact_on()) {  // every body's fields, from zero pages (only where it reaches)
     bodies_.resize(static_cast<std::size_t>(settings_.contact.bodies()));
     for (auto& b : bodies_) b.resize(g.node_count(), pic || xpic, settings_.scheme != StressScheme::USF);
@@ -145,7 +146,7 @@ StepStatus ExplicitSolver<D>::map_grid() {
     if (map_mass_momentum(kernel) && (settings_.body_fields || contact_on())) map_body_fields(kernel);
   });
   grid_mapped_ = status_.ok;
-  mapped_points_ = particles_.size();
+  mapped_points_ = state_.points.size();
   return status_;
 }
 
@@ -155,13 +156,13 @@ StepStatus ExplicitSolver<D>::map_grid() {
 template <int D>
 template <class K, class Scheme>
 StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
-  gravity_now_ = gravity_at<D>(settings_.gravity, gravity_ramp_time_, time_ - ramp_start_);
-  transfer_rule_.begin_step(time_);
+  gravity_now_ = state_.gravity(settings_.gravity);
+  transfer_rule_.begin_step(state_.clock.time);
   status_ = StepStatus{};
   det_f_fresh_ = false;  // (written by this step's stress phase, if at all)
-  if (mapped_points_ != particles_.size()) grid_mapped_ = false;
-  if (transfer_rule_.carries_affine() && particles_.affine.size() != particles_.size())
-    particles_.affine.resize(particles_.size(), Mat<D>::Zero());
+  if (mapped_points_ != state_.points.size()) grid_mapped_ = false;
+  if (transfer_rule_.carries_affine() && state_.points.affine.size() != state_.points.size())
+    state_.points.affine.resize(state_.points.size(), Mat<D>::Zero());
   const bool fresh = !grid_mapped_;
   if (fresh && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
@@ -169,9 +170,9 @@ StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   if (contact_on() ? fresh : settings_.body_fields) map_body_fields(kernel);
   if (!Scheme::advance(*this, kernel)) return status_;  // the failing step is steps() + 1
   grid_mapped_ = true;
-  mapped_points_ = particles_.size();
-  time_ += settings_.dt;
-  ++steps_;
+  mapped_points_ = state_.points.size();
+  state_.clock.time += settings_.dt;
+  ++state_.clock.steps;
   return status_;
 }
 
@@ -183,7 +184,7 @@ bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
   return timer_.time(Phase::MapMassMomentum, [&] {
     clear_mass_momentum();  // outside the box they are zero already
     const long bad =
-        p2g_mass_momentum(transfer_, kernel, particles_, fields_.mass.data(), fields_.momentum.data());
+        p2g_mass_momentum(transfer_, kernel, state_.points, fields_.mass.data(), fields_.momentum.data());
     if (bad >= 0) status_ = {false, bad, "material point left the grid"};
     return bad < 0;
   });
@@ -195,7 +196,7 @@ template <int D>
 template <class K>
 void ExplicitSolver<D>::map_body_fields(const K& kernel) {
   timer_.time(Phase::BodyFields, [&] {
-    const auto& P = particles_;
+    const auto& P = state_.points;
     int count = 0;
     for (std::size_t p = 0; p < P.size(); ++p) count = std::max(count, P.body[p] + 1);
     if (!contact_on() && bodies_.size() < static_cast<std::size_t>(count)) {
@@ -232,7 +233,7 @@ void ExplicitSolver<D>::for_each_continuum(Fn&& fn) {
   for (int b = 0; b < settings_.contact.bodies(); ++b)
     if (!settings_.contact.rigid[static_cast<std::size_t>(b)])
       fn(static_cast<GridFields<D>&>(bodies_[static_cast<std::size_t>(b)]),
-         BodyPoints{particles_.body.data(), b});
+         BodyPoints{state_.points.body.data(), b});
 }
 
 // The local damping's work (damping_work, positive where it takes energy), booked where the
@@ -248,7 +249,7 @@ template <class K, class Sel>
 double ExplicitSolver<D>::damping_work_at_points(const K& kernel, const GridFields<D>& f, Sel sel) {
   const GridGeometry<D>& g = grid();
   const NodeStrides<D> strides = transfer_.strides();
-  const auto& P = particles_;
+  const auto& P = state_.points;
   const long n = static_cast<long>(P.size());
   const double dt = settings_.dt;
   const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
@@ -277,7 +278,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
     xpic_grid_velocity(kernel);
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
-    auto& P = particles_;
+    auto& P = state_.points;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
     const double alpha = transfer_rule_.pic_share();
@@ -285,7 +286,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
     ScatterBuffers<D>& buffers = transfer_.scatter();
     double lost = 0.0;  // to the transfer
     for_each_continuum([&](GridFields<D>& f, auto sel) {
-      if (local_damping_ > 0.0) energy_.damping_work += damping_work_at_points(kernel, f, sel);
+      if (local_damping_ > 0.0) state_.clock.energy.damping_work += damping_work_at_points(kernel, f, sel);
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       Vec<D>* __restrict v = P.v.data();
@@ -328,7 +329,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
         loop(std::false_type{});
       transfer_.reduce(nullptr, remap);
     });
-    energy_.transfer_dissipation += lost;
+    state_.clock.energy.transfer_dissipation += lost;
     if (contact_on()) rigid_velocity();
   });
 }
@@ -343,7 +344,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
   return timer_.time(Phase::StressUpdateMoveMap, [&] {
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
-    auto& P = particles_;
+    auto& P = state_.points;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
     ScatterBuffers<D>& buffers = transfer_.scatter();
@@ -356,7 +357,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       const Vec<D>* __restrict v = P.v.data();
       const Vec<D>* __restrict half0 = P.half0.data();
       const double* __restrict pmass = P.mass.data();
-      const StressArrays<D> S(P, materials_);
+      const StressArrays<D> S(P, state_.materials);
       const Vec<D>* __restrict vel = f.velocity_move.data();
       const Vec<D>* __restrict vnew = f.velocity_remap.data();  // v~_i
       const Mat<D>* const affine = transfer_rule_.carries_affine() ? P.affine.data() : nullptr;
@@ -407,10 +408,10 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       }
       transfer_.set_box(extent);  // the reduction must cover the moved points' reach
       transfer_.reduce(f.mass.data(), f.momentum.data());
-      energy_.strain_energy += work;
-      energy_.plastic_dissipation += dissipation;
-      energy_.transfer_dissipation -= affine_ke;  // the new C_p's share (particle_velocity)
-      energy_.gravity_work += gravity_now_.dot(mdx);
+      state_.clock.energy.strain_energy += work;
+      state_.clock.energy.plastic_dissipation += dissipation;
+      state_.clock.energy.transfer_dissipation -= affine_ke;  // the new C_p's share (particle_velocity)
+      state_.clock.energy.gravity_work += gravity_now_.dot(mdx);
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
     });
@@ -436,7 +437,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       clear_mass_momentum();
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
-    auto& P = particles_;
+    auto& P = state_.points;
     const long n = static_cast<long>(P.size());
     const double dt = settings_.dt;
     const double alpha = transfer_rule_.pic_share(), w = transfer_rule_.loss_weight();  // particle_velocity
@@ -445,7 +446,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
     double lost = 0.0;  // to the transfer
     Extent<D> all;      // of every moved point
     for_each_continuum([&](GridFields<D>& f, auto sel) {
-      if (local_damping_ > 0.0) energy_.damping_work += damping_work_at_points(kernel, f, sel);
+      if (local_damping_ > 0.0) state_.clock.energy.damping_work += damping_work_at_points(kernel, f, sel);
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
       Vec<D>* __restrict x = P.x.data();
@@ -508,12 +509,12 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       }
       transfer_.set_box(extent);  // the reduction must cover the moved points' reach
       transfer_.reduce(f.mass.data(), f.momentum.data());
-      energy_.gravity_work += gravity_now_.dot(mdx);
+      state_.clock.energy.gravity_work += gravity_now_.dot(mdx);
       lost -= affine_ke;
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
     });
-    energy_.transfer_dissipation += lost;
+    state_.clock.energy.transfer_dissipation += lost;
     if (contact_on()) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
@@ -535,7 +536,7 @@ void ExplicitSolver<D>::xpic_grid_velocity(const K& kernel) {
   const double dt = settings_.dt;
   for_each_continuum([&](GridFields<D>& f, auto sel) {
     Vec<D>* const star = f.velocity_next.data();  // v*_i, then v_i^{k+1} - p_i / m_i + v*_i in place
-    xpic_velocity(transfer_, kernel, particles_, f.mass.data(), f.momentum.data(),
+    xpic_velocity(transfer_, kernel, state_.points, f.mass.data(), f.momentum.data(),
                   transfer_rule_.xpic_order(), star, fields_.xpic_work.data(), sel);
     const Vec<D>* __restrict acc = f.acceleration.data();
     transfer_.for_box([&](std::size_t i) { star[i] += dt * acc[i]; });

@@ -37,7 +37,7 @@ struct GridFields {
   GridArray<Vec<D>> momentum_remap;
   GridArray<Vec<D>> velocity_remap;
   // d_i = f_i^damp / m_i, the local damping's share of a_i in an equilibrium stage that damps
-  // (ExplicitSolver::damped_accelerations; allocated at the first damped step).
+  // (grid_update, grid_phases.hpp; allocated at the first damped step).
   GridArray<Vec<D>> damping_acceleration;
 
   // n zero nodes (fresh pages: see GridArray). Call once, on empty fields.

@@ -13,6 +13,7 @@
 #include "material/material.hpp"
 #include "solver/explicit_solver.hpp"
 #include "solver/implicit_settings.hpp"
+#include "solver/mpm_state.hpp"
 
 namespace skred {
 
@@ -30,37 +31,44 @@ class Integrator {
   virtual ~Integrator() = default;
 
   virtual IntegratorKind kind() const = 0;
+  // The points, grid, materials and clock the integrator advances (mpm_state.hpp): what the run
+  // driver reads between steps, the same for both integrators.
+  virtual const MpmState<D>& state() const = 0;
   // Advances by one step (the stage's time or load step; an implicit step may be cut).
   virtual StepStatus step() = 0;
   // The points changed between steps (their positions, number, state): map afresh.
   virtual void particles_changed() = 0;
-  virtual double time() const = 0;
-  virtual long steps() const = 0;
   // The step the integrator takes next [s].
   virtual double dt() const = 0;
-  virtual const EnergyTotals& energy() const = 0;
+  // The particle totals (particle_totals; the explicit solver adds APIC's affine kinetic energy).
   virtual ParticleTotals<D> totals() const = 0;
   virtual double material_mean_speed() = 0;
-  virtual const GridGeometry<D>& grid() const = 0;
-  virtual int threads() const = 0;
   virtual bool sort_by_nearest_node() const = 0;
   virtual bool contact_on() const = 0;
-  // A new stage at the current time (ExplicitSolver::begin_stage); the implicit integrator also
+  // A new stage at the current time (begin_stage, mpm_state.hpp); the implicit integrator also
   // takes the stage's settings and end time (set_stage) first.
   virtual void begin_stage(std::vector<Material> materials, double gravity_ramp_time) = 0;
   virtual void set_local_damping(double alpha) = 0;
-  virtual const std::vector<Material>& materials() const = 0;
-  // Grid-smoothed stresses (Thesis eq. 4.18-4.19) and the nodal fields of that call.
+  // Grid-smoothed stresses (Thesis eq. 4.18-4.19; smoothed_stress, mpm_state.hpp).
   virtual void smoothed_stress(std::vector<Sym3>& out) = 0;
-  virtual const std::vector<double>& node_mass() const = 0;
-  virtual const std::vector<Vec<D>>& node_velocity() const = 0;
-  virtual const std::vector<Sym3>& node_stress() const = 0;
   // Checkpoint and restart, and the hand-over between integrators.
-  virtual SolverClock clock() const = 0;
   virtual void restore(const SolverClock& c, std::vector<Material> materials) = 0;
   // (phase, seconds) of every phase that ran, in step order (summary.json).
   virtual std::vector<std::pair<std::string, double>> phase_seconds() const = 0;
   virtual StepReport last_step() const { return {}; }
+
+  // Read from the shared state.
+  double time() const { return state().clock.time; }
+  long steps() const { return state().clock.steps; }
+  const EnergyTotals& energy() const { return state().clock.energy; }
+  const SolverClock& clock() const { return state().clock; }
+  const GridGeometry<D>& grid() const { return state().grid; }
+  int threads() const { return state().threads; }
+  const std::vector<Material>& materials() const { return state().materials; }
+  // The nodal fields of the last smoothed_stress() call.
+  const std::vector<double>& node_mass() const { return state().smoothing.mass; }
+  const std::vector<Vec<D>>& node_velocity() const { return state().smoothing.velocity; }
+  const std::vector<Sym3>& node_stress() const { return state().smoothing.stress; }
 };
 
 }  // namespace skred

@@ -38,7 +38,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
   return timer_.time(Phase::StressUpdateForce, [&] {
     const GridGeometry<D>& g = grid();
     const NodeStrides<D> strides = transfer_.strides();
-    auto& P = particles_;
+    auto& P = state_.points;
     const long n = static_cast<long>(P.size());
     ScatterBuffers<D>& buffers = transfer_.scatter();
     long first_bad = LONG_MAX;
@@ -47,7 +47,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
     for_each_continuum([&](GridFields<D>& f, auto sel) {
       // (the point arrays declared here, in the loop's own scope, keep their __restrict)
       const typename K::Packed* __restrict shape = transfer_.weights().template get<K>(P.size());
-      StressArrays<D> S(P, materials_);
+      StressArrays<D> S(P, state_.materials);
       if constexpr (kSizeAhead<D, K>) S.det_f = det_f_.data();
       [[maybe_unused]] const bool axisymmetric = S.hoop != nullptr;
       Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
@@ -113,8 +113,8 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
         buffers.touched(t, span);
       }
       transfer_.reduce(nullptr, forces);
-      energy_.strain_energy += work;
-      energy_.plastic_dissipation += dissipation;
+      state_.clock.energy.strain_energy += work;
+      state_.clock.energy.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);
     });
     det_f_fresh_ = kSizeAhead<D, K>;
@@ -131,11 +131,11 @@ void ExplicitSolver<D>::internal_force(const K& kernel) {
       Vec<D>* const forces = f.acceleration.data();  // f_i^int (GridFields)
       transfer_.for_box([&](std::size_t i) { forces[i].setZero(); });
       if (!settings_.volumetric_averaging)
-        return p2g_internal_force(transfer_, kernel, particles_, forces, sel, NoPressureShift{},
+        return p2g_internal_force(transfer_, kernel, state_.points, forces, sel, NoPressureShift{},
                                   axisymmetric());
       cell_pressure(sel);  // the cell's mean pressure in place of the point's (volumetric_averaging.hpp)
       p2g_internal_force(
-          transfer_, kernel, particles_, forces, sel,
+          transfer_, kernel, state_.points, forces, sel,
           [&](long q) { return volumetric_.pressure_correction(static_cast<std::size_t>(q)); },
           axisymmetric());
     });

@@ -14,8 +14,8 @@ template <int D>
 template <class Sel>
 void ExplicitSolver<D>::cell_sums(Sel sel, const double* value, double* sum, double* weight) {
   VolumetricAveraging<D>& A = volumetric_;
-  const long n = static_cast<long>(particles_.size());
-  const long chunks = A.chunk_count(particles_.size());
+  const long n = static_cast<long>(state_.points.size());
+  const long chunks = A.chunk_count(state_.points.size());
 #pragma omp parallel for num_threads(threads()) schedule(static)
   for (long c = 0; c < chunks; ++c) A.sum_chunk(c, n, sel, value);
   A.add_runs(chunks, sum, weight);
@@ -29,7 +29,7 @@ template <class K, class Sel>
 void ExplicitSolver<D>::cell_divergence(const K& kernel, const Vec<D>* vel, Sel sel) {
   const GridGeometry<D>& g = grid();
   const NodeStrides<D> strides = transfer_.strides();
-  auto& P = particles_;
+  auto& P = state_.points;
   const long n = static_cast<long>(P.size());
   VolumetricAveraging<D>& A = volumetric_;
   A.resize(g, P.size());
@@ -58,7 +58,7 @@ template <int D>
 template <class Sel>
 void ExplicitSolver<D>::cell_pressure(Sel sel) {
   const GridGeometry<D>& g = grid();
-  auto& P = particles_;
+  auto& P = state_.points;
   const long n = static_cast<long>(P.size());
   VolumetricAveraging<D>& A = volumetric_;
   A.resize(g, P.size());
@@ -80,12 +80,12 @@ template <int D>
 template <class K>
 bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt_stress) {
   return timer_.time(Phase::StressUpdateForce, [&] {
-    auto& P = particles_;
+    auto& P = state_.points;
     const long n = static_cast<long>(P.size());
     VolumetricAveraging<D>& A = volumetric_;
     long first_bad = LONG_MAX;
     for_each_continuum([&](GridFields<D>& f, auto sel) {
-      const StressArrays<D> S(P, materials_);
+      const StressArrays<D> S(P, state_.materials);
       cell_divergence(kernel, f.velocity.data(), sel);
       double work = 0.0, dissipation = 0.0;
       long bad = LONG_MAX;
@@ -111,8 +111,8 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       p2g_internal_force(
           transfer_, kernel, P, forces, sel,
           [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); }, axisymmetric());
-      energy_.strain_energy += work;
-      energy_.plastic_dissipation += dissipation;
+      state_.clock.energy.strain_energy += work;
+      state_.clock.energy.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);
     });
     return phase_ok(first_bad, "material point became unstable (inverted or non-finite stress)");
