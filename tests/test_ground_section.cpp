@@ -153,3 +153,18 @@ TEST(GroundSection, BadSectionsAreErrorsNamingTheRasterAndKey) {
         kHead + "[ground]\nsurface = \"surface.asc\"\norigin = [1000, 5000]\nsection = [[0, 0], [1, 1]]\n");
   EXPECT_NE(error_of(toml).find("key 'ground.section': 2D only"), std::string::npos) << error_of(toml);
 }
+
+// The 2D example is the 3D example's ground along the gully's axis (its z = 8 m): the same
+// rasters, sampled along the section, give the 3D ground's heights at the section's points.
+TEST(GroundSection, ValleySlopeExampleIsThe3DExamplesGroundAlongTheGully) {
+  const std::string examples = std::string(SKRED_SOURCE_DIR) + "/examples/";
+  const Scenario s2 = std::get<Scenario>(load_any_scenario(examples + "valley_slope_2d.toml"));
+  const Scenario3 s3 = std::get<Scenario3>(load_any_scenario(examples + "valley_slope_3d.toml"));
+  const Profile& p = *s2.ground_surface;
+  EXPECT_EQ(p.points.front()[0], 0.0);
+  EXPECT_NEAR(p.points.back()[0], 48.0, 1e-5);  // the section's vertices to 1e-6 m
+  for (const Vec<2>& q : p.points) EXPECT_NEAR(q[1], s3.ground_raster->at(q[0], 8.0), 1e-5) << q[0];
+  const Layer& clay = std::get<Layer>(s2.bodies[0].shape);
+  const Layer3& clay3 = std::get<Layer3>(s3.bodies[0].shape);
+  for (const Vec<2>& q : clay.bottom.points) EXPECT_NEAR(q[1], clay3.bottom->at(q[0], 8.0), 1e-5) << q[0];
+}
