@@ -6,21 +6,29 @@
 //    no point of it may move or be moving along z at the end (to round-off);
 //  - a square column collapsing in both horizontal directions spreads symmetrically: runout
 //    along x and z (and towards - and +) and the deposit's extents agree to one cell, and no
-//    mass is lost.
+//    mass is lost;
+//  - one survey, a 2D and a 3D study (issue 58): that soil under a ground surface from an .asc
+//    raster of a plane-strain section extruded across z, as the slab, reproduces the 2D run of
+//    the section through the same raster (runout and gravity work within 2 %), and `skred check`
+//    of the 3D slope gives Bishop's factor of its steepest 2D section, the 2D check's.
 // Coarse grids (h = 0.25 m, 2 points per cell and axis) keep each run to a few seconds.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
 #include <fmt/format.h>
 
+#include "gdal_test_util.hpp"
+#include "io_test_util.hpp"
 #include "run/checkpointing.hpp"
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
+#include "run/slope_stability.hpp"
 #include "scenario/build.hpp"
 #include "scenario/initial_stress.hpp"
 #include "solver/explicit_solver.hpp"
@@ -99,6 +107,29 @@ RunResult run(const ScenarioOf<D>& s, const std::string& name, Particles<D>* end
 }
 
 double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
+
+// A slope of that soil: a crest 3 m high to x = 0.5 m, a face falling at 1.5 to the floor at
+// x = 2.5 m (no point, at odd multiples of 1/16 m, lies on it). Its raster: 16 columns of 0.5 m
+// cells over x = 0..7.5 m (centres at easting 1000 + x), 2 rows at northing 5000 (upper) and
+// 4999.5, the face's corners on cell centres, so that bilinear sampling is the section exactly.
+// The scenarios: the column's with a layer under that surface, in 2D along the section at
+// northing 4999.75, in 3D from the raster whole (the slab: z = 5000 - northing from 0 to 0.5 m).
+// Returns the 2D and the 3D file.
+std::pair<fs::path, fs::path> write_raster_slope(const fs::path& dir) {
+  const auto surface_at = [](double x) { return x <= 0.5 ? 3.0 : x >= 2.5 ? 0.0 : 3.0 - 1.5 * (x - 0.5); };
+  test::write_asc(dir / "surface.asc", 16, 2, 999.75, 4999.25, 0.5,
+                  [&](int c, int) { return surface_at(0.5 * c); });
+  for (const bool three_d : {false, true}) {
+    std::string t = column_text(three_d);
+    const std::size_t shape = t.find("shape = "), end = t.find("[initial_stress]");
+    t.replace(
+        shape, end - shape,
+        fmt::format("shape = \"layer\"\n[ground]\nsurface = \"surface.asc\"\n{}\n",
+                    three_d ? "origin = [1000, 5000]" : "section = [[1000, 4999.75], [1007.5, 4999.75]]"));
+    std::ofstream(dir / (three_d ? "slab.toml" : "plane.toml")) << t;
+  }
+  return {dir / "plane.toml", dir / "slab.toml"};
+}
 
 }  // namespace
 
@@ -223,4 +254,49 @@ volumetric_strain = "point"
   const double reach[4] = {2.5 - e.x_min, e.x_max - 2.5, 2.5 - e.z_min, e.z_max - 2.5};
   for (double r : reach) EXPECT_LE(std::abs(r - reach[0]), tol);
   EXPECT_LT(std::abs(t.momentum[0]) + std::abs(t.momentum[2]), 1e-6 * mass0);
+}
+
+TEST(Column3D, RasterSlopeWithRollerSidesReproducesThe2DRunOfItsSection) {
+  const skred::test::TempDir dir;
+  const auto [plane, slab] = write_raster_slope(dir.path());
+  const Scenario s2 = std::get<Scenario>(load_any_scenario(plane.string()));
+  const Scenario3 s3 = std::get<Scenario3>(load_any_scenario(slab.string()));
+  const RunResult r2 = run(s2, "plane"), r3 = run(s3, "slab");
+  ASSERT_TRUE(r2.completed) << r2.message;
+  ASSERT_TRUE(r3.completed) << r3.message;
+  EXPECT_EQ(r3.particles, 4 * r2.particles);  // two cells of 2 points each along z
+  const StageMeasures &m2 = r2.stages.back(), &m3 = r3.stages.back();
+  const double thickness = 2 * kCell;
+  std::printf(
+      "raster slab vs its 2D section: runout %.4g vs %.4g m (%.3f %%), gravity work per metre %.6g vs "
+      "%.6g J/m (%.3f %%)\n",
+      m3.runout, m2.runout, 100 * rel(m3.runout, m2.runout), m3.gravity_work / thickness, m2.gravity_work,
+      100 * rel(m3.gravity_work / thickness, m2.gravity_work));
+  EXPECT_GT(m2.runout, 4 * kCell);  // the slope did fail
+  EXPECT_LE(rel(m3.runout, m2.runout), 0.02);
+  EXPECT_LE(rel(m3.gravity_work / thickness, m2.gravity_work), 0.02);
+}
+
+TEST(Column3D, RasterSlopeCheckGivesBishopsFactorOfItsSteepestSectionAsThe2DCheck) {
+  const skred::test::TempDir dir;
+  const auto [plane, slab] = write_raster_slope(dir.path());
+  const SlopeStability le2 = slope_stability(std::get<Scenario>(load_any_scenario(plane.string())));
+  const SlopeStability le3 = slope_stability(std::get<Scenario3>(load_any_scenario(slab.string())));
+  ASSERT_TRUE(le2.computed) << le2.why_not;
+  ASSERT_TRUE(le3.computed) << le3.why_not;
+  EXPECT_LT(le2.critical.factor, 1.0);  // a 56 degree face of c = 0.5 kPa, phi = 30 does not stand
+  EXPECT_DOUBLE_EQ(le3.critical.factor, le2.critical.factor);
+  EXPECT_DOUBLE_EQ(le3.critical.circle.radius, le2.critical.circle.radius);
+  // Both rows of cells across z are the section; the first is taken.
+  const auto [status, out] =
+      iotest::run_command(iotest::shell_quote(SKRED_BINARY) + " check " + iotest::shell_quote(slab.string()));
+  EXPECT_EQ(status, 0) << out;
+  EXPECT_NE(
+      out.find("in stage 'run', on the 2D section of the cells z = 0 to 0.25 m along x, the steepest (mean "
+               "slope"),
+      std::string::npos)
+      << out;
+  EXPECT_NE(out.find(fmt::format("as plane strain): F = {:.3f} on the circle", le2.critical.factor)),
+            std::string::npos)
+      << out;
 }

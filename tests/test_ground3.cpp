@@ -15,6 +15,7 @@
 #include <string>
 
 #include "gdal_test_util.hpp"
+#include "ground_slope.hpp"
 #include "io_test_util.hpp"
 #include "scenario/build.hpp"
 #include "scenario/scenario.hpp"
@@ -22,52 +23,13 @@
 
 using namespace skred;
 using skred::test::wkt_of;
+using skred::test::write_asc;
+using namespace skred::test::slope;
 namespace fs = std::filesystem;
 
 namespace {
 
 void write(const fs::path& p, const std::string& text) { std::ofstream(p) << text; }
-
-// An ESRI ASCII grid of cols x rows cells of side `cell`, lower-left corner (xll, yll), the
-// height of cell (column c, row r; row 0 the upper) h(c, r).
-void write_asc(const fs::path& p, int cols, int rows, double xll, double yll, double cell,
-               const std::function<double(int, int)>& h) {
-  std::string t =
-      fmt::format("ncols {}\nnrows {}\nxllcorner {}\nyllcorner {}\ncellsize {}\nNODATA_value -9999\n", cols,
-                  rows, xll, yll, cell);
-  for (int r = 0; r < rows; ++r) {
-    for (int c = 0; c < cols; ++c) t += fmt::format("{}{}", c ? " " : "", h(c, r));
-    t += "\n";
-  }
-  write(p, t);
-}
-
-// The slope of the tests, along x: the ground 20 m high to x = 10, falling at 0.75 to 5 m at
-// x = 30; a clay base 12 - x / 4 below it; the rock's top at 1.1 m. Chosen so that no point
-// (at odd multiples of 1/4) lies on a boundary: both builds are exact.
-double surface_at(double x) { return x <= 10 ? 20.0 : x >= 30 ? 5.0 : 20.0 - 0.75 * (x - 10); }
-double clay_base_at(double x) { return 12.0 - 0.25 * x; }
-
-// Two elastic soils (a sand on rock, a clay above) on 1 m cells.
-const std::string kHead = R"(
-[grid]
-size = [40.0, 24.0, 12.0]
-cell_size = 1.0
-[solver]
-end_time = 1.0
-[[material]]
-name = "sand"
-model = "linear-elastic"
-density = 2000
-young = 3e7
-poisson = 0.25
-[[material]]
-name = "clay"
-model = "linear-elastic"
-density = 1700
-young = 8e6
-poisson = 0.35
-)";
 
 const std::string kLayers = R"(
 [[body]]
@@ -87,28 +49,6 @@ material = "sand"
 shape = "layer"
 top = "rock.asc"
 )";
-
-// The slope's rasters at 2 m cells: x along easting (rotation 0: z = 5000 - northing) or, with
-// `rotated`, along northing (rotation 90: x = northing - 5000, z = easting - 1000).
-void write_slope(const fs::path& dir, bool rotated) {
-  for (const auto& [name, f] : {std::pair<std::string, double (*)(double)>{"surface.asc", surface_at},
-                                {"clay_base.asc", clay_base_at},
-                                {"rock.asc", [](double) { return 1.1; }}}) {
-    if (rotated)  // 7 columns over z = 0..12, 21 rows over x = 40 (upper) .. 0
-      write_asc(dir / name, 7, 21, 999, 4999, 2, [&](int, int r) { return f(40 - 2 * r); });
-    else  // 21 columns over x = 0..40, 7 rows over z = 0 (upper) .. 12
-      write_asc(dir / name, 21, 7, 999, 4987, 2, [&](int c, int) { return f(2 * c); });
-  }
-}
-
-std::string error_of(const fs::path& file) {
-  try {
-    load_any_scenario(file.string());
-  } catch (const ScenarioError& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
@@ -147,9 +87,7 @@ max = [40, 1.1, 12]
     const Scenario3 s = std::get<Scenario3>(load_any_scenario((dir / "layers.toml").string()));
     const Particles<3> p = build_particles(s);
     ASSERT_EQ(p.size(), q.size());
-    std::size_t differ = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) differ += p.x[i] != q.x[i] || p.body[i] != q.body[i];
-    EXPECT_EQ(differ, 0u);
+    EXPECT_EQ(differing_points(p, q), 0u);
     // The volumes check reports: the slope's section areas times 12 m.
     const double clay = 0.5 * (8 + 10.5) * 10 + 0.5 * (10.5 + 0.5) * 20 + 0.5 * (0.5 + 3) * 10;
     EXPECT_NEAR(layer_volume(std::get<Layer3>(s.bodies[0].shape)), 12 * clay, 1e-3 * 12 * clay);

@@ -140,6 +140,66 @@ TEST(HazardMaps, DepositThicknessHoldsTheMovedVolume) {
   EXPECT_NEAR(at(m.top_start, 2.6, 3.0), 2.0, 1e-12);         // the terrain map
 }
 
+// By hand, two stages: the column's upper half moves 1.5 m along x in the first, its lower half
+// 1 m along z in the second. The second stage's deposit holds the lower half; the run's holds
+// both, the whole column (4.5 m^3), not only the last stage's.
+TEST(HazardMaps, TheRunsDepositHoldsThePointsMovedInEveryStage) {
+  const test::TempDir dir;
+  write(dir.path() / "s.toml", column_text());
+  const Scenario3 s = std::get<Scenario3>(load_any_scenario((dir.path() / "s.toml").string()));
+  Particles<3> P = build_particles(s);
+  HazardMaps maps = start_hazard_maps(s, P);
+  const auto integral = [](const std::vector<double>& thickness) {
+    double sum = 0.0;
+    for (double t : thickness) sum += t * 0.25 * 0.25;
+    return sum;
+  };
+  double column = 0.0, lower = 0.0;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    column += P.volume0[p];
+    if (P.x[p][1] <= 1.0) lower += P.volume0[p];
+  }
+  maps.begin_stage(P, 0.0);
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.x[p][1] > 1.0) P.x[p][0] += 1.5;
+  maps.sample(P, 1.0);
+  maps.finish_stage(P);
+  EXPECT_NEAR(integral(maps.run().thickness), column - lower, 1e-12);
+  P.x_ref = P.x;  // the solver's stage start
+  maps.begin_stage(P, 1.0);
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (P.x[p][1] <= 1.0) P.x[p][2] += 1.0;
+  maps.sample(P, 2.0);
+  maps.finish_stage(P);
+  EXPECT_NEAR(integral(maps.stage().thickness), lower, 1e-12);
+  EXPECT_NEAR(lower, 2.25, 1e-12);
+  EXPECT_NEAR(integral(maps.run().thickness), column, 1e-12);
+  EXPECT_NEAR(column, 4.5, 1e-12);  // 1.5 m x 1.5 m x 2 m
+}
+
+// A 2D run has no hazard maps: asking for them (or setting their threshold) is an error naming
+// the key, not silently ignored.
+TEST(HazardMaps, MapKeysOfA2DScenarioAreAnError) {
+  const test::TempDir dir;
+  const std::string text = read(std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml");
+  for (const char* key : {"maps = true", "map_threshold = 0.1"}) {
+    std::string t = text;
+    t.replace(t.find("[output]"), 8, std::string("[output]\n") + key);
+    write(dir.path() / "s.toml", t);
+    std::string e;
+    try {
+      load_any_scenario((dir.path() / "s.toml").string());
+    } catch (const ScenarioError& x) {
+      e = x.what();
+    }
+    const std::string name = std::string(key).substr(0, std::string(key).find(' '));
+    EXPECT_NE(e.find("s.toml:73:"), std::string::npos) << e;  // the line [output] takes the key on
+    EXPECT_NE(e.find("key 'output." + name + "': 3D only: the hazard maps lie over a 3D run's x-z plane"),
+              std::string::npos)
+        << e;
+  }
+}
+
 // A column collapsing on 24 x 24 columns: every map written in both formats and listed in
 // summary.json; the deposit (every point counted as moved) integrates to the column's volume;
 // `skred render --view top --map` draws it.

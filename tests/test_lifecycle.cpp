@@ -87,7 +87,7 @@ TEST(Lifecycle, FieldListNamesEveryArrayOnce) {
     }
   });
   EXPECT_EQ(names.size(), std::tuple_size_v<decltype(Particles<2>::fields())>);
-  EXPECT_EQ(names.size(), 20u);
+  EXPECT_EQ(names.size(), 21u);
   EXPECT_TRUE(P.stress_ref.empty());  // optional: stays empty (zero) until set
 }
 

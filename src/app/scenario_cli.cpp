@@ -86,8 +86,8 @@ void print_check(const ScenarioOf<D>& s, bool force) {
              gigabytes(z.memory_bytes), gigabytes(available_memory_bytes()));
   fmt::print("output: {:.0f} particle frames of at most {:.3g} MB (less compressed), {} in all\n", z.frames,
              z.frame_bytes / 1e6, gigabytes(z.output_bytes()));
-  if constexpr (D == 2)
-    if (z.points <= kCountPointsUpTo) fmt::print("{}", slope_stability_line(slope_stability(s)));
+  if (z.points <= kCountPointsUpTo)
+    fmt::print("{}", slope_stability_line(slope_stability(s)));  // 3D: a section
   fmt::print("scenario is valid\n");
 }
 

@@ -78,6 +78,10 @@ struct Particles {
   // Positions at the start of the rest test's window (Stage::rest_measure "displacement", set by
   // the StageTracker); stored only while a stage uses it.
   std::vector<Vec<D>> x_rest;
+  // 1 for a point that moved past the hazard maps' threshold in an earlier stage of the run
+  // (run/hazard_maps.hpp: the run's deposit over several stages); stored once a 3D run with
+  // maps has finished a stage.
+  std::vector<std::uint8_t> moved;
 
   // The implicit integrator's (src/implicit): the points' acceleration a_p of Newmark's rule
   // (Acosta eq. 8-10, 41), stored only while a dynamic implicit stage runs; and in axisymmetric
@@ -110,6 +114,7 @@ struct Particles {
         ParticleField<Pt, std::int16_t>{"splits", &Pt::splits, +[] { return std::int16_t{0}; }, true},
         ParticleField<Pt, Mat<D>>{"affine", &Pt::affine, +[] { return Mat<D>(Mat<D>::Zero()); }, true},
         ParticleField<Pt, Vec<D>>{"x_rest", &Pt::x_rest, +[] { return Vec<D>(Vec<D>::Zero()); }, true},
+        ParticleField<Pt, std::uint8_t>{"moved", &Pt::moved, +[] { return std::uint8_t{0}; }, true},
         ParticleField<Pt, Vec<D>>{"acceleration", &Pt::acceleration, +[] { return Vec<D>(Vec<D>::Zero()); },
                                   true},
         ParticleField<Pt, double>{"hoop", &Pt::hoop, +[] { return 1.0; }, true},

@@ -21,11 +21,11 @@ namespace skred {
 
 inline constexpr char kCheckpointMagic[8] = {'S', 'K', 'R', 'E', 'D', 'C', 'K', 'P'};
 inline constexpr std::uint32_t kCheckpointVersion =
-    13;  // 2: splitting, 3: contact, 4: friction and transfer work, 5: damping work,
+    14;  // 2: splitting, 3: contact, 4: friction and transfer work, 5: damping work,
          // 6: dilated continua (StageMeasures::dilated_*), 7: runout edges, 8: runout floor,
          // 9: the series' material speed, 10: the runout's toes, 11: the implicit integrator's
          // point acceleration and hoop stretch, 12: the prescribed velocities' forces,
-         // 13: the hazard maps
+         // 13: the hazard maps, 14: the points that moved in an earlier stage (the run's deposit)
 
 // A checkpoint that cannot be used: truncated, corrupt, foreign, of another format version,
 // dimension or scenario. The message names the file.

@@ -73,13 +73,20 @@ void HazardMaps::sample(const Particles<3>& P, double time) {
   }
 }
 
-void HazardMaps::finish_stage(const Particles<3>& P) {
+void HazardMaps::finish_stage(Particles<3>& P) {
   if (!enabled()) return;
   const double area = h_ * h_;
   std::fill(stage_.thickness.begin(), stage_.thickness.end(), 0.0);
-  for (std::size_t p = 0; p < P.size(); ++p)
-    if (const long c = column_of(P.x[p]); c >= 0 && (P.x[p] - P.x_ref[p]).norm() > threshold_)
-      stage_.thickness[c] += P.volume0[p] / area;  // mass over the density at the start
+  std::fill(run_.thickness.begin(), run_.thickness.end(), 0.0);
+  if (P.moved.size() != P.size()) P.moved.assign(P.size(), 0);  // the first stage's end
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const bool moved = (P.x[p] - P.x_ref[p]).norm() > threshold_;
+    P.moved[p] |= static_cast<std::uint8_t>(moved);
+    if (const long c = column_of(P.x[p]); c >= 0) {  // volumes: mass over the density at the start
+      if (moved) stage_.thickness[c] += P.volume0[p] / area;
+      if (P.moved[p]) run_.thickness[c] += P.volume0[p] / area;
+    }
+  }
   std::vector<double> top;
   tops(P, top);
   for (std::size_t c = 0; c < top.size(); ++c) {
@@ -90,7 +97,6 @@ void HazardMaps::finish_stage(const Particles<3>& P) {
     run_.max_speed[c] = std::max(run_.max_speed[c], stage_.max_speed[c]);
     run_.max_displacement[c] = std::max(run_.max_displacement[c], stage_.max_displacement[c]);
     if (std::isnan(run_.arrival[c])) run_.arrival[c] = stage_.arrival[c] + stage_start_;
-    run_.thickness[c] = stage_.thickness[c];
   }
 }
 

@@ -47,11 +47,12 @@ class HazardMaps {
   // The run's start (its top and floor), a stage's start at `time`, a sample at `time` (the
   // running maxima and the arrival), a stage's end (its thickness and change of top; merged
   // into the run's maps: maxima, earliest arrival in run time, the change of top from the run
-  // start, the last stage's thickness).
+  // start, and the thickness of the points that moved in any stage so far, which finish_stage
+  // marks in P.moved).
   void begin_run(const Particles<3>& P);
   void begin_stage(const Particles<3>& P, double time);
   void sample(const Particles<3>& P, double time);
-  void finish_stage(const Particles<3>& P);
+  void finish_stage(Particles<3>& P);
 
   const MapSet& run() const { return run_; }
   const MapSet& stage() const { return stage_; }

@@ -124,7 +124,7 @@ HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P) {
   return maps;
 }
 
-void finish_stage_maps(const Scenario3& s, const Particles<3>& P, HazardMaps& maps, std::size_t k,
+void finish_stage_maps(const Scenario3& s, Particles<3>& P, HazardMaps& maps, std::size_t k,
                        const fs::path& outdir, std::vector<std::string>& files) {
   if (!maps.enabled()) return;
   maps.finish_stage(P);

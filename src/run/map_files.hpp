@@ -44,7 +44,7 @@ HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P);
 
 // After stage `k`: its maps taken and merged into the run's (HazardMaps::finish_stage); written
 // under maps/stage_<k+1> when the run has more than one stage, their paths added to `files`.
-void finish_stage_maps(const Scenario3& s, const Particles<3>& P, HazardMaps& maps, std::size_t k,
+void finish_stage_maps(const Scenario3& s, Particles<3>& P, HazardMaps& maps, std::size_t k,
                        const std::filesystem::path& outdir, std::vector<std::string>& files);
 
 }  // namespace skred

@@ -20,9 +20,11 @@ SlopeStability not_computed(std::string why) {
   return r;
 }
 
-// The layers: in each cell of the grid the material with the most mass of the ground's points
-// whose centres lie in it, as an index into `used`.
-void fill_layers(const Scenario& s, const Particles<2>& P, const std::vector<int>& used, GroundProfile& g) {
+// The layers: in each cell of the grid's x-y plane the material with the most mass of the
+// ground's points whose centres lie in it, as an index into `used`.
+template <int D>
+void fill_layers(const ScenarioOf<D>& s, const Particles<2>& P, const std::vector<int>& used,
+                 GroundProfile& g) {
   g.rows = s.cells[1], g.row0 = s.origin[1], g.row_height = s.cell_size;
   const std::size_t cells = static_cast<std::size_t>(s.cells[0]) * static_cast<std::size_t>(g.rows);
   std::vector<double> mass(cells * used.size(), 0.0);
@@ -43,40 +45,59 @@ void fill_layers(const Scenario& s, const Particles<2>& P, const std::vector<int
   }
 }
 
-}  // namespace
-
-SlopeStability slope_stability(const Scenario& s) {
-  const Stage* stage = nullptr;  // the last stage that lets the soil yield
-  for (const Stage& st : s.stages)
-    if (!st.elastic) stage = &st;
-  if (!stage) return not_computed("every stage holds the materials elastic");
-  if (s.geometry == Geometry::Axisymmetric)  // Bishop's slices are plane strain
-    return not_computed("the circles are plane strain; this section is axisymmetric");
-  if (s.gravity.norm() == 0.0) return not_computed("no gravity");
-  if (!(s.gravity[1] < 0.0) || s.gravity[0] != 0.0) return not_computed("gravity is not along -y");
+// What the check takes from a scenario: the last stage that lets the soil yield, the deformable
+// bodies' materials and their strength in it; `why_not` when there is no check to make.
+struct Ground {
+  std::string why_not;
+  const Stage* stage = nullptr;
   std::vector<int> used;  // the deformable bodies' materials, in the order the bodies give them
-  for (const Body& b : s.bodies)
-    if (!b.rigid && b.dilated_from < 0 && std::find(used.begin(), used.end(), b.material) == used.end())
-      used.push_back(b.material);
-  if (used.empty()) return not_computed("no deformable body");
-  const std::vector<Material> materials = stage_materials(s, *stage);
   std::vector<SoilStrength> soils;
-  std::vector<std::string> names, yielding;
-  for (int k : used) {
-    const Material& m = materials[static_cast<std::size_t>(k)];
-    soils.push_back({m.strength_cohesion(), m.friction_angle(), m.density * -s.gravity[1], !m.plastic()});
-    names.push_back(fmt::format("'{}'", m.name));
-    if (m.plastic()) yielding.push_back(m.name);
-  }
-  if (yielding.empty())
-    return not_computed(fmt::format("{} {} {} not yield", used.size() > 1 ? "materials" : "material",
-                                    fmt::join(names, ", "), used.size() > 1 ? "do" : "does"));
+  std::vector<std::string> yielding;
+};
 
-  Particles<2> P = build_particles(s);
+Ground refused(std::string why) {
+  Ground gr;
+  gr.why_not = std::move(why);
+  return gr;
+}
+
+template <int D>
+Ground ground_of(const ScenarioOf<D>& s) {
+  Ground gr;
+  for (const Stage& st : s.stages)
+    if (!st.elastic) gr.stage = &st;
+  if (!gr.stage) return refused("every stage holds the materials elastic");
+  if (s.geometry == Geometry::Axisymmetric)  // Bishop's slices are plane strain
+    return refused("the circles are plane strain; this section is axisymmetric");
+  if (s.gravity.norm() == 0.0) return refused("no gravity");
+  if (!(s.gravity[1] < 0.0) || s.gravity[0] != 0.0 || (D == 3 && s.gravity[D - 1] != 0.0))
+    return refused("gravity is not along -y");
+  for (const BodyOf<D>& b : s.bodies)
+    if (!b.rigid && b.dilated_from < 0 &&
+        std::find(gr.used.begin(), gr.used.end(), b.material) == gr.used.end())
+      gr.used.push_back(b.material);
+  if (gr.used.empty()) return refused("no deformable body");
+  const std::vector<Material> materials = stage_materials(s, *gr.stage);
+  std::vector<std::string> names;
+  for (int k : gr.used) {
+    const Material& m = materials[static_cast<std::size_t>(k)];
+    gr.soils.push_back({m.strength_cohesion(), m.friction_angle(), m.density * -s.gravity[1], !m.plastic()});
+    names.push_back(fmt::format("'{}'", m.name));
+    if (m.plastic()) gr.yielding.push_back(m.name);
+  }
+  if (gr.yielding.empty())
+    return refused(fmt::format("{} {} {} not yield", gr.used.size() > 1 ? "materials" : "material",
+                               fmt::join(names, ", "), gr.used.size() > 1 ? "do" : "does"));
+  return gr;
+}
+
+// Bishop's critical circle of the ground's points P in the x-y plane (the other points erased).
+template <int D>
+SlopeStability bishop_of(const ScenarioOf<D>& s, const Ground& gr, Particles<2>& P) {
   std::vector<std::uint8_t> keep(P.size());  // the deformable bodies' points only
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const Body& b = s.bodies[static_cast<std::size_t>(P.body[p])];
-    keep[p] = !b.rigid && std::find(used.begin(), used.end(), P.material[p]) != used.end();
+    const BodyOf<D>& b = s.bodies[static_cast<std::size_t>(P.body[p])];
+    keep[p] = !b.rigid && std::find(gr.used.begin(), gr.used.end(), P.material[p]) != gr.used.end();
   }
   P.erase(keep);
   if (P.size() == 0) return not_computed("no material points");
@@ -89,13 +110,13 @@ SlopeStability slope_stability(const Scenario& s) {
   g.top = prof.top;
   for (double& t : g.top)
     if (!std::isfinite(t)) t = NAN;
-  if (used.size() > 1) fill_layers(s, P, used, g);
+  if (gr.used.size() > 1) fill_layers(s, P, gr.used, g);
 
   SlopeStability r;
   r.computed = true;
-  r.stage = stage->name;
-  r.materials = yielding;
-  r.critical = critical_circle(g, soils);
+  r.stage = gr.stage->name;
+  r.materials = gr.yielding;
+  r.critical = critical_circle(g, gr.soils);
   for (const ContactPair& c : s.contacts)  // the first interface inside the ground
     if (!s.bodies[static_cast<std::size_t>(c.a)].rigid && !s.bodies[static_cast<std::size_t>(c.b)].rigid) {
       r.note = fmt::format(
@@ -109,15 +130,69 @@ SlopeStability slope_stability(const Scenario& s) {
   return r;
 }
 
+}  // namespace
+
+SlopeStability slope_stability(const Scenario& s) {
+  const Ground gr = ground_of(s);
+  if (!gr.why_not.empty()) return not_computed(gr.why_not);
+  Particles<2> P = build_particles(s);
+  return bishop_of(s, gr, P);
+}
+
+SlopeStability slope_stability(const Scenario3& s) {
+  const Ground gr = ground_of(s);
+  if (!gr.why_not.empty()) return not_computed(gr.why_not);
+  const Particles<3> P = build_particles(s);
+  // The ground's top in each x-z column of cells (its points' highest edge y + l_y).
+  const int nx = s.cells[0], nz = s.cells[2];
+  std::vector<double> top(static_cast<std::size_t>(nx) * nz, -INFINITY);
+  const auto cell = [&](const Vec<3>& x, int axis, int n) {
+    return static_cast<int>(std::clamp(std::floor((x[axis] - s.origin[axis]) / s.cell_size), 0.0, n - 1.0));
+  };
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    const BodyOf<3>& b = s.bodies[static_cast<std::size_t>(P.body[p])];
+    if (b.rigid || std::find(gr.used.begin(), gr.used.end(), P.material[p]) == gr.used.end()) continue;
+    double& t = top[static_cast<std::size_t>(cell(P.x[p], 2, nz)) * nx + cell(P.x[p], 0, nx)];
+    t = std::max(t, P.x[p][1] + P.half0[p][1]);
+  }
+  // The steepest section along x: the row of cells whose tops have the largest mean gradient.
+  int steepest = -1;
+  double slope = -1.0;
+  for (int k = 0; k < nz; ++k) {
+    double sum = 0.0;
+    int n = 0;
+    for (int i = 0; i + 1 < nx; ++i) {
+      const double a = top[static_cast<std::size_t>(k) * nx + i],
+                   b = top[static_cast<std::size_t>(k) * nx + i + 1];
+      if (std::isfinite(a) && std::isfinite(b)) sum += std::abs(b - a) / s.cell_size, ++n;
+    }
+    if (n > 0 && sum / n > slope) slope = sum / n, steepest = k;
+  }
+  if (steepest < 0) return not_computed("no ground two cells long along x");
+  Particles<2> section;  // the points in that row, as plane strain
+  for (std::size_t p = 0; p < P.size(); ++p)
+    if (cell(P.x[p], 2, nz) == steepest)
+      section.add(Vec<2>(P.x[p][0], P.x[p][1]), Vec<2>::Zero(), P.mass[p], P.volume0[p],
+                  Vec<2>(P.half0[p][0], P.half0[p][1]), P.material[p], P.body[p]);
+  SlopeStability r = bishop_of(s, gr, section);
+  const double z0 = s.origin[2] + steepest * s.cell_size;
+  r.section = fmt::format(
+      "on the 2D section of the cells z = {:.6g} to {:.6g} m along x, the steepest (mean "
+      "slope {:.1f} deg), as plane strain",
+      z0, z0 + s.cell_size, std::atan(slope) * 180.0 / M_PI);
+  return r;
+}
+
 std::string slope_stability_line(const SlopeStability& r) {
   if (!r.computed) return fmt::format("limit equilibrium: not computed ({})\n", r.why_not);
   const CriticalCircle& c = r.critical;
   return fmt::format(
-      "limit equilibrium (Bishop's simplified method on circles, dry, {} in stage '{}'): "
+      "limit equilibrium (Bishop's simplified method on circles, dry, {} in stage '{}'{}): "
       "F = {:.3f} on the circle centred ({:.2f}, {:.2f}) m of radius {:.2f} m, sliding towards {}x: {}{}\n",
       r.materials.size() == 1 ? r.materials.front() + "'s strength"
                               : fmt::format("the strengths of {}", fmt::join(r.materials, ", ")),
-      r.stage, c.factor, c.circle.xc, c.circle.yc, c.circle.radius, c.direction > 0 ? "+" : "-",
+      r.stage, r.section.empty() ? "" : ", " + r.section, c.factor, c.circle.xc, c.circle.yc, c.circle.radius,
+      c.direction > 0 ? "+" : "-",
       c.factor < 1.0 ? fmt::format("the slope is not expected to stand: its {} {:.0f} % of the strength {} "
                                    "(the nearer 100 %, the more a slide's runout depends on the cell)",
                                    r.materials.size() == 1 ? "soil has" : "soils have", 100.0 * c.factor,

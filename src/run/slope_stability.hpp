@@ -17,6 +17,7 @@ struct SlopeStability {
   std::string stage;    // the stage whose strength was taken
   std::vector<std::string> materials;  // the ground's materials that yield
   std::string note;                    // what the factor does not count (a contact in the ground)
+  std::string section;                 // 3D: the section the circles lie in
   CriticalCircle critical;
 };
 
@@ -26,6 +27,12 @@ struct SlopeStability {
 // holds the one with the most mass there, and a material that does not yield is firm ground
 // that a slip surface may not cut.
 SlopeStability slope_stability(const Scenario& s);
+// 3D: the same on the steepest 2D section through the slope, as plane strain: the row of
+// cells along x (one cell across z) whose ground tops have the largest mean gradient along x,
+// its points taken as a 2D section (`section` says which). A check on the section only: the
+// 3D slide's sides add strength, and a slope whose fall line is not along x is not seen
+// as steep as it is.
+SlopeStability slope_stability(const Scenario3& s);
 
 // One line for `skred check`: the factor, the circle and what it means.
 std::string slope_stability_line(const SlopeStability& r);

@@ -335,8 +335,15 @@ std::vector<std::string> parse_output_fields(const std::optional<TableReader>& t
   return names;
 }
 
-void parse_output(const TableReader& root, ScenarioCommon& s) {
+void parse_output(const TableReader& root, ScenarioCommon& s, int dimensions) {
   const auto o = root.table("output", false);
+  // The hazard maps lie over a 3D run's horizontal plane; a 2D run has none to write.
+  if (o && dimensions == 2)
+    for (const char* key : {"maps", "map_threshold"})
+      if (o->has(key))
+        o->fail_at(key,
+                   "3D only: the hazard maps lie over a 3D run's x-z plane; a 2D run writes none "
+                   "(its runout is in summary.json and series.csv)");
   s.output_interval = s.end_time / 20.0;
   if (o) {
     o->allow_declared();
@@ -476,7 +483,7 @@ ScenarioOf<D> parse_document(const toml::table& doc, const std::string& source) 
                }));
   parse_stages(root, s);
   scenario_detail::check_integrators<D>(root, s);
-  parse_output(root, s);
+  parse_output(root, s, D);
   scenario_detail::check_time_step<D>(root, s);
   return s;
 }

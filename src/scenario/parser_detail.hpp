@@ -95,6 +95,12 @@ void check_overlaps(const TableReader& root, const ScenarioOf<D>& s);
 // The same in 3D from elevation rasters (parser_ground3.cpp).
 void parse_ground3(const TableReader& root, Scenario3& s);
 Layer3 parse_layer3(const TableReader& b, const Scenario3& s);
+// A raster laid on the map itself (x easting, z northing): at(e, n) is the bilinear height at
+// map point (e, n); for the sections of a 2D [ground]. Throws RasterError.
+ElevationRaster raster_on_map(const std::string& file);
+// The fractional (column, row) of the cell centres at a raster's (x, z), and back.
+Vec<2> cell_of(const ElevationRaster& r, double x, double z);
+Vec<2> scenario_of(const ElevationRaster& r, double u, double v);
 
 // The time step against the stable explicit step (Thesis §2.2) and the steps each stage takes
 // (parser_time_step.cpp).

@@ -1,6 +1,8 @@
 // Layered ground (docs/scenario.md, "Layered ground"): the [ground] surface, "layer" bodies
-// between two profiles read inline or from CSV files (a surveyed cross-section, a line taken
-// from a DEM), and the check that bodies do not overlap.
+// between two profiles read inline, from CSV files (a surveyed cross-section, a line taken
+// from a DEM) or sampled from elevation rasters along the [ground] section, and the check that
+// bodies do not overlap.
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -11,6 +13,7 @@
 
 #include "scenario/build.hpp"
 #include "scenario/parser_detail.hpp"
+#include "scenario/raster.hpp"
 
 namespace skred::scenario_detail {
 
@@ -107,10 +110,161 @@ Profile read_profile_csv(const TableReader& t, std::string_view key, const Scena
   return p;
 }
 
-// A profile given inline as [[x, y], ...] or as the name of a CSV file.
-Profile read_profile(const TableReader& t, std::string_view key, const Scenario& s) {
+bool ends_with(std::string name, std::initializer_list<const char*> extensions) {
+  name = trim_lower(name);
+  for (const char* e : extensions)
+    if (name.size() >= std::strlen(e) &&
+        name.compare(name.size() - std::strlen(e), std::string::npos, e) == 0)
+      return true;
+  return false;
+}
+
+// The [ground] section: at least 2 [easting, northing] vertices, no two in a row the same.
+std::vector<Vec<2>> read_section_line(const TableReader& g) {
+  const auto* arr = g.find("section")->as_array();
+  if (!arr) g.fail_type("section", "an array of [easting, northing] map points");
+  std::vector<Vec<2>> line;
+  for (std::size_t k = 0; k < arr->size(); ++k) {
+    const std::string key = fmt::format("{}[{}]", g.key("section"), k);
+    line.push_back(node_vec2(*arr->get(k), g.source(), key, g.where("section")));
+    if (k > 0 && !((line[k] - line[k - 1]).norm() > 0))
+      fail(g.source(), location_of(arr->get(k)->source(), g.where("section")), key,
+           fmt::format("repeats the vertex before it, ({}, {}): a section's vertices must differ", line[k][0],
+                       line[k][1]));
+  }
+  if (line.size() < 2)
+    g.fail_at("section", fmt::format("a section needs at least 2 vertices, got {}", line.size()));
+  return line;
+}
+
+// The cell of a raster for messages: its place in the file and on the map.
+std::string map_cell_text(const ElevationRaster& r, int i, int j) {
+  const Vec<2> e = scenario_of(r, i, j);
+  return fmt::format("cell (column {}, row {}; counted from 1 at the upper left) at map ({:.6g}, {:.6g})",
+                     i + 1, j + 1, e[0], e[1]);
+}
+
+// A profile sampled from the raster named by `key` along the [ground] section, x the distance
+// along it: the bilinear heights at the section's vertices, where it crosses a row or column
+// of cell centres (between those the height is a quadratic in x, linear where the section runs
+// along a row or column) and half-way between them, and at the grid's x edges; the part
+// within the grid's x range is kept. Every cell centre the sampling reads must hold data.
+// `crs` gets the raster's CRS (WKT), if asked.
+Profile read_section(const TableReader& t, std::string_view key, const Scenario& s, std::string* crs) {
+  std::filesystem::path path(t.string(key));
+  if (path.is_relative()) path = std::filesystem::path(s.source).parent_path() / path;
+  const std::string file = path.string();
+  if (s.ground_section.empty())
+    t.fail_at(key, fmt::format("'{}' is a raster: a 2D scenario samples it along [ground] section = "
+                               "[[easting, northing], ...], which is not given (a profile is a .csv file)",
+                               file));
+  if (const std::string why = input_file_problem(file, kMaxProfileBytes); !why.empty())
+    t.fail_at(key, fmt::format("cannot read raster file '{}': {}", file, why));
+  if (!std::filesystem::exists(path))
+    t.fail_at(key, fmt::format("cannot open raster file '{}': no such file", file));
+  const auto fail_raster = [&](const std::string& why) {
+    throw ScenarioError(
+        fmt::format("{}: {} (raster '{}' of {}:{})", file, why, t.key(key), s.source, t.where(key).line));
+  };
+  ElevationRaster r;
+  try {
+    r = raster_on_map(file);
+  } catch (const RasterError& e) {
+    throw ScenarioError(
+        fmt::format("{} (raster '{}' of {}:{})", e.what(), t.key(key), s.source, t.where(key).line));
+  }
+  if (crs) *crs = r.crs;
+  if (!r.crs.empty() && !s.section_crs.empty() && !same_crs(r.crs, s.section_crs))
+    fail_raster(
+        fmt::format("its coordinate reference system \"{}\" differs from \"{}\" of {}: the rasters of a "
+                    "scenario share one (reproject with gdalwarp)",
+                    crs_name(r.crs), crs_name(s.section_crs), s.section_crs_file));
+  const std::vector<Vec<2>>& line = s.ground_section;
+  const double eps = 1e-9 * std::max(r.columns, r.rows);
+  double length = 0;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    if (k > 0) length += (line[k] - line[k - 1]).norm();
+    const Vec<2> c = cell_of(r, line[k][0], line[k][1]);
+    if (c[0] < -0.5 - eps || c[0] > r.columns - 0.5 + eps || c[1] < -0.5 - eps || c[1] > r.rows - 0.5 + eps)
+      fail_raster(
+          fmt::format("the section leaves the raster: its vertex ground.section[{}] at map ({:.6g}, "
+                      "{:.6g}), x = {:.6g}, lies outside the raster's {} x {} cells (at column {:.4g}, "
+                      "row {:.4g} counted from 1)",
+                      k, line[k][0], line[k][1], length, r.columns, r.rows, c[0] + 1, c[1] + 1));
+  }
+  // The samples: (x, map point).
+  const double x_lo = s.origin[0], x_hi = grid_high(s)[0], tol = grid_tolerance(s);
+  std::vector<std::pair<double, Vec<2>>> samples;
+  double chain = 0;
+  for (std::size_t k = 1; k < line.size(); ++k) {
+    const Vec<2> a = line[k - 1], b = line[k];
+    const double l = (b - a).norm();
+    const Vec<2> ca = cell_of(r, a[0], a[1]), cb = cell_of(r, b[0], b[1]);
+    std::vector<double> ts = {0.0, 1.0};
+    for (int d = 0; d < 2; ++d)
+      for (double m = std::floor(std::min(ca[d], cb[d])) + 1; m < std::max(ca[d], cb[d]); m += 1)
+        ts.push_back((m - ca[d]) / (cb[d] - ca[d]));
+    for (const double edge : {x_lo, x_hi})
+      if (edge > chain && edge < chain + l) ts.push_back((edge - chain) / l);
+    std::sort(ts.begin(), ts.end());
+    ts.erase(std::unique(ts.begin(), ts.end(), [l](double p, double q) { return (q - p) * l < 1e-9; }),
+             ts.end());
+    for (std::size_t i = k == 1 ? 0 : 1; i < ts.size(); ++i) {
+      if (i > 0) {
+        const double m = 0.5 * (ts[i - 1] + ts[i]);
+        samples.push_back({chain + m * l, a + m * (b - a)});
+      }
+      samples.push_back({chain + ts[i] * l, a + ts[i] * (b - a)});
+    }
+    chain += l;
+  }
+  // No data where the sampling reads: the cell centres around each piece's midpoint.
+  for (std::size_t k = 1; k < samples.size(); k += 2) {
+    const Vec<2> c = cell_of(r, samples[k].second[0], samples[k].second[1]);
+    const int i = std::clamp(static_cast<int>(std::floor(c[0])), 0, std::max(r.columns - 2, 0));
+    const int j = std::clamp(static_cast<int>(std::floor(c[1])), 0, std::max(r.rows - 2, 0));
+    for (const int jj : {j, std::min(j + 1, r.rows - 1)})
+      for (const int ii : {i, std::min(i + 1, r.columns - 1)})
+        if (std::isnan(r.heights[static_cast<std::size_t>(jj) * r.columns + ii]))
+          fail_raster(
+              fmt::format("{} holds no data, on the section near x = {:.6g}: the profile would have "
+                          "a hole there. Fill the raster's gaps (e.g. gdal_fillnodata)",
+                          map_cell_text(r, ii, jj), samples[k].first));
+  }
+  Profile p;
+  std::vector<Vec<2>> where;
+  for (const auto& [x, e] : samples)
+    if (x >= x_lo - tol && x <= x_hi + tol) {
+      p.points.push_back(Vec<2>(x, r.at(e[0], e[1])));
+      where.push_back(e);
+      if (std::isnan(p.points.back()[1]))  // a no-data cell beside a crossing, at weight 0
+        fail_raster(
+            fmt::format("a cell beside the section at map ({:.6g}, {:.6g}), x = {:.6g}, holds no data. "
+                        "Fill the raster's gaps (e.g. gdal_fillnodata)",
+                        e[0], e[1], x));
+    }
+  if (p.points.size() < 2)
+    fail_raster(
+        fmt::format("the section, {:.6g} m long, does not reach into the grid's x range [{}, {}]: x is "
+                    "the distance along it from its first vertex",
+                    length, x_lo, x_hi));
+  check_profile(p, s, [&](std::size_t k, const std::string& why) {
+    fail_raster(fmt::format("at map ({:.6g}, {:.6g}) on the section: {}", where[k][0], where[k][1], why));
+  });
+  return p;
+}
+
+// A profile given inline as [[x, y], ...], as the name of a CSV file or, along the [ground]
+// section, of a raster (any other file; without a section, .asc and GeoTIFF are rasters).
+Profile read_profile(const TableReader& t, std::string_view key, const Scenario& s,
+                     std::string* crs = nullptr) {
   const toml::node* n = t.find(key);
-  if (n->is_string()) return read_profile_csv(t, key, s);
+  if (n->is_string()) {
+    const std::string name = t.string(key);
+    const bool raster =
+        s.ground_section.empty() ? ends_with(name, {".asc", ".tif", ".tiff"}) : !ends_with(name, {".csv"});
+    return raster ? read_section(t, key, s, crs) : read_profile_csv(t, key, s);
+  }
   const auto* arr = n->as_array();
   if (!arr) t.fail_type(key, "a CSV file name or an array of [x, y] points");
   Profile p;
@@ -162,9 +316,15 @@ void parse_ground(const TableReader& root, Scenario& s) {
   if (!g) return;
   g->allow_declared();
   for (const char* key : {"origin", "rotation"})
-    if (g->has(key)) g->fail_at(key, "3D only: it places the rasters of a 3D [ground] on the map");
+    if (g->has(key))
+      g->fail_at(key,
+                 "3D only: it places the rasters of a 3D [ground] on the map (a 2D [ground] samples "
+                 "them along its section)");
+  if (g->has("section")) s.ground_section = read_section_line(*g);
   if (!g->has("surface")) g->fail_missing("surface");
-  s.ground_surface = read_profile(*g, "surface", s);
+  std::string crs;  // the surface raster's: the layers' rasters must share it
+  s.ground_surface = read_profile(*g, "surface", s, &crs);
+  if (!crs.empty()) s.section_crs = crs, s.section_crs_file = g->string("surface");
 }
 
 Layer parse_layer(const TableReader& b, const Scenario& s) {

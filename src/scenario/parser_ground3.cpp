@@ -11,6 +11,18 @@
 
 namespace skred::scenario_detail {
 
+Vec<2> cell_of(const ElevationRaster& r, double x, double z) {
+  const auto& t = r.to_cell;
+  return {t[0] + t[1] * x + t[2] * z, t[3] + t[4] * x + t[5] * z};
+}
+
+// Scenario (x, z) of the fractional cell (u, v).
+Vec<2> scenario_of(const ElevationRaster& r, double u, double v) {
+  const auto& t = r.to_cell;
+  const double det = t[1] * t[5] - t[2] * t[4], a = u - t[0], b = v - t[3];
+  return {(t[5] * a - t[2] * b) / det, (t[1] * b - t[4] * a) / det};
+}
+
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -46,18 +58,6 @@ ElevationRaster to_scenario(RasterFile&& f, const MapFrame& m, const std::string
   r.to_cell = {i00 * d[0] + i01 * d[1], i00 * m.ex[0] + i01 * m.ex[1], i00 * m.ez[0] + i01 * m.ez[1],
                i10 * d[0] + i11 * d[1], i10 * m.ex[0] + i11 * m.ex[1], i10 * m.ez[0] + i11 * m.ez[1]};
   return r;
-}
-
-Vec<2> cell_of(const ElevationRaster& r, double x, double z) {
-  const auto& t = r.to_cell;
-  return {t[0] + t[1] * x + t[2] * z, t[3] + t[4] * x + t[5] * z};
-}
-
-// Scenario (x, z) of the fractional cell (u, v).
-Vec<2> scenario_of(const ElevationRaster& r, double u, double v) {
-  const auto& t = r.to_cell;
-  const double det = t[1] * t[5] - t[2] * t[4], a = u - t[0], b = v - t[3];
-  return {(t[5] * a - t[2] * b) / det, (t[1] * b - t[4] * a) / det};
 }
 
 // The u range of the part of convex polygon p (in (u, v)) with a <= v <= b; empty if lo > hi.
@@ -200,10 +200,18 @@ std::shared_ptr<const ElevationRaster> read_elevation(const TableReader& t, std:
 
 }  // namespace
 
+ElevationRaster raster_on_map(const std::string& file) {
+  return to_scenario(read_raster(file), MapFrame{Vec<2>::Zero(), Vec<2>(1, 0), Vec<2>(0, 1)}, file);
+}
+
 void parse_ground3(const TableReader& root, Scenario3& s) {
   const auto g = root.table("ground", false);
   if (!g) return;
   g->allow_declared();
+  if (g->has("section"))
+    g->fail_at("section",
+               "2D only: a 2D scenario samples its rasters along it; a 3D [ground] takes the "
+               "rasters whole (place them with origin and rotation)");
   s.map_origin = g->vec2("origin", Vec<2>::Zero());
   s.map_rotation = g->number("rotation") * kDeg;
   if (!g->has("surface")) g->fail_missing("surface");

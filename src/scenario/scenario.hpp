@@ -218,6 +218,11 @@ struct ScenarioCommon {
   bool max_points_given = false;  // [splitting] max_points set (not 10 x the initial points)
   // The ground surface of a 2D scenario ([ground]); layers lie below it.
   std::optional<Profile> ground_surface;
+  // A 2D scenario's [ground] section: the polyline on the map (easting, northing) along which
+  // the profiles given as rasters are sampled, x the distance along it from its first vertex;
+  // and the CRS (WKT) of the first of those rasters that gives one, with its file.
+  std::vector<Vec<2>> ground_section;
+  std::string section_crs, section_crs_file;
   // The ground surface of a 3D scenario ([ground] surface, a raster), and where the rasters' map
   // coordinates (easting, northing) of scenario x = z = 0 lie and the angle from east to +x.
   std::shared_ptr<const ElevationRaster> ground_raster;

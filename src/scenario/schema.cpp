@@ -229,6 +229,13 @@ void add_model_sections(std::vector<Section>& s) {
                     .type = Type::Profile,
                     .unit = "m",
                     .doc = "the ground surface y(x), or y(x, z) in 3D; every layer lies below it"},
+                   {.name = "section",
+                    .type = Type::Points,
+                    .unit = "m",
+                    .def = none(),
+                    .doc = "2D: [[easting, northing], ...], the map polyline along which the profiles "
+                           "given as rasters (.asc, GeoTIFF: any file but .csv) are sampled; x is the "
+                           "distance along it from its first vertex"},
                    {.name = "origin",
                     .type = Type::Vector,
                     .unit = "m",
@@ -379,7 +386,8 @@ const char* to_string(Type t) {
     case Type::Tables: return "tables";
     case Type::K0: return "string or number";
     case Type::Side: return "string or table";
-    case Type::Profile: return "CSV file or [[x, y], ...]; 3D: raster file";
+    case Type::Profile:
+      return "CSV file or [[x, y], ...]; a raster file along [ground] section (2D), or whole (3D)";
     case Type::BodyPair: return "[name, name] or \"all\"";
     case Type::Fields: return "string or [name, ...]";
   }
