@@ -67,6 +67,26 @@ TEST(LimitEquilibrium, CohesionlessSlopeTendsToTheInfiniteSlope) {
   EXPECT_LT(r.factor, 1.01 * infinite);
 }
 
+// The same from a scenario's points: a sand slope at 30 deg, phi = 35 deg (F = tan(phi) / tan(beta)
+// = 1.213 for a slip parallel to the face). The points' tops step by half a cell, up to 45 deg
+// between column centres; a sliver under the steepest step gave F = 0.70 on 1 m cells and 0.93 on
+// 0.5 m. Circles at least a cell deep (GroundProfile::min_depth) give 1.217 and 1.224.
+TEST(LimitEquilibrium, CohesionlessSlopeOfPointsHasTheInfiniteSlopesFactor) {
+  const double infinite = std::tan(35.0 * kDeg) / std::tan(30.0 * kDeg);
+  for (const double h : {1.0, 0.5}) {
+    const std::string text =
+        "[grid]\nsize = [60.0, 16.0]\ncell_size = " + std::to_string(h) +
+        "\n[[material]]\nname = \"sand\"\nmodel = \"mohr-coulomb\"\ndensity = 2000.0\nyoung = 2e7\n"
+        "poisson = 0.3\nfriction = 35.0\ncohesion = 0.0\n"
+        "[[body]]\nname = \"ground\"\nmaterial = \"sand\"\nshape = \"polygon\"\n"
+        "vertices = [[0, 0], [60, 0], [60, 2], [37.3205, 2], [20, 12], [0, 12]]\n"
+        "[gravity]\nacceleration = [0.0, -9.81]\n[boundary]\ny_min = \"fixed\"\n[solver]\nend_time = 1.0\n";
+    const SlopeStability r = slope_stability(parse_scenario(text, "sand.toml"));
+    ASSERT_TRUE(r.computed) << r.why_not;
+    EXPECT_NEAR(r.critical.factor, infinite, 0.015 * infinite) << "h = " << h;
+  }
+}
+
 TEST(LimitEquilibrium, AcadsSimpleSlopeHasTheRefereesFactor) {
   // ACADS 1(a): 10 m high, 2 : 1, c' = 3 kPa, phi' = 19.6 deg, gamma = 20 kN/m^3, firm base at
   // the toe. Referee F = 1.00; the Bishop answers of 18 programs averaged 0.993.

@@ -129,9 +129,11 @@ double bishop(const Ground& ground, const GroundProfile& g, const SlipCircle& c,
   thread_local std::vector<double> weight, sin_a, cos_a, bond, tan_phi;
   for (auto* v : {&weight, &sin_a, &cos_a, &bond, &tan_phi}) v->assign(slices, 0.0);
   auto angle = [&](double x) { return std::asin(std::clamp((x - c.xc) / c.radius, -1.0, 1.0)); };
+  double deepest = 0.0;
   for (int i = 0; i < slices; ++i) {
     const double x = xa + (i + 0.5) * b, y = arc_y(c, x);
     if (y < g.base) return kNaN;  // the slip surface may not cut the firm base
+    deepest = std::max(deepest, g.surface(x) - y);
     const std::size_t j = ground.column(x);
     const SoilStrength* s = ground.soil(j, y);
     if (!s || s->firm) return kNaN;  // nor material that does not yield
@@ -145,7 +147,7 @@ double bishop(const Ground& ground, const GroundProfile& g, const SlipCircle& c,
     drive += weight[i] * sin_a[i];
     fellenius += bond[i] / cos_a[i] + weight[i] * cos_a[i] * tan_phi[i];
   }
-  if (!(drive > 0.0)) return kNaN;
+  if (!(drive > 0.0) || deepest < g.min_depth) return kNaN;
   double F = fellenius / drive;  // the ordinary method's F starts Bishop's iteration
   for (int it = 0; it < 200; ++it) {
     double resist = 0.0;

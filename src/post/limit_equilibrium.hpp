@@ -22,6 +22,10 @@ struct GroundProfile {
   double row0 = 0.0, row_height = 1.0;
   int rows = 0;
   std::vector<int> soil;
+  // A circle whose sliding mass is nowhere deeper than this (below the surface) is not admissible.
+  // A profile built from material points knows the surface to a step of the points' spacing,
+  // and in a cohesionless soil the least factor is then a sliver on the steepest step.
+  double min_depth = 0.0;
   // The surface height at x: the column tops joined by straight lines between column centres
   // (NaN outside the ground or beside a column without ground).
   double surface(double x) const;
@@ -47,10 +51,10 @@ struct SlipCircle {
 // W_i = gamma b_i h_i and alpha_i the inclination of the slice's base. In layered ground W_i
 // sums gamma over the layers above the slice's base, and c, phi are the soil's at the base's
 // midpoint (so tan(phi) is per slice in m_i). NaN when the circle is
-// not admissible: it does not cut the ground in one piece, goes below the base, its sliding
-// mass does not drive towards `direction`, or m_i <= 0.2 on a slice whose base rises in the
-// direction of motion (the usual guard against Bishop's spurious solutions at steep toes), or it
-// cuts firm material.
+// not admissible: it does not cut the ground in one piece, goes below the base, is nowhere
+// deeper than the ground's min_depth, its sliding mass does not drive towards `direction`, or m_i <= 0.2 on a
+// slice whose base rises in the direction of motion (the usual guard against Bishop's spurious solutions at
+// steep toes), or it cuts firm material.
 double bishop_factor(const GroundProfile& g, const std::vector<SoilStrength>& soils, const SlipCircle& c,
                      int direction, int slices = 60);
 double bishop_factor(const GroundProfile& g, const SoilStrength& s, const SlipCircle& c, int direction,
