@@ -117,3 +117,32 @@ TEST(Slides, FiftyMetreSlopeStandsAndFailsWhereLimitEquilibriumSays) {
       EXPECT_LT(m.max_displacement, 0.005 * kHeight) << "F = " << target << ": the slope should stand";
   }
 }
+
+// Thesis §5.2 (after fig. 5.8): "if the soil of the slope is purely frictional, it is stable if
+// the friction angle is larger than approximately 35 deg. Similarly, if the slope consists of a
+// uniform cohesive soil with no friction, the slope is stable for a cohesion larger than
+// approximately 400kPa ... phi = 5 deg and c = 175kPa yield a stable slope in the numerical
+// analysis while failure will be observed for phi = 0 deg and c = 300kPa". Asserted here at the
+// 5 m cells, with the criteria of the tests above, where they hold in skred. Not asserted
+// (docs/studies/2026-12-03-slope-50m-thresholds-of-section-5-2.md, which also runs the thesis's
+// 7,127 points): phi = 0, c = 300 kPa stands in skred (Bishop's F = 1.84; the thesis calls its
+// failure "unrealistic ... along the lower boundary"), and just above 35 deg with c = 0 the face
+// moves 0.39-0.46 m (0.8-0.9 % of the height) at 36 deg and 0.26-0.28 m at 37 deg without
+// running out: it does not fail, but it is not the "stands" of these tests (< 0.5 %) until
+// 38 deg at these cells and 40 deg at the thesis's 7,127 points.
+TEST(Slides, FiftyMetreSlopeThresholdsOfThesisSection52) {
+  constexpr double kHeight = 50.0;
+  // "phi = 5 deg and c = 175kPa yield a stable slope" (measured 0.018 m).
+  const StageMeasures clay = slide(5.0, 175e3, 20.0);
+  EXPECT_EQ(clay.runout, 0.0);
+  EXPECT_LT(clay.max_displacement, 0.005 * kHeight);
+  // "stable for a cohesion larger than approximately 400kPa", phi = 0 (measured 0.015 m).
+  const StageMeasures cohesive = slide(0.0, 400e3, 20.0);
+  EXPECT_EQ(cohesive.runout, 0.0);
+  EXPECT_LT(cohesive.max_displacement, 0.005 * kHeight);
+  // Purely frictional, "stable if the friction angle is larger than approximately 35 deg": below
+  // it the slope fails (33 deg: 6 m 20 s into the slide, 12 m at rest 38.5 s in; 34 deg moves
+  // 1.1 m at these cells and 25 m at the thesis's 7,127 points).
+  const StageMeasures sand = slide(33.0, 0.0, 40.0);
+  EXPECT_GT(sand.max_displacement, 0.1 * kHeight);
+}
