@@ -145,4 +145,12 @@ TEST(Slides, FiftyMetreSlopeThresholdsOfThesisSection52) {
   // 1.1 m at these cells and 25 m at the thesis's 7,127 points).
   const StageMeasures sand = slide(33.0, 0.0, 40.0);
   EXPECT_GT(sand.max_displacement, 0.1 * kHeight);
+  // Limit equilibrium agrees: Bishop's F of the cohesionless slope is the infinite slope's
+  // tan(phi) / tan(35 deg) (measured 0.935 against 0.927; before circles had to reach a cell deep,
+  // a sliver under a step of the points' surface gave 0.704).
+  const SlopeStability le = slope_stability(parse_scenario(slope_text(33.0, 0.0, 40.0), "slope_50m.toml"));
+  ASSERT_TRUE(le.computed) << le.why_not;
+  const double infinite =
+      std::tan(33.0 * std::numbers::pi / 180.0) / std::tan(35.0 * std::numbers::pi / 180.0);
+  EXPECT_NEAR(le.critical.factor, infinite, 0.02 * infinite);
 }
