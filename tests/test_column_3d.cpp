@@ -300,3 +300,35 @@ TEST(Column3D, RasterSlopeCheckGivesBishopsFactorOfItsSteepestSectionAsThe2DChec
             std::string::npos)
       << out;
 }
+
+// The same slope falling along z (the raster's fall line along easting, +x to the north at
+// rotation 90 so that z runs east): the check takes the steepest column of cells along z, with
+// the 2D section's factor and circle.
+TEST(Column3D, RasterSlopeFallingAlongZIsCheckedOnItsSectionAlongZ) {
+  const skred::test::TempDir dir;
+  const auto [plane, slab] = write_raster_slope(dir.path());
+  const auto surface_at = [](double x) { return x <= 0.5 ? 3.0 : x >= 2.5 ? 0.0 : 3.0 - 1.5 * (x - 0.5); };
+  test::write_asc(dir.path() / "surface_z.asc", 16, 4, 999.75, 4999.25, 0.5,
+                  [&](int c, int) { return surface_at(0.5 * c); });
+  std::string t = iotest::read_text(slab);
+  const auto replace = [&](const std::string& a, const std::string& b) {
+    const std::size_t at = t.find(a);
+    ASSERT_NE(at, std::string::npos) << a;
+    t.replace(at, a.size(), b);
+  };
+  replace("size = [7.5, 3.5, 0.5]", "size = [0.5, 3.5, 7.5]");
+  replace("surface = \"surface.asc\"", "surface = \"surface_z.asc\"");
+  replace("origin = [1000, 5000]", "origin = [1000, 5000]\nrotation = 90.0");
+  std::ofstream(dir.path() / "slab_z.toml") << t;
+  const SlopeStability le2 = slope_stability(std::get<Scenario>(load_any_scenario(plane.string())));
+  const SlopeStability le3 =
+      slope_stability(std::get<Scenario3>(load_any_scenario((dir.path() / "slab_z.toml").string())));
+  ASSERT_TRUE(le3.computed) << le3.why_not;
+  EXPECT_EQ(le3.axis, 'z');
+  EXPECT_DOUBLE_EQ(le3.critical.factor, le2.critical.factor);
+  EXPECT_DOUBLE_EQ(le3.critical.circle.radius, le2.critical.circle.radius);
+  EXPECT_NE(le3.section.find("of the cells x = 0 to 0.25 m along z"), std::string::npos) << le3.section;
+  EXPECT_NE(slope_stability_line(le3).find(
+                fmt::format("sliding towards {}z", le2.critical.direction > 0 ? "+" : "-")),
+            std::string::npos);
+}

@@ -20,20 +20,27 @@ SlopeStability not_computed(std::string why) {
   return r;
 }
 
-// The layers: in each cell of the grid's x-y plane the material with the most mass of the
+// The columns of a section's profile: where the first starts along the section and how many.
+struct Columns {
+  double x0 = 0.0;
+  int count = 0;
+};
+
+// The layers: in each cell of the section's plane the material with the most mass of the
 // ground's points whose centres lie in it, as an index into `used`.
 template <int D>
-void fill_layers(const ScenarioOf<D>& s, const Particles<2>& P, const std::vector<int>& used,
+void fill_layers(const ScenarioOf<D>& s, const Particles<2>& P, const std::vector<int>& used, Columns cols,
                  GroundProfile& g) {
   g.rows = s.cells[1], g.row0 = s.origin[1], g.row_height = s.cell_size;
-  const std::size_t cells = static_cast<std::size_t>(s.cells[0]) * static_cast<std::size_t>(g.rows);
+  const std::size_t cells = static_cast<std::size_t>(cols.count) * static_cast<std::size_t>(g.rows);
   std::vector<double> mass(cells * used.size(), 0.0);
   for (std::size_t p = 0; p < P.size(); ++p) {
-    const auto cell = [&](int axis, int n) {
-      const double u = std::floor((P.x[p][axis] - s.origin[axis]) / s.cell_size);
+    const auto cell = [&](double x, double x0, int n) {
+      const double u = std::floor((x - x0) / s.cell_size);
       return static_cast<std::size_t>(std::clamp(u, 0.0, n - 1.0));
     };
-    const std::size_t at = cell(0, s.cells[0]) * static_cast<std::size_t>(g.rows) + cell(1, g.rows);
+    const std::size_t at = cell(P.x[p][0], cols.x0, cols.count) * static_cast<std::size_t>(g.rows) +
+                           cell(P.x[p][1], g.row0, g.rows);
     const auto k = std::find(used.begin(), used.end(), P.material[p]) - used.begin();
     mass[at * used.size() + static_cast<std::size_t>(k)] += P.mass[p];
   }
@@ -91,9 +98,10 @@ Ground ground_of(const ScenarioOf<D>& s) {
   return gr;
 }
 
-// Bishop's critical circle of the ground's points P in the x-y plane (the other points erased).
+// Bishop's critical circle of the ground's points P in a section's plane (the other points
+// erased): x along the section, from the columns `cols`, and y.
 template <int D>
-SlopeStability bishop_of(const ScenarioOf<D>& s, const Ground& gr, Particles<2>& P) {
+SlopeStability bishop_of(const ScenarioOf<D>& s, const Ground& gr, Particles<2>& P, Columns cols) {
   std::vector<std::uint8_t> keep(P.size());  // the deformable bodies' points only
   for (std::size_t p = 0; p < P.size(); ++p) {
     const BodyOf<D>& b = s.bodies[static_cast<std::size_t>(P.body[p])];
@@ -103,8 +111,8 @@ SlopeStability bishop_of(const ScenarioOf<D>& s, const Ground& gr, Particles<2>&
   if (P.size() == 0) return not_computed("no material points");
 
   GroundProfile g;
-  g.x0 = s.origin[0], g.width = s.cell_size;
-  const SurfaceProfile prof = surface_profile(P, g.x0, g.width, s.cells[0]);
+  g.x0 = cols.x0, g.width = s.cell_size;
+  const SurfaceProfile prof = surface_profile(P, g.x0, g.width, cols.count);
   g.base = INFINITY;
   for (std::size_t p = 0; p < P.size(); ++p) g.base = std::min(g.base, P.x[p][1] - P.half0[p][1]);
   g.top = prof.top;
@@ -114,7 +122,7 @@ SlopeStability bishop_of(const ScenarioOf<D>& s, const Ground& gr, Particles<2>&
   // ground's (a 30 deg sand slope at phi = 35 deg gave F = 0.70 on 1 m cells, 1.22 with this;
   // LimitEquilibrium.CohesionlessSlopeOfPointsHasTheInfiniteSlopesFactor).
   g.min_depth = s.cell_size;
-  if (gr.used.size() > 1) fill_layers(s, P, gr.used, g);
+  if (gr.used.size() > 1) fill_layers(s, P, gr.used, cols, g);
 
   SlopeStability r;
   r.computed = true;
@@ -140,7 +148,7 @@ SlopeStability slope_stability(const Scenario& s) {
   const Ground gr = ground_of(s);
   if (!gr.why_not.empty()) return not_computed(gr.why_not);
   Particles<2> P = build_particles(s);
-  return bishop_of(s, gr, P);
+  return bishop_of(s, gr, P, {s.origin[0], s.cells[0]});
 }
 
 SlopeStability slope_stability(const Scenario3& s) {
@@ -159,31 +167,40 @@ SlopeStability slope_stability(const Scenario3& s) {
     double& t = top[static_cast<std::size_t>(cell(P.x[p], 2, nz)) * nx + cell(P.x[p], 0, nx)];
     t = std::max(t, P.x[p][1] + P.half0[p][1]);
   }
-  // The steepest section along x: the row of cells whose tops have the largest mean gradient.
-  int steepest = -1;
-  double slope = -1.0;
-  for (int k = 0; k < nz; ++k) {
+  // The steepest section: of the rows of cells along x and the columns along z, the one whose
+  // tops have the largest mean gradient (a slope need not fall along x).
+  const auto top_at = [&](int i, int k) { return top[static_cast<std::size_t>(k) * nx + i]; };
+  const auto mean_gradient = [&](int n, auto&& height) {
     double sum = 0.0;
-    int n = 0;
-    for (int i = 0; i + 1 < nx; ++i) {
-      const double a = top[static_cast<std::size_t>(k) * nx + i],
-                   b = top[static_cast<std::size_t>(k) * nx + i + 1];
-      if (std::isfinite(a) && std::isfinite(b)) sum += std::abs(b - a) / s.cell_size, ++n;
+    int count = 0;
+    for (int i = 0; i + 1 < n; ++i) {
+      const double a = height(i), b = height(i + 1);
+      if (std::isfinite(a) && std::isfinite(b)) sum += std::abs(b - a) / s.cell_size, ++count;
     }
-    if (n > 0 && sum / n > slope) slope = sum / n, steepest = k;
-  }
-  if (steepest < 0) return not_computed("no ground two cells long along x");
-  Particles<2> section;  // the points in that row, as plane strain
+    return count > 0 ? sum / count : -1.0;
+  };
+  int steepest = -1, along = 0;  // along: 0 a row along x at z cell `steepest`, 2 a column along z
+  double slope = -1.0;
+  for (int k = 0; k < nz; ++k)
+    if (const double m = mean_gradient(nx, [&](int i) { return top_at(i, k); }); m > slope)
+      slope = m, steepest = k, along = 0;
+  for (int i = 0; i < nx; ++i)
+    if (const double m = mean_gradient(nz, [&](int k) { return top_at(i, k); }); m > slope)
+      slope = m, steepest = i, along = 2;
+  if (steepest < 0) return not_computed("no ground two cells long along x or z");
+  const int across = 2 - along;  // the axis whose cell holds the section
+  Particles<2> section;          // the points in that row or column, as plane strain
   for (std::size_t p = 0; p < P.size(); ++p)
-    if (cell(P.x[p], 2, nz) == steepest)
-      section.add(Vec<2>(P.x[p][0], P.x[p][1]), Vec<2>::Zero(), P.mass[p], P.volume0[p],
-                  Vec<2>(P.half0[p][0], P.half0[p][1]), P.material[p], P.body[p]);
-  SlopeStability r = bishop_of(s, gr, section);
-  const double z0 = s.origin[2] + steepest * s.cell_size;
+    if (cell(P.x[p], across, s.cells[across]) == steepest)
+      section.add(Vec<2>(P.x[p][along], P.x[p][1]), Vec<2>::Zero(), P.mass[p], P.volume0[p],
+                  Vec<2>(P.half0[p][along], P.half0[p][1]), P.material[p], P.body[p]);
+  SlopeStability r = bishop_of(s, gr, section, {s.origin[along], s.cells[along]});
+  r.axis = along == 0 ? 'x' : 'z';
+  const double c0 = s.origin[across] + steepest * s.cell_size;
   r.section = fmt::format(
-      "on the 2D section of the cells z = {:.6g} to {:.6g} m along x, the steepest (mean "
+      "on the 2D section of the cells {} = {:.6g} to {:.6g} m along {}, the steepest (mean "
       "slope {:.1f} deg), as plane strain",
-      z0, z0 + s.cell_size, std::atan(slope) * 180.0 / M_PI);
+      across == 2 ? "z" : "x", c0, c0 + s.cell_size, along == 0 ? "x" : "z", std::atan(slope) * 180.0 / M_PI);
   return r;
 }
 
@@ -192,11 +209,11 @@ std::string slope_stability_line(const SlopeStability& r) {
   const CriticalCircle& c = r.critical;
   return fmt::format(
       "limit equilibrium (Bishop's simplified method on circles, dry, {} in stage '{}'{}): "
-      "F = {:.3f} on the circle centred ({:.2f}, {:.2f}) m of radius {:.2f} m, sliding towards {}x: {}{}\n",
+      "F = {:.3f} on the circle centred ({:.2f}, {:.2f}) m of radius {:.2f} m, sliding towards {}{}: {}{}\n",
       r.materials.size() == 1 ? r.materials.front() + "'s strength"
                               : fmt::format("the strengths of {}", fmt::join(r.materials, ", ")),
       r.stage, r.section.empty() ? "" : ", " + r.section, c.factor, c.circle.xc, c.circle.yc, c.circle.radius,
-      c.direction > 0 ? "+" : "-",
+      c.direction > 0 ? "+" : "-", r.axis,
       c.factor < 1.0 ? fmt::format("the slope is not expected to stand: its {} {:.0f} % of the strength {} "
                                    "(the nearer 100 %, the more a slide's runout depends on the cell)",
                                    r.materials.size() == 1 ? "soil has" : "soils have", 100.0 * c.factor,

@@ -18,6 +18,7 @@ struct SlopeStability {
   std::vector<std::string> materials;  // the ground's materials that yield
   std::string note;                    // what the factor does not count (a contact in the ground)
   std::string section;                 // 3D: the section the circles lie in
+  char axis = 'x';                     // the axis the section runs along (3D: x or z)
   CriticalCircle critical;
 };
 
@@ -27,11 +28,11 @@ struct SlopeStability {
 // holds the one with the most mass there, and a material that does not yield is firm ground
 // that a slip surface may not cut.
 SlopeStability slope_stability(const Scenario& s);
-// 3D: the same on the steepest 2D section through the slope, as plane strain: the row of
-// cells along x (one cell across z) whose ground tops have the largest mean gradient along x,
-// its points taken as a 2D section (`section` says which). A check on the section only: the
-// 3D slide's sides add strength, and a slope whose fall line is not along x is not seen
-// as steep as it is.
+// 3D: the same on the steepest 2D section through the slope, as plane strain: of the rows of
+// cells along x (one cell across z) and the columns along z (one cell across x), the one whose
+// ground tops have the largest mean gradient along it, its points taken as a 2D section
+// (`section` says which, `axis` along which). A check on the section only: the 3D slide's
+// sides add strength, and a fall line oblique to both axes is seen less steep than it is.
 SlopeStability slope_stability(const Scenario3& s);
 
 // One line for `skred check`: the factor, the circle and what it means.
