@@ -115,10 +115,12 @@ double rel(double a, double b) { return std::abs(a - b) / std::abs(b); }
 // The scenarios: the column's with a layer under that surface, in 2D along the section at
 // northing 4999.75, in 3D from the raster whole (the slab: z = 5000 - northing from 0 to 0.5 m).
 // Returns the 2D and the 3D file.
+// The raster slope's height at x along its fall line (a 56 degree face between two flats).
+double raster_slope_at(double x) { return x <= 0.5 ? 3.0 : x >= 2.5 ? 0.0 : 3.0 - 1.5 * (x - 0.5); }
+
 std::pair<fs::path, fs::path> write_raster_slope(const fs::path& dir) {
-  const auto surface_at = [](double x) { return x <= 0.5 ? 3.0 : x >= 2.5 ? 0.0 : 3.0 - 1.5 * (x - 0.5); };
   test::write_asc(dir / "surface.asc", 16, 2, 999.75, 4999.25, 0.5,
-                  [&](int c, int) { return surface_at(0.5 * c); });
+                  [](int c, int) { return raster_slope_at(0.5 * c); });
   for (const bool three_d : {false, true}) {
     std::string t = column_text(three_d);
     const std::size_t shape = t.find("shape = "), end = t.find("[initial_stress]");
@@ -307,9 +309,8 @@ TEST(Column3D, RasterSlopeCheckGivesBishopsFactorOfItsSteepestSectionAsThe2DChec
 TEST(Column3D, RasterSlopeFallingAlongZIsCheckedOnItsSectionAlongZ) {
   const skred::test::TempDir dir;
   const auto [plane, slab] = write_raster_slope(dir.path());
-  const auto surface_at = [](double x) { return x <= 0.5 ? 3.0 : x >= 2.5 ? 0.0 : 3.0 - 1.5 * (x - 0.5); };
   test::write_asc(dir.path() / "surface_z.asc", 16, 4, 999.75, 4999.25, 0.5,
-                  [&](int c, int) { return surface_at(0.5 * c); });
+                  [](int c, int) { return raster_slope_at(0.5 * c); });
   std::string t = iotest::read_text(slab);
   const auto replace = [&](const std::string& a, const std::string& b) {
     const std::size_t at = t.find(a);
