@@ -15,6 +15,7 @@
 #include "scenario/initial_stress.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/schema.hpp"
+#include "scenario_error.hpp"
 
 using namespace skred;
 
@@ -70,14 +71,7 @@ std::string edit(std::string text, const std::string& from, const std::string& t
 
 Scenario parse(const std::string& text) { return parse_scenario(text, "t.toml"); }
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_any_scenario(text, "t.toml");
-  } catch (const ScenarioError& e) {
-    return e.what();
-  }
-  return "";
-}
+using skred::test::error_of;
 
 }  // namespace
 

@@ -12,6 +12,7 @@
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 #include "scenario/schema.hpp"
+#include "scenario_error.hpp"
 
 using namespace skred;
 
@@ -28,14 +29,7 @@ std::string read(const std::string& path) {
 
 const std::string kMinimal = read(kSource + "/tests/data/minimal.toml");
 
-std::string error_of(const std::string& text) {
-  try {
-    parse_any_scenario(text, "t.toml");
-  } catch (const ScenarioError& e) {
-    return e.what();
-  }
-  return "";
-}
+using skred::test::error_of;
 
 }  // namespace
 

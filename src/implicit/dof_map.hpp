@@ -113,6 +113,14 @@ class DofMap {
   bool held(std::size_t a, int c) const { return (held_[a] >> c) & 1u; }
   const SparsePattern& pattern() const { return pattern_; }
   int box_width() const { return W_; }
+  // Whether every active node's own block is in the pattern (a node no block holds has none).
+  bool every_node_coupled_to_itself() const {
+    int centre = 0;
+    for (int d = 0, pw = 1; d < D; ++d, pw *= W_) centre += (S_ - 1) * pw;
+    for (std::size_t a = 0; a < nodes_.size(); ++a)
+      if (!((mask_[a * words_ + centre / 64] >> (centre % 64)) & 1u)) return false;
+    return true;
+  }
   // Position in the values of entry (row a D + r, column b D + c) for the block coupling
   // active node a to the node at offset o from it: row_entry(a, r, o) + c.
   std::int32_t row_entry(std::size_t a, int r, int o) const {

@@ -76,6 +76,10 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   r_ = f_ext_;
   double* r = r_.data();
   timer_.time(ImplicitPhase::StressUpdate, [&] {
+    if (!settings_.at_points()) {
+      mapped_internal_forces(du, tangent, r);
+      return;
+    }
     if (!averaging()) {
 #pragma omp parallel for num_threads(state_.threads) schedule(static)
       for (std::size_t p = 0; p < n; ++p) {
@@ -195,6 +199,10 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
   std::vector<double>& values = system_.values();
   std::fill(values.begin(), values.end(), 0.0);
   double* v = values.data();
+  if (!settings_.at_points()) {
+    assemble_mapped(dt, elastic);
+    return;
+  }
   const std::size_t n = state_.points.size();
   const auto point_WT = [&](std::size_t p) {
     Mat6 WT = elastic ? elastic_tangent_[static_cast<std::size_t>(state_.points.material[p])] : tangent_[p];
@@ -235,7 +243,13 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
       }
     }
   }
-  const int centre = dofs_.pair_offset(0, 0, stencils_.K);
+  add_inertia_and_held(dt, dofs_.pair_offset(0, 0, stencils_.K), v);
+}
+
+// The diagonal's 4 m_i / dt^2 (eq. 10, dynamic) and the held rows' identity; `centre` is a
+// node's offset to itself in the pattern.
+template <int D>
+void ImplicitSolver<D>::add_inertia_and_held(double dt, int centre, double* v) const {
   const double c0 = dynamic() ? 4.0 / (dt * dt) : 0.0;
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int r = 0; r < D; ++r) {
@@ -246,7 +260,8 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
 
 #define SKRED_IMPLICIT_EQUILIBRIUM(D)                                                    \
   template double ImplicitSolver<D>::residual(const std::vector<double>&, double, bool); \
-  template void ImplicitSolver<D>::assemble(double, bool);
+  template void ImplicitSolver<D>::assemble(double, bool);                               \
+  template void ImplicitSolver<D>::add_inertia_and_held(double, int, double*) const;
 SKRED_IMPLICIT_EQUILIBRIUM(2)
 SKRED_IMPLICIT_EQUILIBRIUM(3)
 #undef SKRED_IMPLICIT_EQUILIBRIUM

@@ -32,6 +32,13 @@ void ImplicitSolver<D>::set_stage(const ImplicitSettings& settings, double dt, d
     if (m.model == Model::MohrCoulomb && m.mohr_coulomb.dilation != m.mohr_coulomb.friction &&
         settings_.iteration == ImplicitIteration::Newton)
       symmetric = false;
+  // The remedies' tangent pairs the test functions with other trial ones (mapped_stencils.hpp):
+  // symmetric only at the points (with or without W*) and recovered there.
+  if (settings_.iteration == ImplicitIteration::Newton && !settings_.at_points() &&
+      (settings_.stress_recovery == StressRecovery::Cmpm ||
+       (settings_.integration != ForceIntegration::Points &&
+        settings_.integration != ForceIntegration::ModifiedWeights)))
+    symmetric = false;
   if (!configured_ || symmetric != symmetric_) {
     symmetric_ = symmetric;
     system_.configure(settings_.linear_solver, settings_.petsc_options, symmetric_, D);

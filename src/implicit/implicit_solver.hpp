@@ -24,6 +24,7 @@
 #include "implicit/cell_boxes.hpp"
 #include "implicit/dof_map.hpp"
 #include "implicit/linear_system.hpp"
+#include "implicit/mapped_stencils.hpp"
 #include "implicit/point_stencils.hpp"
 #include "material/law_result.hpp"
 #include "shape/interpolation.hpp"
@@ -117,6 +118,19 @@ class ImplicitSolver final : public Integrator<D> {
   // The residual norms of the last step's iterations, relative to its force scale (tests:
   // Newton's quadratic convergence).
   const std::vector<double>& residual_history() const { return history_; }
+  bool node_magnitudes(std::vector<double>& k_mag, std::vector<double>& f_mag) const override;
+  // Maps the points where they are and evaluates the internal force of their stresses at du = 0
+  // without stepping (quasi-static): node_magnitudes() and node_internal_force() then describe
+  // that state (Acosta fig. 11, 20-21).
+  StepStatus evaluate_at_rest();
+  // Sets pressure k ([[pressure]] tables in order) to `value` [Pa] from now on, without a ramp:
+  // a load re-evaluated between steps from the body's position (Acosta §3.1, fig. 3).
+  void set_pressure(std::size_t k, double value) {
+    model_.pressures.at(k).pressure = value;
+    model_.pressures.at(k).ramp_time = 0.0;
+  }
+  // F_int per grid node of the last evaluation (zero at nodes without mass).
+  void node_internal_force(std::vector<Vec<D>>& f) const;
 
  private:
   bool dynamic() const { return settings_.analysis == ImplicitAnalysis::Dynamic; }
@@ -143,11 +157,20 @@ class ImplicitSolver final : public Integrator<D> {
   double residual(const std::vector<double>& du, double dt, bool tangent);
   void add_point_block(std::size_t p, const Mat6& WT, bool project, Vec<D>* g, Vec<D>* h, double* v) const;
   void add_block(std::size_t a, std::size_t b, int o, const Mat<D>& block, double* v) const;
+  void add_inertia_and_held(double dt, int centre, double* v) const;
   void assemble(double dt, bool elastic);
+  // mapped_equilibrium.cpp: Acosta's remedies (mapped_stencils.hpp)
+  void mapped_internal_forces(const std::vector<double>& du, bool tangent, double* r);
+  template <class F>
+  void mapped_point_blocks(std::size_t p, const Mat6& WT, bool acosta, F&& f) const;
+  Mat6 weighted_tangent(std::size_t p, bool elastic) const;
+  void assemble_mapped(double dt, bool elastic);
+  void assemble_by_cells(double* v);
   bool solve_step(double dt, std::string& why);
   bool within_a_cell(std::string& why) const;
   void commit_step(double dt);
   void commit_boundary_forces(double dt);
+  void store_internal_force(double dt);
   void initial_acceleration();
   void elastic_matrices();
 
@@ -165,6 +188,17 @@ class ImplicitSolver final : public Integrator<D> {
 
   // The step's map (kept through its iterations and cuts).
   PointStencils<D> stencils_;
+  MappedStencils<D> mapped_;  // with Acosta's remedies (settings_.at_points() false)
+  // Acosta's stiffness cell by cell (assemble_by_cells): per grid node the slot of the cell whose
+  // lower corner it is, and per cell its corner, lower radius and W D_g A_g per Gauss point.
+  std::vector<std::int32_t> cell_slot_;
+  std::vector<std::int64_t> cell_node_;
+  std::vector<double> cell_r0_;
+  std::vector<std::array<Mat6, MappedStencils<D>::KG>> cell_D_;
+  // The pattern of Acosta's stiffness: per mapped cell its 2^D corner nodes (mapped_cells).
+  bool cell_pattern_ = false;
+  std::vector<std::int64_t> cell_blocks_;
+  void mapped_cells(std::vector<std::int64_t>& blocks);
   int width_ = 2;  // S, nodes per axis of a point's stencil
   DofMap<D> dofs_;
   CellBoxes<D> cells_;                   // with the cell-averaged volumetric strain
@@ -182,6 +216,7 @@ class ImplicitSolver final : public Integrator<D> {
   // Newton's iterates.
   std::vector<double> du_, ddu_, r_, trial_du_;
   std::vector<double> held_force_;  // per unknown: a held component's support force (-R)
+  std::vector<double> f_int_;       // per unknown: F_int of the last converged step (eq. 7)
   double force_scale_ = 0.0;
   // The points' trial update at the current iterate.
   std::vector<Sym3> deps_, trial_stress_, trial_plastic_;

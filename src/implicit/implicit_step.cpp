@@ -63,7 +63,23 @@ StepStatus ImplicitSolver<D>::map_step() {
     for (std::size_t p = 0; p < n; ++p) inv_r_[p] = 1.0 / state_.points.x[p][0];
   }
   held_components();
-  if (averaging()) {
+  if (!settings_.at_points()) {
+    const long wide = mapped_.build(settings_.integration, settings_.stress_recovery, stencils_, g,
+                                    state_.points, volume_, inv_r_, grid_mass_, state_.threads);
+    if (wide >= 0) return {false, wide, "its stencil spreads beyond the 4 nodes per axis around its cell"};
+    // Acosta's stiffness (eq. 19-20) couples the corners of a cell only: its pattern is the
+    // cells' (as narrow as linear MPM's), unless a node with mass lies in no mapped cell.
+    cell_pattern_ = settings_.iteration != ImplicitIteration::Newton && !mapped_.cell_corner.empty();
+    if (cell_pattern_) {
+      mapped_cells(cell_blocks_);
+      dofs_.build(cell_blocks_.data(), cell_blocks_.size() / MappedStencils<D>::KG, 2, 2, g, grid_mass_,
+                  grid_held_, state_.threads);
+      cell_pattern_ = dofs_.every_node_coupled_to_itself();
+    }
+    if (!cell_pattern_)
+      dofs_.build(mapped_.box.data(), n, mapped_.width, mapped_.width, g, grid_mass_, grid_held_,
+                  state_.threads);
+  } else if (averaging()) {
     const long wide = cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads);
     if (wide >= 0)
       return {false, wide, "its stencil spreads beyond its cell's box (cell-averaged volumetric strain)"};
@@ -170,7 +186,8 @@ void ImplicitSolver<D>::held_components() {
 template <int D>
 bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
   const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
-  const bool elastic = settings_.iteration == ImplicitIteration::Elastic;
+  const bool single = settings_.iteration == ImplicitIteration::Single;
+  const bool elastic = settings_.iteration == ImplicitIteration::Elastic || single;
   history_.clear();
   external_forces(state_.clock.time + dt, f_ext_);
   du_.assign(dofs, 0.0);
@@ -253,7 +270,7 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
       why = "the out-of-balance force became non-finite";
       return false;
     }
-    if (rn <= tol || alpha * norm(ddu_) <= settings_.displacement_tolerance * norm(du_))
+    if (single || rn <= tol || alpha * norm(ddu_) <= settings_.displacement_tolerance * norm(du_))
       return within_a_cell(why);
     if (rn > 1e12 * force_scale_) break;  // diverging
   }
@@ -318,6 +335,7 @@ void ImplicitSolver<D>::commit_step(double dt) {
         if (!dofs_.held(a, c)) a_new[i] = 4.0 / (dt * dt) * du_[i] - 4.0 / dt * v_bar_[i] - a_bar_[i];
       }
   }
+  store_internal_force(dt);
   if (axi && state_.points.hoop.size() != n) state_.points.hoop.assign(n, 1.0);
   const Vec<D> g_mid = 0.5 * (gravity_at(model_.gravity, state_.clock.gravity_ramp_time,
                                          state_.clock.time - state_.clock.ramp_start) +
@@ -389,6 +407,22 @@ void ImplicitSolver<D>::commit_step(double dt) {
   commit_boundary_forces(dt);
 }
 
+// F_int of the last residual (eq. 7), for the grid frames' |F_int| (eq. 26): F_ext - R with the
+// held rows' support forces and, dynamic, the inertia of du.
+template <int D>
+void ImplicitSolver<D>::store_internal_force(double dt) {
+  const bool inertia = dynamic() && !v_bar_.empty();
+  f_int_.assign(du_.size(), 0.0);
+  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
+    for (int c = 0; c < D; ++c) {
+      const std::size_t i = a * D + c;
+      const double R = dofs_.held(a, c) ? -held_force_[i] : r_[i];
+      const double m =
+          inertia ? mass_[i] * (4.0 / (dt * dt) * du_[i] - 4.0 / dt * v_bar_[i] - a_bar_[i]) : 0.0;
+      f_int_[i] = f_ext_[i] - R - m;
+    }
+}
+
 // The prescribed velocities' forces on the material at t + dt (the sums of the supports' forces
 // -R on their driven components) and their work, trapezoidal over the step, into load_work.
 template <int D>
@@ -416,6 +450,7 @@ void ImplicitSolver<D>::commit_boundary_forces(double dt) {
   template void ImplicitSolver<D>::initial_acceleration();           \
   template void ImplicitSolver<D>::commit_step(double);              \
   template void ImplicitSolver<D>::commit_boundary_forces(double);   \
+  template void ImplicitSolver<D>::store_internal_force(double);     \
   template bool ImplicitSolver<D>::within_a_cell(std::string&) const;
 SKRED_IMPLICIT_STEP(2)
 SKRED_IMPLICIT_STEP(3)

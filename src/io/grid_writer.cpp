@@ -7,6 +7,7 @@
 #include <iterator>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/atomic_file.hpp"
@@ -112,6 +113,16 @@ void write_vtr(const std::filesystem::path& file, const GridGeometry<D>& grid, c
     mask.bytes[i] = f.mass[i] > 0.0;
   }
   data.push_back(std::move(mask));
+  const std::pair<const char*, std::span<const double>> magnitudes[] = {
+      {"stiffness_magnitude", f.stiffness_magnitude},
+      {"internal_force_magnitude", f.internal_force_magnitude}};
+  for (const auto& [name, values] : magnitudes) {
+    if (values.empty()) continue;
+    if (values.size() != n)
+      throw std::invalid_argument(
+          fmt::format("write_grid_vtr: {} nodes but {} has {} entries", n, name, values.size()));
+    data.push_back({name, 1, {}, std::vector<double>(values.begin(), values.end())});
+  }
 
   std::vector<vtk::AppendedArray> arrays;
   for (const auto* list : {&data, &coords})

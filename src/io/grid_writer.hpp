@@ -15,6 +15,9 @@ struct GridNodeFieldsOf {
   std::span<const double> mass;      // m_i = sum_p N_ip m_p
   std::span<const Vec<D>> velocity;  // v_i = sum_p N_ip m_p v_p / m_i (0 where m_i = 0)
   std::span<const Sym3> stress;      // sigma_i = sum_p N_ip m_p sigma_p / m_i (Post eq. 57)
+  // The implicit integrator's stiffness magnitude K_mag and internal force |F_int| (Acosta eq.
+  // 25-26); empty: not written.
+  std::span<const double> stiffness_magnitude = {}, internal_force_magnitude = {};
 };
 using GridNodeFields = GridNodeFieldsOf<2>;
 
@@ -23,7 +26,8 @@ using GridNodeFields = GridNodeFieldsOf<2>;
 // the cubic B-spline's Greville abscissae is kept; z = 0; Float64). Point data (Float32):
 // mass,
 // velocity (3, z = 0), stress (6, Voigt xx,yy,zz,xy,yz,xz), mean_stress_p and
-// deviatoric_stress_q of the nodal stress, and has_material (UInt8: 1 where mass > 0, 0 at an
+// deviatoric_stress_q of the nodal stress, stiffness_magnitude and internal_force_magnitude
+// when given, and has_material (UInt8: 1 where mass > 0, 0 at an
 // empty node, whose zero stress is no material's; threshold on it in ParaView to hide empty
 // nodes). Binary appended data, zlib-compressed if `compress` (vtk_appended.hpp),
 // header_type UInt64, written atomically. Throws std::invalid_argument if an array does not have

@@ -115,9 +115,13 @@ template <int D>
 void write_grid_frame(const Integrator<D>& solver, const fs::path& outdir, int frame, PvdWriter& index,
                       bool compress) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
-  write_grid_vtr(outdir / name, solver.grid(),
-                 GridNodeFieldsOf<D>{solver.node_mass(), solver.node_velocity(), solver.node_stress()},
-                 compress);
+  GridNodeFieldsOf<D> fields{solver.node_mass(), solver.node_velocity(), solver.node_stress()};
+  std::vector<double> k_mag, f_mag;
+  if (solver.node_magnitudes(k_mag, f_mag)) {
+    fields.stiffness_magnitude = k_mag;
+    fields.internal_force_magnitude = f_mag;
+  }
+  write_grid_vtr(outdir / name, solver.grid(), fields, compress);
   index.add(solver.time(), name);
 }
 

@@ -51,8 +51,11 @@ std::string integrator_summary(const Stage& st, double auto_step) {
     t += fmt::format(", time step {} s", im.time_step);
   else
     t += fmt::format(", time step {:.4g} s ({:g} x the stable explicit step)", auto_step, kAutoImplicitSteps);
-  t += fmt::format(", {} iteration, {} linear solver)", to_string(im.iteration), to_string(im.linear_solver));
-  return t;
+  t += fmt::format(", {} iteration, {} linear solver", to_string(im.iteration), to_string(im.linear_solver));
+  if (!im.at_points())
+    t += fmt::format(", integration {}, stress recovery {}", to_string(im.integration),
+                     to_string(im.stress_recovery));
+  return t + ")";
 }
 
 std::string stage_summary(const ScenarioCommon& s, const Stage& st) {

@@ -63,6 +63,7 @@ void parse_velocity_transfer(const TableReader& t, ScenarioCommon& s, bool slide
   const int volumetric =
       t.choice<int>("volumetric_strain", {{"auto", -1}, {"point", 0}, {"cell-average", 1}}, -1);
   s.volumetric_averaging = volumetric < 0 ? slide : volumetric == 1;
+  s.volumetric_by_default = volumetric < 0;
   // Selective integration of shear (Thesis §4.5; solver/selective_shear.hpp): USF's stress
   // phase only, and not beside the cell-averaged volumetric strain.
   s.centre_shear = t.choice<bool>("shear_strain", {{"point", false}, {"cell-centre", true}}, false);

@@ -144,8 +144,9 @@ void parse_implicit_settings(const TableReader& t, ImplicitSettings& im) {
   if (t.has("time_step")) im.time_step = t.number("time_step");
   if (t.has("load_steps")) im.load_steps = static_cast<int>(t.integer("load_steps"));
   if (t.has("iteration"))
-    im.iteration = t.choice<ImplicitIteration>(
-        "iteration", {{"newton", ImplicitIteration::Newton}, {"elastic", ImplicitIteration::Elastic}});
+    im.iteration = t.choice<ImplicitIteration>("iteration", {{"newton", ImplicitIteration::Newton},
+                                                             {"elastic", ImplicitIteration::Elastic},
+                                                             {"single", ImplicitIteration::Single}});
   if (t.has("residual_tolerance")) im.residual_tolerance = t.number("residual_tolerance");
   if (t.has("displacement_tolerance")) im.displacement_tolerance = t.number("displacement_tolerance");
   if (t.has("max_iterations")) im.max_iterations = static_cast<int>(t.integer("max_iterations"));
@@ -155,6 +156,16 @@ void parse_implicit_settings(const TableReader& t, ImplicitSettings& im) {
     im.linear_solver = t.choice<LinearSolverKind>(
         "linear_solver", {{"direct", LinearSolverKind::Direct}, {"iterative", LinearSolverKind::Iterative}});
   if (t.has("petsc_options")) im.petsc_options = t.string("petsc_options");
+  if (t.has("integration"))
+    im.integration = t.choice<ForceIntegration>(
+        "integration", {{"points", ForceIntegration::Points},
+                        {"modified-weights", ForceIntegration::ModifiedWeights},
+                        {"gauss-mapping", ForceIntegration::GaussMapping},
+                        {"double-mapping", ForceIntegration::DoubleMapping},
+                        {"double-mapping-gimp", ForceIntegration::DoubleMappingGimp}});
+  if (t.has("stress_recovery"))
+    im.stress_recovery = t.choice<StressRecovery>(
+        "stress_recovery", {{"points", StressRecovery::Points}, {"cmpm", StressRecovery::Cmpm}});
 }
 
 void parse_integrator(const TableReader& root, const TableReader& solver, ScenarioCommon& s) {
@@ -195,6 +206,9 @@ void check_axisymmetric(const TableReader& root, ScenarioOf<D>& s) {
 }
 
 template <int D>
+void check_remedies(const TableReader& root, ScenarioOf<D>& s);
+
+template <int D>
 void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
   const std::vector<TableReader> stage_tables = root.array_of_tables("stage");  // none: one stage
   const auto stage_implicit = [&](std::size_t k) -> std::optional<TableReader> {
@@ -223,6 +237,7 @@ void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
   parse_pressures(root, s, explicit_stage);
   parse_prescribed(root, s, explicit_stage);
   if (!implicit_stage) return;
+  check_remedies(root, s);
 
   // What the implicit integrator does not support (yet).
   const auto why = [&](const std::string& what) {
@@ -275,6 +290,65 @@ void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
   }
 }
 
+// Acosta's remedies where the paper defines them (§5.2-5.5): W*, GM and DM over the linear
+// shape functions, DM-G over GIMP's support domains, CMPM beside either; neither with the
+// cell-averaged volumetric strain. The error names the table that chose it.
+template <int D>
+void check_remedies(const TableReader& root, ScenarioOf<D>& s) {
+  const std::vector<TableReader> stage_tables = root.array_of_tables("stage");
+  for (std::size_t k = 0; k < s.stages.size(); ++k) {
+    const Stage& st = s.stages[k];
+    if (st.integrator != IntegratorKind::Implicit) continue;
+    const auto where = [&](const char* key) -> TableReader {
+      if (k < stage_tables.size())
+        if (const auto t = stage_tables[k].table("implicit", false); t && t->has(key)) return *t;
+      return *root.table("implicit", true);
+    };
+    const ForceIntegration f = st.implicit.integration;
+    // The mapped integrations take Acosta's load stepping unless the scenario chooses an
+    // iteration: iterated to equilibrium, the mapped force admits oscillating point stresses
+    // (docs/studies/2026-12-03-acosta-remedies.md).
+    const bool mapped_force = f == ForceIntegration::GaussMapping || f == ForceIntegration::DoubleMapping ||
+                              f == ForceIntegration::DoubleMappingGimp;
+    const bool stage_sets = k < stage_tables.size() && stage_tables[k].table("implicit", false) &&
+                            stage_tables[k].table("implicit", false)->has("iteration");
+    const auto top = root.table("implicit", false);
+    if (mapped_force && !stage_sets && !(top && top->has("iteration")))
+      s.stages[k].implicit.iteration = ImplicitIteration::Single;
+    const bool linear_only = f == ForceIntegration::ModifiedWeights || f == ForceIntegration::GaussMapping ||
+                             f == ForceIntegration::DoubleMapping;
+    if (linear_only && s.interpolation != Interpolation::Linear)
+      where("integration")
+          .fail_at("integration", fmt::format("integration = \"{}\" maps over the linear shape functions "
+                                              "(Acosta §5.2-5.3): set solver.interpolation = \"linear\" (it "
+                                              "is \"{}\"), or take \"double-mapping-gimp\" with \"gimp\"",
+                                              to_string(f), to_string(s.interpolation)));
+    if (f == ForceIntegration::DoubleMappingGimp && s.interpolation != Interpolation::Gimp)
+      where("integration")
+          .fail_at("integration", fmt::format("integration = \"double-mapping-gimp\" maps over GIMP's "
+                                              "support domains (Acosta §5.4): set solver.interpolation = "
+                                              "\"gimp\" (it is \"{}\")",
+                                              to_string(s.interpolation)));
+    if (st.implicit.stress_recovery == StressRecovery::Cmpm && s.interpolation != Interpolation::Linear &&
+        s.interpolation != Interpolation::Gimp)
+      where("stress_recovery")
+          .fail_at("stress_recovery",
+                   fmt::format("stress_recovery = \"cmpm\" (Acosta §5.5) is defined with the "
+                               "\"linear\" and \"gimp\" interpolations, not \"{}\"",
+                               to_string(s.interpolation)));
+    if (!st.implicit.at_points() && s.volumetric_averaging && s.volumetric_by_default) {
+      s.volumetric_averaging = false;  // "auto": the remedies integrate at the points' strains
+    } else if (!st.implicit.at_points() && s.volumetric_averaging) {
+      const char* key = f != ForceIntegration::Points ? "integration" : "stress_recovery";
+      where(key).fail_at(key,
+                         "Acosta's remedies are not available with the cell-averaged volumetric strain "
+                         "(solver.volumetric_strain = \"cell-average\")");
+    }
+  }
+}
+
+template void check_remedies<2>(const TableReader&, Scenario&);
+template void check_remedies<3>(const TableReader&, Scenario3&);
 template void check_integrators<2>(const TableReader&, Scenario&);
 template void check_integrators<3>(const TableReader&, Scenario3&);
 

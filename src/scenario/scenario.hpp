@@ -234,12 +234,13 @@ struct ScenarioCommon {
   // dilated continua too.
   std::vector<ContactPair> contacts;
   VelocityTransfer velocity_transfer = VelocityTransfer::Flip;  // solver.velocity_transfer
-  bool transfer_by_default = false;   // velocity_transfer "auto" (absent): picked by the materials
-  bool hyperelastic = false;          // solver.elastic_update = "hyperelastic"
-  int xpic_order = 2;                 // solver.xpic_order (XPIC(m))
-  double xpic_period = 0.0;           // solver.xpic_period, in crossing times h / (c + v0); 0: every step
-  bool volumetric_averaging = false;  // solver.volumetric_strain = "cell-average"
-  bool centre_shear = false;          // solver.shear_strain = "cell-centre" (Thesis §4.5)
+  bool transfer_by_default = false;    // velocity_transfer "auto" (absent): picked by the materials
+  bool hyperelastic = false;           // solver.elastic_update = "hyperelastic"
+  int xpic_order = 2;                  // solver.xpic_order (XPIC(m))
+  double xpic_period = 0.0;            // solver.xpic_period, in crossing times h / (c + v0); 0: every step
+  bool volumetric_averaging = false;   // solver.volumetric_strain = "cell-average"
+  bool volumetric_by_default = false;  // volumetric_strain "auto" (absent): picked by the materials
+  bool centre_shear = false;           // solver.shear_strain = "cell-centre" (Thesis §4.5)
   // solver.integrator: the stages' integrator unless a stage sets its own; [implicit]: the
   // implicit integrator's settings unless a stage's [stage.implicit] overrides them.
   IntegratorKind integrator = IntegratorKind::Explicit;

@@ -252,10 +252,11 @@ void add_run_sections(std::vector<Section>& s) {
            {.name = "iteration",
             .type = Type::Choice,
             .def = derived("\"newton\""),
-            .choices = "newton|elastic",
+            .choices = "newton|elastic|single",
             .doc = "\"newton\": Newton-Raphson with the materials' consistent tangent; \"elastic\": the "
                    "elastic matrix, factorised once per step, the out-of-balance force re-applied until it "
-                   "vanishes (Acosta §2)"},
+                   "vanishes (Acosta §2); \"single\": Acosta's load stepping, one solve with the elastic "
+                   "matrix per step, the remaining out-of-balance force carried into the next step"},
            {.name = "residual_tolerance",
             .unit = "-",
             .def = value(1e-8),
@@ -293,6 +294,21 @@ void add_run_sections(std::vector<Section>& s) {
             .type = Type::String,
             .def = derived("\"\""),
             .doc = "extra PETSc options, e.g. \"-ksp_type gmres\", for experts"},
+           {.name = "integration",
+            .type = Type::Choice,
+            .def = derived("\"points\""),
+            .choices = "points|modified-weights|gauss-mapping|double-mapping|double-mapping-gimp",
+            .doc = "how the stiffness and internal force are integrated (Acosta §5.2-5.4): at the points; "
+                   "with W* = W omp / cmp; at the cells' Gauss points with the points' stresses mapped "
+                   "there by the linear shape functions (GM), and with W* (DM); or by the local GIMP "
+                   "functions (DM-G). W*, GM and DM need interpolation = \"linear\", DM-G \"gimp\""},
+           {.name = "stress_recovery",
+            .type = Type::Choice,
+            .def = derived("\"points\""),
+            .choices = "points|cmpm",
+            .doc = "how a point's strain increment is recovered: with the kernel's gradients at the point, "
+                   "or with the composite material point method's cubic Lagrange functions over its cell "
+                   "and neighbours (CMPM, Acosta §5.5); \"linear\" or \"gimp\" interpolation"},
        }});
   s.push_back(
       {"stage",

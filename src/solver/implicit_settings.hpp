@@ -36,11 +36,13 @@ inline const char* to_string(ImplicitAnalysis a) {
 
 // The matrix each Newton iteration solves with: the consistent (algorithmic) tangent of the
 // materials (Newton-Raphson), or Acosta's own iteration (§2): the elastic matrix D_p, assembled and
-// factorised once per step, with the out-of-balance force re-applied until it vanishes.
-enum class ImplicitIteration { Newton, Elastic };
+// factorised once per step, with the out-of-balance force re-applied until it vanishes; or
+// Acosta's load stepping, one solve with that matrix per step, the step's remaining
+// out-of-balance force carried into the next (single).
+enum class ImplicitIteration { Newton, Elastic, Single };
 
 inline const char* to_string(ImplicitIteration i) {
-  return i == ImplicitIteration::Elastic ? "elastic" : "newton";
+  return i == ImplicitIteration::Single ? "single" : i == ImplicitIteration::Elastic ? "elastic" : "newton";
 }
 
 // How each linear system is solved: a direct factorisation (Cholesky where the tangent is
@@ -50,6 +52,28 @@ enum class LinearSolverKind { Direct, Iterative };
 inline const char* to_string(LinearSolverKind k) {
   return k == LinearSolverKind::Iterative ? "iterative" : "direct";
 }
+
+// How the stiffness and the internal force are integrated (Acosta §5.2-5.4): at the points
+// (eq. 5, 7: regular MPM, or GIMP with the GIMP kernel), at the points with the modified weight
+// W* = W omp / cmp (eq. 15), or at each cell's Gauss points with the points' stresses and
+// tangents mapped there through the cell's nodes (eq. 16-19): by the linear shape functions
+// (Gauss mapping, GM), by them with W* (double mapping, DM), or by the local GIMP functions
+// S_ip* of the points' support domains (DM-G, eq. 20). W*, GM and DM need the linear kernel,
+// DM-G the GIMP one (src/implicit/mapped_stencils.hpp).
+enum class ForceIntegration { Points, ModifiedWeights, GaussMapping, DoubleMapping, DoubleMappingGimp };
+
+inline const char* to_string(ForceIntegration f) {
+  constexpr const char* names[] = {"points", "modified-weights", "gauss-mapping", "double-mapping",
+                                   "double-mapping-gimp"};
+  return names[static_cast<int>(f)];
+}
+
+// How a point's strain increment is recovered from the nodal displacements: with the kernel's
+// gradients at the point (eq. 11), or with the composite material point method's Lagrange
+// functions over the point's cell and its neighbours (CMPM, Acosta §5.5, eq. 21-24).
+enum class StressRecovery { Points, Cmpm };
+
+inline const char* to_string(StressRecovery r) { return r == StressRecovery::Cmpm ? "cmpm" : "points"; }
 
 // The implicit integrator's settings ([implicit], overridden per stage by [stage.implicit]).
 struct ImplicitSettings {
@@ -70,6 +94,12 @@ struct ImplicitSettings {
   int max_cuts = 8;         // a step that does not converge is halved at most this often
   LinearSolverKind linear_solver = LinearSolverKind::Direct;
   std::string petsc_options;  // extra PETSc options ("-ksp_type gmres ..."), for experts
+  ForceIntegration integration = ForceIntegration::Points;
+  StressRecovery stress_recovery = StressRecovery::Points;
+  // Neither remedy: the points integrate and recover with the kernel (the default path).
+  bool at_points() const {
+    return integration == ForceIntegration::Points && stress_recovery == StressRecovery::Points;
+  }
 };
 
 // A pressure on a body's face that moves with the material (the hollow cylinder's inner wall,

@@ -56,6 +56,13 @@ class Integrator {
   // (phase, seconds) of every phase that ran, in step order (summary.json).
   virtual std::vector<std::pair<std::string, double>> phase_seconds() const = 0;
   virtual StepReport last_step() const { return {}; }
+  // Per grid node, the stiffness magnitude K_mag and the internal force's |F_int| of the last
+  // step (Acosta eq. 25-26; the implicit integrator); false when the integrator has none.
+  virtual bool node_magnitudes(std::vector<double>& k_mag, std::vector<double>& f_mag) const {
+    (void)k_mag;
+    (void)f_mag;
+    return false;
+  }
 
   // Read from the shared state.
   double time() const { return state().clock.time; }
