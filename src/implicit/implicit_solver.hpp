@@ -149,6 +149,7 @@ class ImplicitSolver final : public Integrator<D> {
   // implicit_step.cpp (and equilibrium.cpp: point_strain to assemble)
   StepStatus map_step();
   void held_components();
+  void lumped_masses();
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
   void pressure_forces(double t, std::vector<double>& f) const;  // loads.cpp
   Sym3 point_strain(std::size_t p, const std::vector<double>& du) const;
@@ -204,6 +205,7 @@ class ImplicitSolver final : public Integrator<D> {
   CellBoxes<D> cells_;                   // with the cell-averaged volumetric strain
   std::vector<double> grid_mass_;        // per grid node (scratch of map_step)
   std::vector<std::uint8_t> grid_held_;  // per grid node
+  std::vector<std::uint8_t> sliver_;     // per grid node: its mass a sliver (map_step)
   // The prescribed velocities: per grid node (scratch) and per active node, the table's index
   // (-1: none) and the bits of the components it drives (not held by a wall).
   std::vector<std::int8_t> grid_prescribed_, prescribed_id_;

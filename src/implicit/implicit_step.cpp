@@ -27,6 +27,21 @@ double norm(const std::vector<double>& v) {
 
 }  // namespace
 
+// m_i = sum_p N_ip m_p (eq. 43) on the step's grid.
+template <int D>
+void ImplicitSolver<D>::lumped_masses() {
+  const std::size_t n = state_.points.size();
+  const int K = stencils_.K;
+  grid_mass_.assign(state_.grid.node_count(), 0.0);
+  double* gm = grid_mass_.data();
+#pragma omp parallel for num_threads(state_.threads) schedule(static)
+  for (std::size_t p = 0; p < n; ++p)
+    for (int k = 0; k < K; ++k) {
+#pragma omp atomic
+      gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * state_.points.mass[p];
+    }
+}
+
 // The step's map (Acosta §2.1, eq. 43-44): the points' weights at x^k, the lumped masses
 // m_i = sum_p N_ip m_p, the velocities v_i = sum_p N_ip m_p v_p / m_i and accelerations a_i
 // likewise, the unknowns (every node with mass, D each) and the matrix pattern.
@@ -40,21 +55,28 @@ StepStatus ImplicitSolver<D>::map_step() {
   });
   if (bad >= 0) return {false, bad, "a point left the grid"};
   const std::size_t n = state_.points.size();
-  const int K = stencils_.K;
-  grid_mass_.assign(g.node_count(), 0.0);
-  double* gm = grid_mass_.data();
-#pragma omp parallel for num_threads(state_.threads) schedule(static)
+  lumped_masses();
+  // A node with a sliver of mass (below min_node_fill of a full node's, rho h^D; axisymmetric,
+  // per radian, times r_i, h / 6 on the axis), which a point's domain grown with det F or moved
+  // across a cell lends it, hands its weights to its neighbours (point_stencils.hpp).
+  double rho_max = 0.0;
   for (std::size_t p = 0; p < n; ++p)
-    for (int k = 0; k < K; ++k) {
-#pragma omp atomic
-      gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * state_.points.mass[p];
-    }
-  // A node whose mass is round-off (a point's support ends on it) is no unknown: its equation
-  // would balance round-off forces and pin the stress of the points around it.
-  double m_max = 0.0;
-  for (std::size_t p = 0; p < n; ++p) m_max = std::max(m_max, state_.points.mass[p]);
-  for (double& m : grid_mass_)
-    if (m < 1e-10 * m_max) m = 0.0;
+    rho_max = std::max(rho_max, state_.points.mass[p] / state_.points.volume(p));
+  const double m_min = settings_.min_node_fill * rho_max * std::pow(g.h, D);
+  sliver_.assign(g.node_count(), 0);
+  bool any = false;
+  for (std::size_t i = 0; i < grid_mass_.size(); ++i) {
+    const double r = axisymmetric() ? std::max(g.node_position(i)[0], g.h / 6.0) : 1.0;
+    sliver_[i] = grid_mass_[i] > 0.0 && grid_mass_[i] < m_min * r;
+    any = any || sliver_[i];
+  }
+  if (any) {
+    stencils_.aggregate_slivers(g, state_.points, sliver_, state_.threads);
+    lumped_masses();
+    // What is left on a sliver (a point whose nodes are all slivers) is no unknown.
+    for (std::size_t i = 0; i < grid_mass_.size(); ++i)
+      if (sliver_[i]) grid_mass_[i] = 0.0;
+  }
   volume_.resize(n);
   for (std::size_t p = 0; p < n; ++p) volume_[p] = state_.points.volume(p);
   inv_r_.clear();
@@ -115,6 +137,7 @@ StepStatus ImplicitSolver<D>::map_step() {
   v_bar_.assign(dofs, 0.0);
   a_bar_.assign(dofs, 0.0);
   double *vb = v_bar_.data(), *ab = a_bar_.data();
+  const int K = stencils_.K;
 #pragma omp parallel for num_threads(state_.threads) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {

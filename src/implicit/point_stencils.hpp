@@ -5,6 +5,7 @@
 #include <omp.h>
 
 #include <climits>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -56,6 +57,39 @@ struct PointStencils {
       }
     }
     return bad == LONG_MAX ? -1 : bad;
+  }
+
+  // Hands the weights of every sliver node (sliver[i] != 0: a sliver of a point's domain reaches
+  // it) to the node one step nearer the point along each axis where it lies half a cell or more
+  // away, and on until a node that is no sliver: a sliver's force is of the order of its width
+  // e, its mass and stiffness of e^2, and as an unknown it would run off by 1 / e. The point's
+  // weights still sum to one and its gradients to zero (a rigid motion strains nothing), as in
+  // the cell aggregation of unfitted finite elements. A point all of whose nodes are slivers
+  // keeps them.
+  void aggregate_slivers(const GridGeometry<D>& g, const Particles<D>& P,
+                         const std::vector<std::uint8_t>& sliver, int threads) {
+    const std::size_t n = size();
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t p = 0; p < n; ++p)
+      for (int k = 0; k < K; ++k) {
+        const std::size_t e = p * K + static_cast<std::size_t>(k);
+        std::int64_t to = node[e];
+        if (!sliver[static_cast<std::size_t>(to)] || N[e] == 0.0) continue;
+        for (int hop = 0; hop < D && sliver[static_cast<std::size_t>(to)]; ++hop) {
+          const Vec<D> d = g.node_position(static_cast<std::size_t>(to)) - P.x[p];
+          for (int a = 0; a < D; ++a)
+            if (std::abs(d[a]) >= 0.5 * g.h)
+              to += (d[a] > 0.0 ? -1 : 1) * static_cast<std::int64_t>(g.stride(a));
+        }
+        int j = -1;
+        for (int m = 0; m < K && j < 0; ++m)
+          if (node[p * K + static_cast<std::size_t>(m)] == to && !sliver[static_cast<std::size_t>(to)]) j = m;
+        if (j < 0) continue;
+        N[p * K + static_cast<std::size_t>(j)] += N[e];
+        dN[p * K + static_cast<std::size_t>(j)] += dN[e];
+        N[e] = 0.0;
+        dN[e].setZero();
+      }
   }
 };
 

@@ -256,7 +256,8 @@ void add_run_sections(std::vector<Section>& s) {
             .doc = "\"newton\": Newton-Raphson with the materials' consistent tangent; \"elastic\": the "
                    "elastic matrix, factorised once per step, the out-of-balance force re-applied until it "
                    "vanishes (Acosta §2); \"single\": Acosta's load stepping, one solve with the elastic "
-                   "matrix per step, the remaining out-of-balance force carried into the next step"},
+                   "matrix per step, the remaining out-of-balance force carried into the next step (the "
+                   "default of a Gauss-mapped integration in a stage whose materials are all elastic)"},
            {.name = "residual_tolerance",
             .unit = "-",
             .def = value(1e-8),
@@ -283,6 +284,14 @@ void add_run_sections(std::vector<Section>& s) {
             .def = value(8),
             .range = Range::closed(0, 30),
             .doc = "a step that does not converge is halved at most this often"},
+           {.name = "min_node_fill",
+            .unit = "-",
+            .def = value(1e-4),
+            .range = Range{0.0, 1.0, true, true},
+            .doc = "a node whose mass is below this share of a full node's (the densest material's rho h^D) "
+                   "is a sliver: it hands its weights to its neighbour towards each point, since a sliver "
+                   "of width e carries a force of order e against a mass and stiffness of order e^2 and "
+                   "would run off"},
            {.name = "linear_solver",
             .type = Type::Choice,
             .def = derived("\"direct\""),

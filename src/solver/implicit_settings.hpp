@@ -92,6 +92,9 @@ struct ImplicitSettings {
   int max_iterations = 25;  // Newton iterations per step before it is cut
   bool line_search = true;  // backtracking line search on the residual (PETSc's "bt")
   int max_cuts = 8;         // a step that does not converge is halved at most this often
+  // A node whose mass is below this share of a full node's, rho h^D, is a sliver: its weights
+  // go to its neighbours (PointStencils::aggregate_slivers).
+  double min_node_fill = 1e-4;
   LinearSolverKind linear_solver = LinearSolverKind::Direct;
   std::string petsc_options;  // extra PETSc options ("-ksp_type gmres ..."), for experts
   ForceIntegration integration = ForceIntegration::Points;
