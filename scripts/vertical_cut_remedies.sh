@@ -3,7 +3,8 @@
 # DM-GC under Newton, a frame per step; then the p-q paths of points A, B, C with their
 # oscillation (scripts/pq_paths.py) and the slip circle against DM-GC's bands.
 # Study: docs/studies/2026-12-03-vertical-cut-slivers.md. About 3 min on one thread.
-#   scripts/vertical_cut_remedies.sh [build/skred] [OUTDIR]
+#   [DT=0.01] [THREADS=1] scripts/vertical_cut_remedies.sh [build/skred] [OUTDIR]
+# DT sets the implicit time step (default: 10 times the explicit stable step, 0.035 s).
 set -euo pipefail
 skred=${1:-build/skred}
 out=${2:-out/vertical_cut_remedies}
@@ -13,7 +14,7 @@ mkdir -p "$out"
 variant() {  # name, interpolation, [solver] lines, [implicit] lines
   sed -e "s/^interpolation = \"gimp\"/interpolation = \"$2\"/" \
       -e "s/^integrator = \"implicit\"/integrator = \"implicit\"\n$3/" \
-      -e "s/^analysis = \"dynamic\"/analysis = \"dynamic\"\n$4/" \
+      -e "s/^analysis = \"dynamic\"/analysis = \"dynamic\"\n${DT:+time_step = $DT\\n}$4/" \
       -e 's/^interval = 0.05$/interval = 0.005/' "$example" > "$out/$1.toml"
   rm -rf "${out:?}/$1"
   "$skred" run "$out/$1.toml" -o "$out/$1" --threads "${THREADS:-1}" | tail -1
