@@ -8,6 +8,42 @@
 namespace skred {
 namespace {
 
+// The sub-cell centres q = origin + (i + 1/2) h/n turned by the body's lattice_rotation about its
+// lattice_centre c, x = c + R (q - c) (Acosta §6, fig. 19), that lie inside the shape, the grid and
+// no later body, lattice rows in order (i fastest). Stops early when f returns false.
+template <class Claimed, class F>
+void for_each_turned_point(const Scenario& s, const Body& body, const ShapeBox<2>& box,
+                           Claimed&& claimed_later, F&& f) {
+  const double sub = s.cell_size / body.particles_per_cell, a = body.lattice_rotation;
+  const double cs = std::cos(a), sn = std::sin(a);
+  const Vec<2> c = body.lattice_centre;
+  const auto turn = [&](const Vec<2>& q, double sign) {  // c + R(sign a)(q - c)
+    const Vec<2> d = q - c;
+    return Vec<2>(c[0] + cs * d[0] - sign * sn * d[1], c[1] + sign * sn * d[0] + cs * d[1]);
+  };
+  // The lattice indices whose points can reach the shape's box: its corners turned back.
+  double lo[2] = {1e300, 1e300}, hi[2] = {-1e300, -1e300};
+  for (int k = 0; k < 4; ++k) {
+    const Vec<2> q = turn(Vec<2>(k & 1 ? box.hi[0] : box.lo[0], k & 2 ? box.hi[1] : box.lo[1]), -1.0);
+    for (int d = 0; d < 2; ++d) lo[d] = std::min(lo[d], q[d]), hi[d] = std::max(hi[d], q[d]);
+  }
+  long first[2], last[2];
+  for (int d = 0; d < 2; ++d) {
+    first[d] = static_cast<long>(std::floor((lo[d] - s.origin[d]) / sub)) - 1;
+    last[d] = static_cast<long>(std::ceil((hi[d] - s.origin[d]) / sub)) + 1;
+  }
+  Vec<2> top = s.origin;
+  for (int d = 0; d < 2; ++d) top[d] += s.cells[static_cast<std::size_t>(d)] * s.cell_size;
+  for (long j = first[1]; j <= last[1]; ++j)
+    for (long i = first[0]; i <= last[0]; ++i) {
+      const Vec<2> q(s.origin[0] + (static_cast<double>(i) + 0.5) * sub,
+                     s.origin[1] + (static_cast<double>(j) + 0.5) * sub);
+      const Vec<2> x = turn(q, 1.0);
+      if ((x - s.origin).minCoeff() < 0.0 || (x - top).maxCoeff() >= 0.0) continue;  // off the grid
+      if (shape_contains(body.shape, x) && !claimed_later(x) && !f(x)) return;
+    }
+}
+
 // Calls f(point) for every sub-cell centre of the body's bounding-box cells that lies inside
 // the shape, cells in row-major order (x fastest, then y, then z), then the sub-cells of a
 // cell in the same order. Stops early when f returns false.
@@ -38,6 +74,8 @@ void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
     lo[d] = static_cast<int>(std::max(a, 0.0));
     hi[d] = static_cast<int>(std::min(b, cells - 1.0));
   }
+  if constexpr (D == 2)
+    if (body.lattice_rotation != 0.0) return for_each_turned_point(s, body, box, claimed_later, f);
   // Cell index c and sub-cell index q per axis, the lowest axis fastest in both.
   const int k_lo = D == 3 ? lo[D - 1] : 0, k_hi = D == 3 ? hi[D - 1] : 0;
   const int nz = D == 3 ? n : 1;

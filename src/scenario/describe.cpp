@@ -171,6 +171,9 @@ std::string describe(const ScenarioOf<D>& s) {
                      D == 3 ? fmt::format("{0}x{0}x{0}", b.particles_per_cell)
                             : fmt::format("{0}x{0}", b.particles_per_cell),
                      vec(b.velocity), b.rigid ? ", rigid" : ""));
+    if (b.lattice_rotation != 0.0)  // Acosta §6, fig. 19
+      line(fmt::format("    its points on a lattice turned {:.4g} deg about {} m",
+                       b.lattice_rotation * 180.0 / M_PI, vec(b.lattice_centre)));
   }
   for (const ContactPair& c : s.contacts)  // Paper III §C.2.7
     line(fmt::format("contact: {} - {}, friction {}", s.bodies[static_cast<std::size_t>(c.a)].name,

@@ -124,6 +124,20 @@ void parse_grid(const TableReader& root, ScenarioOf<D>& s) {
   }
 }
 
+// A body's point lattice turned about a centre (2D; Acosta §6, fig. 19).
+template <int D>
+void parse_lattice(const TableReader& t, const ScenarioOf<D>& s, BodyOf<D>& b) {
+  if (!t.has("lattice_rotation") && !t.has("lattice_centre")) return;
+  if constexpr (D == 3) {
+    t.fail_at(t.has("lattice_rotation") ? "lattice_rotation" : "lattice_centre",
+              "a turned point lattice is 2D only");
+  } else {
+    if (!t.has("lattice_rotation")) t.fail_at("lattice_centre", "needs lattice_rotation");
+    b.lattice_rotation = t.number("lattice_rotation") * M_PI / 180.0;
+    b.lattice_centre = t.vec_or<D>("lattice_centre", s.origin);
+  }
+}
+
 template <int D>
 void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
   const auto tables = root.array_of_tables("body");
@@ -139,6 +153,7 @@ void parse_bodies(const TableReader& root, ScenarioOf<D>& s) {
     b.material = material_index(t, "material", s);
     b.particles_per_cell = static_cast<int>(t.integer("particles_per_cell"));
     b.velocity = t.vec_or<D>("velocity", Vec<D>::Zero());
+    parse_lattice(t, s, b);
     b.split = t.boolean_or("split", false);
     b.rigid = t.boolean_or("rigid", false);  // a contact partner with the constant `velocity`
     if (const auto vs = t.table("velocity_sine", false)) {

@@ -106,8 +106,12 @@ template <int D>
 struct BodyOf {
   std::string name;
   ShapeOf<D> shape;
-  int material = 0;                      // index into Scenario::materials
-  int particles_per_cell = 2;            // n: n^D material points per grid cell
+  int material = 0;            // index into Scenario::materials
+  int particles_per_cell = 2;  // n: n^D material points per grid cell
+  // 2D: the lattice of sub-cell centres turned by this angle [rad] about `lattice_centre`
+  // (Acosta §6's rotated field of points, fig. 19); the points' domains stay grid-aligned.
+  double lattice_rotation = 0.0;
+  Vec<D> lattice_centre = Vec<D>::Zero();
   Vec<D> velocity = Vec<D>::Zero();      // initial velocity
   SineVelocityOf<D> velocity_sine = {};  // added to `velocity`
   bool split = false;                    // its points split when they deform too much (Thesis §3.4)
