@@ -13,7 +13,10 @@ largest displacement). The oscillation of a path is the RMS of its second differ
 sqrt(mean((p[k+1] - 2 p[k] + p[k-1])^2 + (q ...)^2)) in kPa, over the path resampled linearly
 at a common interval (--sample, default 0.02 s; runs whose steps were cut write more frames): a
 smooth path, rising or falling, scores little; a path that zig-zags from step to step scores its
-zig-zag. Write a frame every step (output interval below the time step).
+zig-zag. It is given over the whole path and over the large-deformation window from --after
+(0.15 s: the toe has moved 0.1 m), apart from the start, where the release of the cut rings the
+same in every run before any point crosses a cell. Write a frame every step (output interval
+below the time step).
 """
 import argparse
 import glob
@@ -59,7 +62,8 @@ def choose_points(run, height, toe):
     first, last = run[0], run[-1]
     x0 = first["x"]
     a = int(np.argmin(np.hypot(x0[:, 0] - toe[0], x0[:, 1] - toe[1])))
-    row = np.where(np.abs(x0[:, 1] - 0.5 * height) < 0.03)[0]
+    dy = np.abs(x0[:, 1] - 0.5 * height)
+    row = np.where(dy < dy.min() + 1e-6)[0]  # the row of points nearest mid-height
     b = int(row[np.argmax(last["eps"][row])])
     moved = np.linalg.norm(last["u"], axis=1)
     block = moved > 0.5 * moved.max()
@@ -68,8 +72,8 @@ def choose_points(run, height, toe):
     return {"A": a, "B": b, "C": c}
 
 
-def oscillation(t, p, q, dt):
-    ts = np.arange(t[0], t[-1] + 1e-9, dt)
+def oscillation(t, p, q, dt, start=None):
+    ts = np.arange(t[0] if start is None else start, t[-1] + 1e-9, dt)
     if len(ts) < 3:
         return float("nan")
     p, q = np.interp(ts, t, p), np.interp(ts, t, q)
@@ -85,6 +89,8 @@ def main():
     ap.add_argument("--toe", type=float, nargs=2, default=[3.0, 0.0])
     ap.add_argument("--cohesion", type=float, default=12000.0, help="peak cohesion c_p (Pa)")
     ap.add_argument("--sample", type=float, default=0.02, help="resampling interval of the paths (s)")
+    ap.add_argument("--after", type=float, default=0.15,
+                    help="start of the large-deformation window (s), measured apart from the whole path")
     ap.add_argument("--png")
     ap.add_argument("--json")
     args = ap.parse_args()
@@ -98,14 +104,16 @@ def main():
             t = np.array([f["t"] for f in run])
             p = np.array([f["p"][i] for f in run])
             q = np.array([f["q"][i] for f in run])
-            table[label][name] = {"oscillation_kPa": oscillation(t, p, q, args.sample), "t": t.tolist(),
-                                  "p": p.tolist(), "q": q.tolist()}
+            table[label][name] = {"oscillation_kPa": oscillation(t, p, q, args.sample),
+                                  "late_oscillation_kPa": oscillation(t, p, q, args.sample, args.after),
+                                  "t": t.tolist(), "p": p.tolist(), "q": q.tolist()}
     x0 = runs[0][0]["x"]
     print("points (start):", ", ".join(f"{n} ({x0[i][0]:.3f}, {x0[i][1]:.3f})" for n, i in chosen.items()))
-    print("oscillation (RMS second difference of p and q over the frames, kPa):")
-    print("run".ljust(12) + "".join(n.rjust(10) for n in chosen))
+    print(f"oscillation (RMS second difference of p and q, kPa), the whole path / from t = {args.after} s:")
+    print("run".ljust(12) + "".join(n.rjust(15) for n in chosen))
     for label in labels:
-        print(label.ljust(12) + "".join(f"{table[label][n]['oscillation_kPa']:10.2f}" for n in chosen))
+        print(label.ljust(12) + "".join(
+            f"{table[label][n]['oscillation_kPa']:7.2f} / {table[label][n]['late_oscillation_kPa']:5.2f}" for n in chosen))
     if args.json:
         with open(args.json, "w") as f:
             json.dump({"points": {n: [float(x0[i][0]), float(x0[i][1])] for n, i in chosen.items()},
@@ -120,7 +128,7 @@ def main():
             for label in labels:
                 t = table[label][name]
                 ax.plot(np.array(t["p"]) / 1e3, np.array(t["q"]) / 1e3, ".-", lw=1, ms=3,
-                        label=f"{label} ({t['oscillation_kPa']:.1f} kPa)")
+                        label=f"{label} ({t['oscillation_kPa']:.1f} / {t['late_oscillation_kPa']:.1f} kPa)")
             ax.axhline(q_yield, color="k", ls="--", lw=0.8, label="F_VM at c_p")
             ax.set_title(f"point {name}")
             ax.set_xlabel("p (kPa)")

@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
 # The vertical cut of Acosta §3.2 (examples/vertical_cut_implicit.toml) with regular MPM, GIMP and
 # DM-GC under Newton, a frame per step; then the p-q paths of points A, B, C with their
-# oscillation (scripts/pq_paths.py) and the slip circle against DM-GC's bands.
-# Study: docs/studies/2026-12-03-vertical-cut-slivers.md. About 3 min on one thread.
+# oscillation (scripts/pq_paths.py), the slip circle against DM-GC's bands, and fig. 26-29: K_mag,
+# |F_int|, q and p of MPM and DM-GC as the toe moves (scripts/vertical_cut_fields.py).
+# Studies: docs/studies/2026-12-03-vertical-cut-slivers.md, 2026-12-04-vertical-cut-fields.md.
+# About 3 min on one thread at the default step, 1 min with DT=0.01.
 #   [DT=0.01] [THREADS=1] scripts/vertical_cut_remedies.sh [build/skred] [OUTDIR]
 # DT sets the implicit time step (default: 10 times the explicit stable step, 0.035 s).
 set -euo pipefail
@@ -25,3 +27,5 @@ variant dmgc gimp '' 'integration = "double-mapping-gimp"\nstress_recovery = "cm
 /usr/bin/python3 "$here/scripts/pq_paths.py" "$out/mpm" "$out/gimp" "$out/dmgc" --labels MPM GIMP DM-GC \
   --png "$out/pq_paths.png"
 "$skred" render "$out/dmgc" --field plastic_shear_strain --slip-circle --range 0 1 -o "$out/dmgc_slip_circle.png"
+/usr/bin/python3 "$here/scripts/vertical_cut_fields.py" "$out/mpm" "$out/dmgc" --png-grid "$out/grid_fields.png" \
+  --png-stress "$out/stress_fields.png"
