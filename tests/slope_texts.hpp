@@ -10,6 +10,15 @@
 
 namespace skred::test {
 
+// Replaces the first `from` in `text` (an example's, named `source`) by `to`; throws when the
+// example no longer holds `from`.
+inline void replace_once(std::string& text, const std::string& from, const std::string& to,
+                         const std::string& source) {
+  const auto at = text.find(from);
+  if (at == std::string::npos) throw std::runtime_error("not in " + source + ": " + from);
+  text.replace(at, from.size(), to);
+}
+
 // A [[material]] table of the slope example's elasticity and density with the given strength.
 inline std::string mohr_coulomb_material(const std::string& name, double friction_deg, double cohesion) {
   return "[[material]]\nname = \"" + name +
@@ -22,9 +31,7 @@ inline std::string mohr_coulomb_material(const std::string& name, double frictio
 inline std::string two_body_slope(const std::string& material_table, double cell_size = 0.5) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_collapse.toml");
   const auto replace = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    if (at == std::string::npos) throw std::runtime_error("not in examples/slope_collapse.toml: " + from);
-    text.replace(at, from.size(), to);
+    replace_once(text, from, to, "examples/slope_collapse.toml");
   };
   replace("vertices = [[0.0, 0.0], [60.0, 0.0], [60.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]",
           "vertices = [[0.0, 4.0], [30.28, 4.0], [16.0, 14.0], [0.0, 14.0]]\n\n[[body]]\nname = \"base\"\n"

@@ -30,9 +30,7 @@ namespace {
 std::string slope_text(double phi, double c, double duration) {
   std::string text = read_scenario_text(std::string(SKRED_SOURCE_DIR) + "/examples/slope_50m.toml");
   const auto replace = [&](const std::string& a, const std::string& b) {
-    const auto at = text.find(a);
-    if (at == std::string::npos) throw std::runtime_error("not in examples/slope_50m.toml: " + a);
-    text.replace(at, a.size(), b);
+    test::replace_once(text, a, b, "examples/slope_50m.toml");
   };
   replace("cell_size = 2.5", "cell_size = 5.0");
   replace("friction = 18.0", "friction = " + std::to_string(phi));
