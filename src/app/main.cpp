@@ -279,6 +279,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0L, 1000000000L));
   bench->add_option("--bodies", bo.bodies, "column: 1, or 2 (two halves in frictional contact, mu = tan phi)")
       ->check(CLI::IsMember({1, 2}));
+  bench
+      ->add_option("--contact-detection", bo.contact_detection,
+                   "with --bodies 2: fill | traction ([[contact]] detection)")
+      ->check(CLI::IsMember({"fill", "traction"}));
   bench->add_option("--scheme", scheme, "usf | usl | averaged")
       ->check(CLI::IsMember({"usf", "usl", "averaged"}));
   bench->add_option("--velocity-transfer", transfer, "flip | xpic | apic | aflip")
@@ -365,8 +369,9 @@ int main(int argc, char** argv) {
       fmt::print(
           "bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
           bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
-          bo.bodies == 2 ? " (two bodies in contact)" : "", r.particles, r.nodes, bo.steps, bo.repeats,
-          bo.threads, interp, bo.problem == "column" ? "usf" : scheme,
+          bo.bodies == 2 ? fmt::format(" (two bodies in contact, detection {})", bo.contact_detection) : "",
+          r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
+          bo.problem == "column" ? "usf" : scheme,
           transfer + (bo.volumetric_averaging ? " / cell-average" : ""));
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n", r.status,

@@ -68,7 +68,8 @@ std::string column_text(const BenchOptions& opt) {
   };
   const std::string bodies =
       opt.bodies == 2 ? body("lower", 0.0, 2.0) + body("upper", 2.0, 4.0) +
-                            "[[contact]]\nbodies = [\"lower\", \"upper\"]\nfriction = 0.5773502691896258\n"
+                            "[[contact]]\nbodies = [\"lower\", \"upper\"]\nfriction = 0.5773502691896258\n" +
+                            fmt::format("detection = \"{}\"\n", opt.contact_detection)
                       : body("column", 0.0, 4.0);
   return fmt::format(R"(
 [grid]

@@ -35,8 +35,9 @@ struct BenchOptions {
   // The cell-averaged volumetric strain; off (each point's own), as the benches were measured,
   // whatever a scenario's "auto" would pick.
   bool volumetric_averaging = false;
-  long sort_every = kSortEvery;  // sort the points by cell every N steps, as a run does; 0: never
-  int bodies = 1;                // column: 2 for two halves in frictional contact
+  long sort_every = kSortEvery;            // sort the points by cell every N steps, as a run does; 0: never
+  int bodies = 1;                          // column: 2 for two halves in frictional contact
+  std::string contact_detection = "fill";  // with bodies = 2: the [[contact]] detection rule
 };
 
 struct BenchResult {

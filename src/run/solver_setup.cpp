@@ -33,7 +33,10 @@ SolverSettings<D> solver_settings(const ScenarioOf<D>& s) {
           return shape_normal(shape, x);
         };
     }
-    for (const ContactPair& c : s.contacts) st.contact.set_friction(c.a, c.b, c.friction);
+    for (const ContactPair& c : s.contacts) {
+      st.contact.set_friction(c.a, c.b, c.friction);
+      st.contact.set_detection(c.a, c.b, c.detection);
+    }
     st.contact.order.clear();
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
       st.contact.parent[b] = s.bodies[b].dilated_from;

@@ -176,8 +176,10 @@ std::string describe(const ScenarioOf<D>& s) {
                        b.lattice_rotation * 180.0 / M_PI, vec(b.lattice_centre)));
   }
   for (const ContactPair& c : s.contacts)  // Paper III §C.2.7
-    line(fmt::format("contact: {} - {}, friction {}", s.bodies[static_cast<std::size_t>(c.a)].name,
-                     s.bodies[static_cast<std::size_t>(c.b)].name, c.friction));
+    line(fmt::format("contact: {} - {}, friction {}, detection {}",
+                     s.bodies[static_cast<std::size_t>(c.a)].name,
+                     s.bodies[static_cast<std::size_t>(c.b)].name, c.friction,
+                     c.detection == ContactDetection::Traction ? "traction" : "fill"));
   line(fmt::format("gravity: {} m/s^2", vec(s.gravity)));
   switch (s.initial_stress.rule) {
     case K0Rule::None: break;

@@ -37,10 +37,14 @@ void parse_contacts(const TableReader& root, ScenarioOf<D>& s) {
         fail(s.source, root.where("contact"), "contact",
              fmt::format("bodies {} and {} are both called \"{}\"; contact needs distinct body names", j, i,
                          s.bodies[i].name));
+  static constexpr Choices<ContactDetection> kDetection = {{"fill", ContactDetection::Fill},
+                                                           {"traction", ContactDetection::Traction}};
   std::set<std::pair<int, int>> seen;
   for (const TableReader& t : tables) {
     t.allow_declared();
     const double mu = t.number("friction");
+    const ContactDetection detection =
+        t.choice<ContactDetection>("detection", kDetection, ContactDetection::Fill);
     std::vector<std::pair<int, int>> pairs;
     if (!t.has("bodies")) t.fail_missing("bodies");
     if (t.find("bodies")->is_string()) {
@@ -63,7 +67,7 @@ void parse_contacts(const TableReader& root, ScenarioOf<D>& s) {
       if (!seen.insert({a, b}).second)
         t.fail_at("bodies", fmt::format("the pair \"{}\" - \"{}\" has a contact already", s.bodies[a].name,
                                         s.bodies[b].name));
-      s.contacts.push_back({a, b, mu});
+      s.contacts.push_back({a, b, mu, detection});
     }
   }
 }

@@ -69,7 +69,8 @@ void add_dilation_continua(const TableReader& root, ScenarioOf<D>& s) {
   for (const ContactPair& c : file)
     for (int a : family(c.a))
       for (int b : family(c.b))
-        if (a != c.a || b != c.b) s.contacts.push_back({std::min(a, b), std::max(a, b), c.friction});
+        if (a != c.a || b != c.b)
+          s.contacts.push_back({std::min(a, b), std::max(a, b), c.friction, c.detection});
   for (int i = 0; i < n; ++i)
     if (const int d = dilated[static_cast<std::size_t>(i)]; d >= 0) {
       const Material& m =

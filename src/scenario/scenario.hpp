@@ -16,6 +16,7 @@
 #include "scenario/output_fields.hpp"
 #include "shape/interpolation.hpp"
 #include "solver/boundary_side.hpp"
+#include "solver/contact.hpp"
 #include "solver/implicit_settings.hpp"
 #include "solver/scheme.hpp"
 #include "solver/splitting.hpp"
@@ -182,11 +183,13 @@ struct Stage {
   ImplicitSettings implicit;
 };
 
-// Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies and the
-// Coulomb coefficient mu. Pairs without an entry stay bonded (one velocity field).
+// Frictional contact between two bodies (Paper III §C.2.7): indices into the bodies, the
+// Coulomb coefficient mu and the rule that detects contact. Pairs without an entry stay
+// bonded (one velocity field).
 struct ContactPair {
   int a = 0, b = 0;
   double friction = 0.0;
+  ContactDetection detection = ContactDetection::Fill;  // `detection` (docs/method.md, "Contact")
 };
 
 // The xpic_period that velocity_transfer = "auto" gives a slide (docs/method.md, "The defaults").

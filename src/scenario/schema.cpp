@@ -335,6 +335,13 @@ void add_model_sections(std::vector<Section>& s) {
                     .unit = "-",
                     .range = Range::non_negative(10.0),
                     .doc = "the Coulomb coefficient mu of the pair (0: frictionless)"},
+                   {.name = "detection",
+                    .type = Type::Choice,
+                    .def = derived("\"fill\""),
+                    .choices = "fill|traction",
+                    .doc = "when the approaching pair is in contact at a node: \"fill\", the two fill 0.8 of "
+                           "the node's support (Nairn 2013); \"traction\", their nodal stresses' normal "
+                           "traction is not tensile (Paper III §C.2.7; docs/method.md, \"Contact\")"},
                }});
   s.push_back({"splitting",
                "splitting",

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "solver/contact.hpp"
 #include "solver/explicit_solver.hpp"
@@ -193,7 +194,10 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
   };
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
   std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
-  transfer_.for_box([&](std::size_t i) {
+  // The rule at node i; `traction`: some pair decides by the traction rule (a compile-time
+  // flag, so that the fill rule's loop carries none of its work).
+  const auto node = [&](std::size_t i, auto traction_tag) {
+    constexpr bool traction = decltype(traction_tag)::value;
     // The continua with mass at node i, in hierarchy order.
     int present[kMaxContactBodies];
     int count = 0;
@@ -201,6 +205,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       if (bodies_[static_cast<std::size_t>(b)].mass[i] > 0.0) present[count++] = b;
     if (count < 2) return;
     Vec<D> v[kMaxContactBodies], v0[kMaxContactBodies], grad[kMaxContactBodies], outline[kMaxContactBodies];
+    [[maybe_unused]] Vec<D> sd[kMaxContactBodies], so[kMaxContactBodies];  // the traction rule's S_i^b
     double m[kMaxContactBodies];
     const auto ij = g.unflatten(i);
     for (int k = 0; k < count; ++k) {
@@ -213,6 +218,10 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       outline[k] = !outline_normals_[b].empty() ? outline_normals_[b][i]
                    : moving_outline(b)          ? moving_outline_normal(b, i)
                                                 : Vec<D>::Zero();
+      if constexpr (traction) {
+        sd[k] = c.rigid[b] ? Vec<D>::Zero() : f.stress_diagonal[i];
+        so[k] = c.rigid[b] ? Vec<D>::Zero() : f.stress_off[i];
+      }
     }
     // Volume check (Nairn 2013): the continua are in contact at the node only when together
     // they fill kContactFill of its support (h^D, halved per axis at a wall node). Nodes
@@ -248,6 +257,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       v[j] = (m[j] * v[j] + m[k] * v[k]) / M;
       v0[j] = (m[j] * v0[j] + m[k] * v0[k]) / M;
       grad[j] += grad[k];
+      if constexpr (traction) sd[j] += sd[k], so[j] += so[k];
       m[j] = M;
       merged[k] = j;
       any_merged = true;
@@ -262,13 +272,16 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
           const int n = slot[k];  // <= k: in place
           present[n] = ids[k], m[n] = m[k], v[n] = v[k], v0[n] = v0[k], grad[n] = grad[k],
           outline[n] = outline[k];
+          if constexpr (traction) sd[n] = sd[k], so[n] = so[k];
         }
       for (int k = 0; k < all; ++k) merged[k] = slot[merged[k]];
     }
-    if (!any_merged && volume < kContactFill * support) return;
-    const bool resolve = count >= 2 && volume >= kContactFill * support;
+    // The fill rule's check (above); a pair under the traction rule (ContactDetection) checks
+    // its own nodal stresses instead, below.
+    const bool filled = volume >= kContactFill * support;
+    if (!any_merged && !filled && !traction) return;
     Vec<D> upper = grad[0];  // gradient of the combined mass of the continua above k
-    for (int k = 1; resolve && k < count; ++k) {
+    for (int k = 1; k < count; ++k) {
       // A fixed rigid body's outline gives the exact normal: its own as continuum k, or the
       // master's (n = -n^1) for the second continuum at the node.
       const Vec<D> exact = outline[k].squaredNorm() > 0.0 ? outline[k]
@@ -279,6 +292,12 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       for (int j = 0; j < k; ++j) {
         const double mu = c.mu(present[j], present[k]);
         if (mu >= 0.0 && !(len > 0.0)) continue;  // no normal: no contact to resolve
+        // Traction rule (Paper III §C.2.7): no contact where the pair's normal traction is
+        // tensile; stress-free (the first touch) counts as compressive (Bardenhagen et al. 2001).
+        const bool by_traction = traction && mu >= 0.0 && c.by_traction(present[j], present[k]);
+        const bool detected =
+            by_traction ? traction_at<D>(Vec<D>(sd[j] + sd[k]), Vec<D>(so[j] + so[k]), n) <= 0.0 : filled;
+        if (!detected) continue;
         const ContactLoss loss = resolve_pair<D>(v[j], m[j], v[k], m[k], n, mu, Vec<D>(v0[k] - v0[j]));
         sum.normal += loss.normal;
         sum.friction += loss.friction;
@@ -296,7 +315,11 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     s[1] += sum.friction;
     s[2] += sum.friction_sum;
     s[3] += sum.rule_dissipation;
-  });
+  };
+  if (contact_traction_)
+    transfer_.for_box([&](std::size_t i) { node(i, std::true_type{}); });
+  else
+    transfer_.for_box([&](std::size_t i) { node(i, std::false_type{}); });
   ContactLoss total;
   for (std::size_t t = 0; t < contact_sums_.size(); t += kPad) {
     total.normal += contact_sums_[t];
@@ -351,7 +374,15 @@ void ExplicitSolver<D>::prepare_contact() {
     mass[family(b)] += P.mass[p];
     volume[family(b)] += P.volume0[p];
   }
-  for (BodyFields<D>& f : bodies_) f.velocity_shift.resize(grid().node_count());
+  contact_traction_ = c.any_traction();
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    BodyFields<D>& f = bodies_[b];
+    f.velocity_shift.resize(grid().node_count());
+    if (contact_traction_ && !c.rigid[b]) {
+      f.stress_diagonal.resize(grid().node_count());
+      f.stress_off.resize(grid().node_count());
+    }
+  }
   volume_per_mass_.assign(mass.size(), 0.0);
   for (std::size_t b = 0; b < mass.size(); ++b)
     volume_per_mass_[b] = mass[family(b)] > 0.0 ? volume[family(b)] / mass[family(b)] : 0.0;

@@ -21,6 +21,13 @@ inline constexpr int kMaxContactBodies = 32;
 // touch) or become unstable as they part without it.
 inline constexpr double kContactFill = 0.8;
 
+// How a pair with a [[contact]] entry decides, at a node where both have mass and approach,
+// that it is in contact (docs/method.md, "Contact detection"). Fill: together the continua
+// at the node fill kContactFill of its support (Nairn 2013). Traction (Paper III §C.2.7,
+// Bardenhagen et al. 2001): the normal traction of the pair's nodal stresses is not tensile,
+// n . (S^a + S^b) . n <= 0 with S^c = sum_p N_ip m_p sigma_p of continuum c (traction_at).
+enum class ContactDetection : char { Fill, Traction };
+
 // A dilated continuum (Paper III §C.3.2) that fills less than this fraction of the support of
 // every node within two nodes of a node (per axis) moves with its parent at the node, as if
 // its points had not left it: it has contact of its own only as a region about two cells
@@ -55,6 +62,9 @@ struct ContactSettings {
   // the points of both, which stays the same as points move from one to the other (and is there
   // while the continuum is empty).
   std::vector<int> parent;
+  // Per pair (row-major n x n, symmetric): 1 where the pair decides by the traction rule
+  // (ContactDetection::Traction), else 0 (the fill rule; bonded pairs keep it).
+  std::vector<char> traction;
 
   int bodies() const { return static_cast<int>(rigid.size()); }
   bool enabled() const { return !rigid.empty(); }
@@ -66,6 +76,7 @@ struct ContactSettings {
     outline_normal.assign(static_cast<std::size_t>(n), {});
     friction.assign(static_cast<std::size_t>(n * n), kBonded);
     parent.assign(static_cast<std::size_t>(n), -1);
+    traction.assign(static_cast<std::size_t>(n * n), 0);
     order.clear();
     for (int b = 0; b < n; ++b) order.push_back(b);
   }
@@ -73,7 +84,28 @@ struct ContactSettings {
     friction[static_cast<std::size_t>(a * bodies() + b)] = mu;
     friction[static_cast<std::size_t>(b * bodies() + a)] = mu;
   }
+  void set_detection(int a, int b, ContactDetection rule) {
+    const char t = rule == ContactDetection::Traction;
+    traction[static_cast<std::size_t>(a * bodies() + b)] = t;
+    traction[static_cast<std::size_t>(b * bodies() + a)] = t;
+  }
+  bool by_traction(int a, int b) const { return traction[static_cast<std::size_t>(a * bodies() + b)] != 0; }
+  bool any_traction() const { return std::find(traction.begin(), traction.end(), 1) != traction.end(); }
 };
+
+// n . S . n for the mass-weighted nodal stress sums of a continuum (or of a pair, added),
+// kept as the diagonal (xx, yy[, zz]) and the off-diagonal part ((xy, 0) in 2D, (yz, xz, xy)
+// in 3D): its sign is that of the normal traction of the mean stress S / m.
+template <int D>
+inline double traction_at(const Vec<D>& diagonal, const Vec<D>& off, const Vec<D>& n) {
+  double t = 0.0;
+  for (int d = 0; d < D; ++d) t += diagonal[d] * n[d] * n[d];
+  if constexpr (D == 2)
+    t += 2.0 * off[0] * n[0] * n[1];
+  else
+    t += 2.0 * (off[0] * n[1] * n[2] + off[1] * n[0] * n[2] + off[2] * n[0] * n[1]);
+  return t;
+}
 
 // The work one pair's contact did against the motion in one step (Paper III §C.2.7): the
 // impulse J on b (-J on a) times the mean relative velocity over the step, -J . (w^k +

@@ -259,6 +259,9 @@ class ExplicitSolver {
   void rigid_velocity();
   template <class K>
   long move_and_map_rigid(const K& kernel, Extent<D>& all);
+  // Each body's nodal stress sums for the traction rule of contact (contact_impl.hpp).
+  template <class K>
+  void map_body_stress(const K& kernel);
 
   MpmState<D> state_;  // points, grid, materials, clock and energy totals (shared core)
   Transfer<D> transfer_;
@@ -272,6 +275,7 @@ class ExplicitSolver {
   NodeBox<D> body_box_;                  // where the body fields were last written
   std::vector<double> contact_sums_;     // per-thread work sums of the contact phase
   std::vector<double> volume_per_mass_;  // per body (volume_per_mass())
+  bool contact_traction_ = false;        // some pair decides contact by the traction rule
   // Per body: the outline normal at each node of a fixed rigid body with an outline (else empty)
   std::vector<std::vector<Vec<D>>> outline_normals_;
   ContactLoss contact_step_;  // the last step's contact work

@@ -168,6 +168,7 @@ StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   grid_mapped_ = false;
   // With contact the last step mapped each body's fields; otherwise they are mapped here.
   if (contact_on() ? fresh : settings_.body_fields) map_body_fields(kernel);
+  if (contact_traction_) map_body_stress(kernel);       // the traction rule's sigma_i^b (Paper III §C.2.7)
   if (!Scheme::advance(*this, kernel)) return status_;  // the failing step is steps() + 1
   grid_mapped_ = true;
   mapped_points_ = state_.points.size();

@@ -63,6 +63,10 @@ struct BodyFields : GridFields<D> {
   // With contact: the change the contact made to v_i^k,b (contact.cpp), which the strain and
   // the motion take but the points' velocities do not (they take only accelerations).
   GridArray<Vec<D>> velocity_shift;
+  // With a pair under the traction rule (ContactDetection::Traction): S_i^b = sum_p N_ip m_p
+  // sigma_p of the body's points, its diagonal and off-diagonal parts (traction_at), mapped at
+  // the start of the step (map_body_stress); allocated only then.
+  GridArray<Vec<D>> stress_diagonal, stress_off;
 };
 
 }  // namespace skred
