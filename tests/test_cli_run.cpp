@@ -93,6 +93,27 @@ TEST(CliRun, UsageErrorsExitWithCode4) {
   }
 }
 
+// Under an MPI launcher (mpirun -np N) every one of the N copies would run the whole scenario
+// into the same folder: each refuses, naming the launcher's count, and writes nothing.
+TEST(CliRun, ACopyStartedByAnMpiLauncherRefusesToRun) {
+  TempDir d;
+  write(d / "discs.toml", short_discs());
+  for (const std::string env : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=4"}) {
+    SCOPED_TRACE(env);
+    const Outcome r = sh(env + " " + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out"));
+    EXPECT_EQ(r.code, 4) << r.output;
+    EXPECT_NE(r.output.find("one of " + env.substr(env.find('=') + 1) + " processes"), std::string::npos)
+        << r.output;
+    EXPECT_FALSE(fs::exists(d / "out"));
+    EXPECT_EQ(sh(env + " " + kSkred + " bench --problem block --particles 100 --steps 1").code, 4);
+  }
+  // One process (mpirun -np 1) runs as without the launcher.
+  const Outcome one =
+      sh("OMPI_COMM_WORLD_SIZE=1 " + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out"));
+  EXPECT_EQ(one.code, 0) << one.output;
+  EXPECT_TRUE(fs::exists(d / "out" / "summary.json"));
+}
+
 TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {
   TempDir d;
   write(d / "bad.toml", discs("density = 1000.0", "density = \"heavy\""));

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "app/exit_codes.hpp"
+#include "app/launched_processes.hpp"
 #include "app/omp_wait.hpp"
 #include "app/post_cli.hpp"
 #include "app/scenario_cli.hpp"
@@ -306,6 +307,16 @@ int main(int argc, char** argv) {
     return r == 0 ? code::kSuccess : code::kUsage;
   }
   if (post.chosen()) return post.run();
+  if (const skred::Launch launch = skred::launched_processes();
+      launch.processes > 1 && (*run || *resume || *sweep || *refine || *fos || *bench)) {
+    fmt::print(stderr,
+               "skred: error: started as one of {} processes by an MPI launcher ({}={}); skred runs a "
+               "scenario in one process, on all of the machine's cores with OpenMP, and {} copies of this "
+               "command would write the same results at once. Start it without the launcher (or with -np 1); "
+               "runs across processes are not built yet.\n",
+               launch.processes, launch.variable, launch.processes, launch.processes);
+    return code::kUsage;
+  }
   try {
     if (*run) {
       ro.restart = restart;

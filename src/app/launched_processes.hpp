@@ -1,0 +1,30 @@
+// How many processes an MPI launcher started together with this one. skred runs a scenario in
+// one process, on the machine's cores through OpenMP; runs across processes (issue 55) are not
+// built yet, and N copies of one run under `mpirun -np N` would write one output folder at once.
+#pragma once
+#include <cerrno>
+#include <cstdlib>
+#include <string>
+
+namespace skred {
+
+struct Launch {
+  long processes = 1;
+  std::string variable;  // the launcher's variable that gave the count ("" when started alone)
+};
+
+// The count from the variables the launchers set in each process: OpenMPI's
+// OMPI_COMM_WORLD_SIZE, and PMI_SIZE (MPICH's Hydra, Intel MPI, srun with PMI).
+inline Launch launched_processes() {
+  for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"}) {
+    const char* text = std::getenv(name);
+    if (!text || !*text) continue;
+    char* end = nullptr;
+    errno = 0;
+    const long n = std::strtol(text, &end, 10);
+    if (errno == 0 && *end == '\0' && n > 1) return {n, name};
+  }
+  return {};
+}
+
+}  // namespace skred
