@@ -16,8 +16,11 @@ run_only=false
 pkgs=(cmake make g++ libeigen3-dev libtomlplusplus-dev libcli11-dev libfmt-dev zlib1g-dev
       python3-numpy python3-matplotlib python3-pil libpetsc-real-dev pkg-config libopenblas0-openmp
       libgdal-dev)
-# gdal-bin: the test that opens a written map with GDAL's own gdalinfo (tests/test_hazard_maps.cpp).
-$run_only || pkgs+=(libgtest-dev chromium clang-format python3-pip python3-setuptools python3-wheel gdal-bin)
+# gdal-bin: the test that opens a written map with GDAL's own gdalinfo (tests/test_hazard_maps.cpp);
+# openmpi-bin (already a dependency of PETSc's OpenMPI): mpirun, which starts the test of the step
+# split among processes (tests/mpi).
+$run_only || pkgs+=(libgtest-dev chromium clang-format python3-pip python3-setuptools python3-wheel gdal-bin
+                    openmpi-bin)
 installed() { dpkg-query -W -f='${Status}' "$1" 2>/dev/null | grep -q 'install ok installed'; }
 # VTK for Python: Debian's python3-vtk9, or the VTK of ParaView's python3-paraview, which
 # replaces python3-vtk9 (installing python3-vtk9 would remove ParaView's). Either will do.

@@ -18,6 +18,7 @@
 #include "app/post_cli.hpp"
 #include "app/scenario_cli.hpp"
 #include "io/checkpoint.hpp"
+#include "parallel/processes.hpp"
 #include "run/bench.hpp"
 #include "run/checkpointing.hpp"
 #include "run/extrapolation_text.hpp"
@@ -155,8 +156,7 @@ int cmd_fos(const std::string& file, const std::string& outdir, skred::FosOption
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  skred::apply_default_omp_wait_policy(argv);  // before any OpenMP call (it may re-execute)
+static int command(int argc, char** argv) {
   // Large arrays always come from the kernel and go back to it when freed. Left to itself,
   // glibc raises its mmap threshold after the first large free and serves later arrays from
   // the heap, which keeps freed memory resident (the bench's repeats then peak higher).
@@ -308,13 +308,14 @@ int main(int argc, char** argv) {
   }
   if (post.chosen()) return post.run();
   if (const skred::Launch launch = skred::launched_processes();
-      launch.processes > 1 && (*run || *resume || *sweep || *refine || *fos || *bench)) {
-    fmt::print(stderr,
-               "skred: error: started as one of {} processes by an MPI launcher ({}={}); skred runs a "
-               "scenario in one process, on all of the machine's cores with OpenMP, and {} copies of this "
-               "command would write the same results at once. Start it without the launcher (or with -np 1); "
-               "runs across processes are not built yet.\n",
-               launch.processes, launch.variable, launch.processes, launch.processes);
+      launch.processes > 1 && (*run || *resume || *sweep || *refine || *fos)) {
+    if (skred::Processes::world().rank() == 0)
+      fmt::print(stderr,
+                 "skred: error: started as one of {} processes by an MPI launcher ({}={}); skred runs a "
+                 "scenario in one process, on all of the machine's cores with OpenMP, and {} copies of this "
+                 "command would write the same results at once. Start it without the launcher (or with -np "
+                 "1); of the commands, only `skred bench` runs across processes yet.\n",
+                 launch.processes, launch.variable, launch.processes, launch.processes);
     return code::kUsage;
   }
   try {
@@ -376,24 +377,28 @@ int main(int argc, char** argv) {
                              : transfer == "aflip" ? skred::VelocityTransfer::Aflip
                                                    : skred::VelocityTransfer::Flip;
       bo.volumetric_averaging = volumetric == "cell-average";
+      bo.processes = skred::Processes::world();
       const auto r = skred::run_bench(bo);
+      if (bo.processes.rank() != 0) return code::kSuccess;  // (the first process prints)
       fmt::print(
-          "bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {} thread(s), {} / {} / {}\n",
+          "bench {}{}{}: {} particles, {} grid nodes, {} steps x {} repeats, {}{} thread(s), {} / {} / {}\n",
           bo.problem, bo.dim == 3 ? " (3D slab, 2x2x2 points per cell)" : "",
           bo.bodies == 2 ? fmt::format(" (two bodies in contact, detection {})", bo.contact_detection) : "",
-          r.particles, r.nodes, bo.steps, bo.repeats, bo.threads, interp,
-          bo.problem == "column" ? "usf" : scheme,
+          r.particles, r.nodes, bo.steps, bo.repeats,
+          bo.processes.distributed() ? fmt::format("{} processes x ", bo.processes.size()) : "", bo.threads,
+          interp, bo.problem == "column" ? "usf" : scheme,
           transfer + (bo.volumetric_averaging ? " / cell-average" : ""));
       if (bo.problem == "column")
         fmt::print("column: {}, front advanced {:.3f} m in {:.3g} s, {} of {} points yielding\n", r.status,
-                   r.runout, bo.steps * 1e-4, r.yielding, r.particles);
+                   r.runout, bo.steps * 1e-4 * std::min(1.0, 5.0 / bo.refine), r.yielding, r.particles);
       for (double u : r.updates_per_second) fmt::print("  run: {:.3f} M particle-updates/s\n", u / 1e6);
       fmt::print("median: {:.3f} M particle-updates/s ({:.3f} M per thread)\n", r.median / 1e6,
-                 r.median / 1e6 / bo.threads);
+                 r.median / 1e6 / (bo.threads * bo.processes.size()));
       // Above the idle process (code, libraries): what the points and the grid cost.
+      // (distributed: the first process's, per point of its share)
       fmt::print("peak memory: {:.1f} MB, {:.1f} MB above the idle process: {:.0f} bytes per particle\n",
                  r.peak_rss_bytes / 1e6, (r.peak_rss_bytes - r.idle_rss_bytes) / 1e6,
-                 (r.peak_rss_bytes - r.idle_rss_bytes) / r.particles);
+                 (r.peak_rss_bytes - r.idle_rss_bytes) / r.own_particles);
       if (bo.threads > 1) fmt::print("OpenMP wait: {}\n", skred::omp_wait_description());
       double total = 0.0;
       for (const auto& [name, s] : r.phase_seconds) total += s;
@@ -424,4 +429,12 @@ int main(int argc, char** argv) {
     return code::kError;
   }
   return code::kSuccess;
+}
+
+int main(int argc, char** argv) {
+  skred::apply_default_omp_wait_policy(argv);  // before any OpenMP call (it may re-execute)
+  // Started by an MPI launcher: MPI for every process of the world (parallel/processes.hpp), and
+  // MPI_Finalize on every way out of the command.
+  if (skred::launched_processes().processes > 1) skred::start_processes(&argc, &argv);
+  return skred::finish_processes(command(argc, argv));
 }

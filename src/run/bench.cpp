@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "parallel/point_shares.hpp"
 #include "run/memory_use.hpp"
 #include "run/simulation.hpp"
 #include "run/slide_measures.hpp"
@@ -71,7 +72,8 @@ std::string column_text(const BenchOptions& opt) {
                             "[[contact]]\nbodies = [\"lower\", \"upper\"]\nfriction = 0.5773502691896258\n" +
                             fmt::format("detection = \"{}\"\n", opt.contact_detection)
                       : body("column", 0.0, 4.0);
-  return fmt::format(R"(
+  return fmt::format(
+      R"(
 [grid]
 size = [10.0, 4.5{2}]
 cell_size = {0}
@@ -97,11 +99,13 @@ y_min = "fixed"
 interpolation = "{1}"
 quadrature_points = {6}
 scheme = "usf"
-time_step = 1e-4
+time_step = {8}
 end_time = 1.0
 )",
-                     h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
-                     d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points, bodies);
+      h, to_string(opt.interpolation), z, z0, d3 ? "box" : "rectangle",
+      d3 ? "z_min = \"roller\"\nz_max = \"roller\"" : "", opt.quadrature_points, bodies,
+      // 0.1 ms up to refine 5; finer, the stable step's share (refine 8: 10^6 points in 3D, 0.8 M in 2D)
+      1e-4 * std::min(1.0, 5.0 / opt.refine));
 }
 
 template <int D>
@@ -111,8 +115,10 @@ BenchResult run_column(const BenchOptions& opt) {
   for (int r = 0; r < opt.repeats; ++r) {
     Particles<D> P = build_particles(s);
     apply_initial_stress(s, P);
+    keep_share(P, opt.processes);
     const GridGeometry<D> grid = scenario_grid(s);
     SolverSettings<D> st = solver_settings(s);
+    st.processes = opt.processes;
     st.velocity_transfer = opt.velocity_transfer;
     st.xpic_period = opt.xpic_period * stable_time_step(s);  // seconds
     st.volumetric_averaging = opt.volumetric_averaging;
@@ -125,11 +131,15 @@ BenchResult run_column(const BenchOptions& opt) {
         res.status = fmt::format("unstable at step {}", k + 1);
         break;
       }
-    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    res.particles = static_cast<long>(P.size());
+    double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    opt.processes.max(&sec, 1);  // the slowest process's
+    res.own_particles = static_cast<long>(P.size());
+    res.particles = opt.processes.sum_of(res.own_particles);
     res.nodes = static_cast<long>(grid.node_count());
-    res.updates_per_second.push_back(static_cast<double>(P.size()) * solver.steps() / sec);
-    res.runout = runout_of(before, P, 0.0, s.cell_size, 0.5 * s.cell_size).x_max;
+    res.updates_per_second.push_back(static_cast<double>(res.particles) * solver.steps() / sec);
+    double front = runout_of(before, P, 0.0, s.cell_size, 0.5 * s.cell_size).x_max;
+    opt.processes.max(&front, 1);
+    res.runout = front;
     res.yielding = solver.totals().yielding;
     add_phases(res, before_phases, solver.phase_times());
   }
@@ -168,7 +178,9 @@ BenchResult run_bench(const BenchOptions& opt) {
       for (int i = 0; i < 2 * cells; ++i)
         P.add(Vec<2>((i + 0.5) * q, (j + 0.5) * q), Vec<2>::Zero(), soil.density * vol, vol,
               Vec<2>(q / 2, q / 2), 0, 0);
+    keep_share(P, opt.processes);
     SolverSettings<2> st;
+    st.processes = opt.processes;
     st.interpolation = opt.interpolation;
     st.quadrature_points = opt.quadrature_points;
     st.scheme = opt.scheme;
@@ -184,10 +196,12 @@ BenchResult run_bench(const BenchOptions& opt) {
     const PhaseTimer before_phases = solver.phase_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int s = 0; s < opt.steps; ++s) sorted_step(P, solver, opt.sort_every);
-    const double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    res.particles = static_cast<long>(P.size());
+    double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    opt.processes.max(&sec, 1);  // the slowest process's
+    res.own_particles = static_cast<long>(P.size());
+    res.particles = opt.processes.sum_of(res.own_particles);
     res.nodes = static_cast<long>(grid.node_count());
-    res.updates_per_second.push_back(static_cast<double>(P.size()) * opt.steps / sec);
+    res.updates_per_second.push_back(static_cast<double>(res.particles) * opt.steps / sec);
     add_phases(res, before_phases, solver.phase_times());
   }
   res.median = sorted(res.updates_per_second)[res.updates_per_second.size() / 2];

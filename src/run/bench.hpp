@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "parallel/processes.hpp"
 #include "scenario/scenario.hpp"
 
 namespace skred {
@@ -38,10 +39,14 @@ struct BenchOptions {
   long sort_every = kSortEvery;            // sort the points by cell every N steps, as a run does; 0: never
   int bodies = 1;                          // column: 2 for two halves in frictional contact
   std::string contact_detection = "fill";  // with bodies = 2: the [[contact]] detection rule
+  // The processes the points are split among (under mpirun; parallel/processes.hpp): each steps
+  // its share, and the figures are every process's together.
+  Processes processes;
 };
 
 struct BenchResult {
-  long particles = 0;
+  long particles = 0;      // over every process
+  long own_particles = 0;  // this process's share
   long nodes = 0;
   std::vector<double> updates_per_second;  // one per repeat
   double median = 0.0;

@@ -374,6 +374,8 @@ void ExplicitSolver<D>::prepare_contact() {
     mass[family(b)] += P.mass[p];
     volume[family(b)] += P.volume0[p];
   }
+  state_.processes.sum(mass.data(), mass.size());  // every process's points
+  state_.processes.sum(volume.data(), volume.size());
   contact_traction_ = c.any_traction();
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     BodyFields<D>& f = bodies_[b];

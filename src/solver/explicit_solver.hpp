@@ -26,6 +26,7 @@
 #include "solver/implicit_settings.hpp"
 #include "solver/mpm_state.hpp"
 #include "solver/phase_timer.hpp"
+#include "solver/process_sums.hpp"
 #include "solver/scheme.hpp"
 #include "solver/velocity_transfer.hpp"
 #include "solver/volumetric_averaging.hpp"
@@ -69,6 +70,10 @@ struct SolverSettings {
   // centre-of-mass velocity field; set, each body moves with its own fields and the contact
   // phase couples them. Rigid bodies need it.
   ContactSettings<D> contact;
+  // The processes the points are split among (parallel/processes.hpp; default: this one alone).
+  // Each holds its share of the points and the whole grid; the grid sums and the points' sums are
+  // every process's, so the grid phases run alike in all of them.
+  Processes processes;
 };
 
 // Positions of the closed (fixed, roller, frictional) walls; +-inf on free sides.
@@ -174,8 +179,13 @@ class ExplicitSolver {
   }
 
   // The end of a phase: true if no point failed (first_bad == LONG_MAX), else status_ names
-  // the first failing point and why.
+  // the first failing point and why. Split among processes, every process learns of the failure
+  // and status_ names the point by its index over all of them, in rank order.
   bool phase_ok(long first_bad, const char* why) {
+    if (const Processes& procs = state_.processes; procs.distributed()) {
+      const long offset = procs.offset(static_cast<long>(state_.points.size()));
+      first_bad = procs.min(first_bad == LONG_MAX ? LONG_MAX : offset + first_bad);
+    }
     if (first_bad == LONG_MAX) return true;
     status_ = {false, first_bad, why};
     return false;
@@ -235,6 +245,17 @@ class ExplicitSolver {
   template <class K>
   void xpic_grid_velocity(const K& kernel);
   bool axisymmetric() const { return D == 2 && settings_.geometry == Geometry::Axisymmetric; }
+  // Whether the grid must be mapped afresh from the points (their number changed, or
+  // particles_changed()): in any process, then in all.
+  bool needs_map() {
+    if (mapped_points_ != state_.points.size()) grid_mapped_ = false;
+    return state_.processes.max(grid_mapped_ ? 0L : 1L) > 0;
+  }
+  // The points' sums over the processes (process_sums.hpp).
+  template <class... T>
+  void sum_points(T&... v) const {
+    sum_over_processes(state_.processes, v...);
+  }
   // The mean normal stress the cell-averaged volumetric strain pairs with: over the in-plane axes,
   // and the hoop axis too in axisymmetric geometry (volumetric_averaging.hpp).
   double mean_stress(const PointStress<D>& s) const {

@@ -90,6 +90,8 @@ ExplicitSolver<D>::ExplicitSolver(GridGeometry<D> grid, Particles<D>& particles,
              threads),
       transfer_(state_.grid, threads),
       settings_(settings) {
+  state_.processes = settings.processes;
+  transfer_.set_processes(settings.processes);
   state_.clock.gravity_ramp_time = settings.gravity_ramp_time;
   for (Material& m : state_.materials) {
     m.hyperelastic = settings_.hyperelastic;
@@ -160,10 +162,9 @@ StepStatus ExplicitSolver<D>::step_with(const K& kernel) {
   transfer_rule_.begin_step(state_.clock.time);
   status_ = StepStatus{};
   det_f_fresh_ = false;  // (written by this step's stress phase, if at all)
-  if (mapped_points_ != state_.points.size()) grid_mapped_ = false;
   if (transfer_rule_.carries_affine() && state_.points.affine.size() != state_.points.size())
     state_.points.affine.resize(state_.points.size(), Mat<D>::Zero());
-  const bool fresh = !grid_mapped_;
+  const bool fresh = needs_map();
   if (fresh && !map_mass_momentum(kernel)) return status_;
   grid_mapped_ = false;
   // With contact the last step mapped each body's fields; otherwise they are mapped here.
@@ -186,8 +187,7 @@ bool ExplicitSolver<D>::map_mass_momentum(const K& kernel) {
     clear_mass_momentum();  // outside the box they are zero already
     const long bad =
         p2g_mass_momentum(transfer_, kernel, state_.points, fields_.mass.data(), fields_.momentum.data());
-    if (bad >= 0) status_ = {false, bad, "material point left the grid"};
-    return bad < 0;
+    return phase_ok(bad < 0 ? LONG_MAX : bad, "material point left the grid");
   });
 }
 
@@ -200,6 +200,7 @@ void ExplicitSolver<D>::map_body_fields(const K& kernel) {
     const auto& P = state_.points;
     int count = 0;
     for (std::size_t p = 0; p < P.size(); ++p) count = std::max(count, P.body[p] + 1);
+    count = static_cast<int>(state_.processes.max(static_cast<long>(count)));  // every process's bodies
     if (!contact_on() && bodies_.size() < static_cast<std::size_t>(count)) {
       bodies_.resize(static_cast<std::size_t>(count));
       for (auto& b : bodies_)
@@ -265,6 +266,7 @@ double ExplicitSolver<D>::damping_work_at_points(const K& kernel, const GridFiel
     const Vec<D> a_p = gather(sh, strides, acc);
     work -= P.mass[p] * dt * gather(sh, strides, damp).dot(P.v[p] + (0.5 * dt) * a_p);
   }
+  sum_points(work);
   return work;
 }
 
@@ -330,6 +332,7 @@ void ExplicitSolver<D>::velocity_and_remap(const K& kernel) {
         loop(std::false_type{});
       transfer_.reduce(nullptr, remap);
     });
+    sum_points(lost);
     state_.clock.energy.transfer_dissipation += lost;
     if (contact_on()) rigid_velocity();
   });
@@ -409,6 +412,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       }
       transfer_.set_box(extent);  // the reduction must cover the moved points' reach
       transfer_.reduce(f.mass.data(), f.momentum.data());
+      sum_points(work, dissipation, affine_ke, mdx);
       state_.clock.energy.strain_energy += work;
       state_.clock.energy.plastic_dissipation += dissipation;
       state_.clock.energy.transfer_dissipation -= affine_ke;  // the new C_p's share (particle_velocity)
@@ -510,11 +514,13 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       }
       transfer_.set_box(extent);  // the reduction must cover the moved points' reach
       transfer_.reduce(f.mass.data(), f.momentum.data());
+      sum_points(mdx);  // (lost, with affine_ke, is summed after the loop)
       state_.clock.energy.gravity_work += gravity_now_.dot(mdx);
       lost -= affine_ke;
       first_bad = std::min(first_bad, bad);
       all.merge(extent);
     });
+    sum_points(lost);
     state_.clock.energy.transfer_dissipation += lost;
     if (contact_on()) {
       rigid_velocity();

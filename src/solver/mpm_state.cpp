@@ -27,7 +27,7 @@ MpmState<D>::MpmState(Particles<D>& points_, GridGeometry<D> grid_, Interpolatio
 }
 
 template <int D>
-ParticleTotals<D> particle_totals(const Particles<D>& P, int threads) {
+ParticleTotals<D> particle_totals(const Particles<D>& P, int threads, const Processes& processes) {
   const long n = static_cast<long>(P.size());
   double mass = 0.0, ke = 0.0, speed_mass = 0.0, vmax = 0.0;
   long yielding = 0;
@@ -42,6 +42,14 @@ ParticleTotals<D> particle_totals(const Particles<D>& P, int threads) {
     vmax = std::max(vmax, s);
     mom += m * P.v[p];
     yielding += P.state[p].yielding;
+  }
+  if (processes.distributed()) {  // every process's points
+    double sums[4 + D] = {mass, ke, speed_mass, static_cast<double>(yielding)};
+    for (int d = 0; d < D; ++d) sums[4 + d] = mom[d];
+    processes.sum(sums, 4 + D);
+    mass = sums[0], ke = sums[1], speed_mass = sums[2], yielding = static_cast<long>(sums[3]);
+    for (int d = 0; d < D; ++d) mom[d] = sums[4 + d];
+    processes.max(&vmax, 1);
   }
   ParticleTotals<D> t;
   t.mass = mass;
@@ -116,11 +124,11 @@ void smoothed_stress(MpmState<D>& state, std::vector<Sym3>& out) {
   });
 }
 
-#define SKRED_MPM_STATE(D)                                                        \
-  template struct MpmState<D>;                                                    \
-  template ParticleTotals<D> particle_totals(const Particles<D>&, int);           \
-  template void restore(MpmState<D>&, const SolverClock&, std::vector<Material>); \
-  template void begin_stage(MpmState<D>&, std::vector<Material>, double);         \
+#define SKRED_MPM_STATE(D)                                                                \
+  template struct MpmState<D>;                                                            \
+  template ParticleTotals<D> particle_totals(const Particles<D>&, int, const Processes&); \
+  template void restore(MpmState<D>&, const SolverClock&, std::vector<Material>);         \
+  template void begin_stage(MpmState<D>&, std::vector<Material>, double);                 \
   template void smoothed_stress(MpmState<D>&, std::vector<Sym3>&);
 SKRED_MPM_STATE(2)
 SKRED_MPM_STATE(3)

@@ -13,6 +13,7 @@
 #include "core/grid.hpp"
 #include "core/particles.hpp"
 #include "material/material.hpp"
+#include "parallel/processes.hpp"
 #include "shape/interpolation.hpp"
 #include "solver/gravity.hpp"
 #include "solver/implicit_settings.hpp"
@@ -95,6 +96,9 @@ struct MpmState {
   std::vector<Material> materials;  // the current stage's, prepared
   SolverClock clock;
   int threads;
+  // The processes the points are split among (parallel/processes.hpp): this one's share is
+  // `points`; sums over the points are every process's.
+  Processes processes;
   NodalSmoothing<D> smoothing;  // of the last smoothed_stress() call
 
   // The gravity acting now: ramped from the stage's start (Thesis eq. 4.13).
@@ -106,7 +110,7 @@ struct MpmState {
 // Sums over the points: mass, kinetic energy (eq. 4.15), momentum, mean (eq. 5.12) and largest
 // speed, yielding points.
 template <int D>
-ParticleTotals<D> particle_totals(const Particles<D>& points, int threads);
+ParticleTotals<D> particle_totals(const Particles<D>& points, int threads, const Processes& processes = {});
 
 // A new stage at the current time: its materials (prepared), the gravity ramp measured from now
 // (eq. 4.13), displacements and energy totals measured from here. Plastic state that a stage held

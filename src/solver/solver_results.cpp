@@ -12,8 +12,10 @@ namespace skred {
 
 template <int D>
 ParticleTotals<D> ExplicitSolver<D>::totals() const {
-  ParticleTotals<D> t = particle_totals(state_.points, threads());
-  t.kinetic_energy += affine_kinetic_energy();
+  ParticleTotals<D> t = particle_totals(state_.points, threads(), state_.processes);
+  double affine = affine_kinetic_energy();
+  sum_points(affine);
+  t.kinetic_energy += affine;
   return t;
 }
 
@@ -42,9 +44,8 @@ double ExplicitSolver<D>::affine_kinetic_energy() const {
 template <int D>
 double ExplicitSolver<D>::material_mean_speed() {
   const auto& P = state_.points;
-  if (P.size() == 0) return 0.0;
-  if (mapped_points_ != P.size()) grid_mapped_ = false;
-  if (!grid_mapped_ && !map_grid().ok) return INFINITY;
+  if (!state_.processes.distributed() && P.size() == 0) return 0.0;
+  if (needs_map() && !map_grid().ok) return INFINITY;
   material_velocity_.resize(fields_.size());  // zero pages, once
   return dispatch([&](const auto& kernel) {
     using K = std::decay_t<decltype(kernel)>;
@@ -72,6 +73,7 @@ double ExplicitSolver<D>::material_mean_speed() {
       add(fields_, -1);
     else  // each body moves with its own fields (Paper III §C.2.7)
       for (std::size_t b = 0; b < bodies_.size(); ++b) add(bodies_[b], static_cast<int>(b));
+    sum_points(m, speed_mass);
     return m > 0.0 ? speed_mass / m : 0.0;
   });
 }

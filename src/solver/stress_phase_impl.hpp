@@ -113,6 +113,7 @@ bool ExplicitSolver<D>::stress_phase(const K& kernel, double dt_stress, CentreSh
         buffers.touched(t, span);
       }
       transfer_.reduce(nullptr, forces);
+      sum_points(work, dissipation);
       state_.clock.energy.strain_energy += work;
       state_.clock.energy.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);

@@ -18,7 +18,11 @@ void ExplicitSolver<D>::cell_sums(Sel sel, const double* value, double* sum, dou
   const long chunks = A.chunk_count(state_.points.size());
 #pragma omp parallel for num_threads(threads()) schedule(static)
   for (long c = 0; c < chunks; ++c) A.sum_chunk(c, n, sel, value);
+  // Split among processes, a cell's points may lie in two shares: every process's runs, with the
+  // cells no point of this process reached zero (parallel/processes.hpp).
+  if (state_.processes.distributed()) transfer_.for_box([&](std::size_t i) { sum[i] = weight[i] = 0.0; });
   A.add_runs(chunks, sum, weight);
+  transfer_.sum_scalars(sum, weight);
 }
 
 // Each selected point's cell, its own grad v and div_p = tr grad v (eq. 2.20) from the nodal
@@ -111,6 +115,7 @@ bool ExplicitSolver<D>::stress_update_cell_volumetric(const K& kernel, double dt
       p2g_internal_force(
           transfer_, kernel, P, forces, sel,
           [&](long q) { return A.pressure_correction(static_cast<std::size_t>(q)); }, axisymmetric());
+      sum_points(work, dissipation);
       state_.clock.energy.strain_energy += work;
       state_.clock.energy.plastic_dissipation += dissipation;
       first_bad = std::min(first_bad, bad);

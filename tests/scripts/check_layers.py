@@ -5,7 +5,7 @@ import pathlib
 import re
 import sys
 
-ORDER = ["core", "shape", "material", "transfer", "solver", "implicit", "scenario", "post", "io", "run", "app"]
+ORDER = ["core", "parallel", "shape", "material", "transfer", "solver", "implicit", "scenario", "post", "io", "run", "app"]
 RANK = {name: i for i, name in enumerate(ORDER)}
 
 src = pathlib.Path(sys.argv[1])

@@ -1,0 +1,104 @@
+// The processes of a distributed run over MPI (processes.hpp).
+#include "parallel/processes.hpp"
+
+// MPI's C interface only (OpenMPI's mpi.h otherwise pulls in its C++ bindings' library).
+#define OMPI_SKIP_MPICXX 1
+#define MPICH_SKIP_MPICXX 1
+#include <mpi.h>
+
+#include <cstdlib>
+#include <vector>
+
+namespace skred {
+
+namespace {
+
+bool started = false;
+
+MPI_Comm comm_of(void* c) { return c ? static_cast<MPI_Comm>(c) : MPI_COMM_SELF; }
+
+}  // namespace
+
+int start_processes(int* argc, char*** argv) {
+  int provided = 0;
+  // OpenMP threads compute between the calls; only the main thread calls MPI.
+  MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
+  started = true;
+  int size = 1;
+  MPI_Comm_size(MPI_COMM_WORLD, &size);
+  return size;
+}
+
+int finish_processes(int code) {
+  if (started) {
+    started = false;
+    MPI_Finalize();
+  }
+  return code;
+}
+
+void abort_processes(int code) {
+  if (started) MPI_Abort(MPI_COMM_WORLD, code);
+  std::exit(code);
+}
+
+bool processes_started() { return started; }
+
+Processes Processes::world() {
+  Processes p;
+  if (!started) return p;
+  MPI_Comm_rank(MPI_COMM_WORLD, &p.rank_);
+  MPI_Comm_size(MPI_COMM_WORLD, &p.size_);
+  if (p.size_ > 1) p.comm_ = static_cast<void*>(MPI_COMM_WORLD);
+  return p;
+}
+
+namespace {
+// data <- op over the processes, in place.
+void allreduce(void* comm, void* data, std::size_t n, MPI_Datatype type, MPI_Op op) {
+  if (comm && n > 0) MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), type, op, comm_of(comm));
+}
+}  // namespace
+
+void Processes::sum(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_SUM); }
+void Processes::sum(long* data, std::size_t n) const { allreduce(comm_, data, n, MPI_LONG, MPI_SUM); }
+void Processes::min(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MIN); }
+void Processes::max(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MAX); }
+
+long Processes::min(long v) const {
+  allreduce(comm_, &v, 1, MPI_LONG, MPI_MIN);
+  return v;
+}
+
+long Processes::max(long v) const {
+  allreduce(comm_, &v, 1, MPI_LONG, MPI_MAX);
+  return v;
+}
+
+long Processes::offset(long v) const {
+  long below = 0;
+  if (distributed()) {
+    MPI_Exscan(&v, &below, 1, MPI_LONG, MPI_SUM, comm_of(comm_));
+    if (rank_ == 0) below = 0;  // (MPI_Exscan leaves rank 0's result undefined)
+  }
+  return below;
+}
+
+void Processes::gather(const double* data, std::size_t n, double* all, std::size_t all_n) const {
+  if (!distributed()) {
+    for (std::size_t i = 0; i < n && i < all_n; ++i) all[i] = data[i];
+    return;
+  }
+  std::vector<int> counts(static_cast<std::size_t>(size_)), starts(static_cast<std::size_t>(size_));
+  const int mine = static_cast<int>(n);
+  MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_of(comm_));
+  int at = 0;
+  for (int r = 0; r < size_; ++r) {
+    starts[static_cast<std::size_t>(r)] = at;
+    at += counts[static_cast<std::size_t>(r)];
+  }
+  if (static_cast<std::size_t>(at) > all_n) abort_processes(3);  // (the caller sized `all` wrongly)
+  MPI_Allgatherv(data, mine, MPI_DOUBLE, all, counts.data(), starts.data(), MPI_DOUBLE, comm_of(comm_));
+}
+
+}  // namespace skred

@@ -1,0 +1,55 @@
+// The processes a run is distributed over (issue 55): MPI's world when skred was started by an
+// MPI launcher (`mpirun -np N`), else the one process alone. The explicit solver's points are
+// split among them; the grid is whole in each, and every grid sum the points make (mass,
+// momentum, forces, remapped momentum, the filters' fields) is summed over the processes where
+// the per-thread scatter buffers are (Transfer::reduce), so the grid phases run alike in all of
+// them. The points' own sums (energies, totals, the first failing point) are summed here too.
+// mpi.h stays in processes.cpp: a single process never calls MPI.
+#pragma once
+#include <cstddef>
+#include <string>
+
+namespace skred {
+
+class Processes {
+ public:
+  Processes() = default;  // one process alone
+  // MPI's world (start_processes must have run); one process alone if it has size 1.
+  static Processes world();
+
+  int rank() const { return rank_; }
+  int size() const { return size_; }
+  bool distributed() const { return size_ > 1; }
+
+  // Collective (every process calls them in the same order; no-ops for one process):
+  void sum(double* data, std::size_t n) const;  // in place
+  void sum(long* data, std::size_t n) const;
+  void min(double* data, std::size_t n) const;
+  void max(double* data, std::size_t n) const;
+  long min(long v) const;
+  long max(long v) const;
+  long sum_of(long v) const {
+    sum(&v, 1);
+    return v;
+  }
+  // The sum of `v` over the processes of lower rank (the first global index of this one's points).
+  long offset(long v) const;
+  // Concatenates each process's `n` doubles in rank order into `all` (size: the sum of the n's),
+  // on every process.
+  void gather(const double* data, std::size_t n, double* all, std::size_t all_n) const;
+
+ private:
+  int rank_ = 0, size_ = 1;
+  void* comm_ = nullptr;  // the MPI communicator (MPI_Comm), when distributed
+};
+
+// MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
+// Returns the world's size.
+int start_processes(int* argc, char*** argv);
+// MPI_Finalize if started; the exit code passes through.
+int finish_processes(int code);
+// Stops every process of the world with `code`, after this one printed its error.
+[[noreturn]] void abort_processes(int code);
+bool processes_started();
+
+}  // namespace skred
