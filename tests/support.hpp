@@ -143,6 +143,14 @@ inline std::vector<std::map<std::string, double>> series_rows(const std::filesys
   return rows;
 }
 
+// The whole text of a file (empty if it cannot be read).
+inline std::string file_text(const std::filesystem::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
 // The last row of a run's series.csv (empty if it has none).
 inline std::map<std::string, double> last_series_row(const std::filesystem::path& file) {
   auto rows = series_rows(file);

@@ -95,30 +95,48 @@ TEST(CliRun, UsageErrorsExitWithCode4) {
 
 // Under an MPI launcher (mpirun -np N) every one of the N copies would run the whole scenario
 // into the same folder: each refuses, naming the launcher's count, and writes nothing.
-TEST(CliRun, ACopyStartedByAnMpiLauncherRefusesToRun) {
+// Under an MPI launcher `run` and `bench` split among its processes (parallel/processes.hpp);
+// the commands that run in one process refuse, rather than have N copies write one folder.
+TEST(CliRun, RunsAcrossTheProcessesOfAnMpiLauncher) {
   TempDir d;
   write(d / "discs.toml", short_discs());
   for (const std::string env : {"OMPI_COMM_WORLD_SIZE=2", "PMI_SIZE=4"}) {
     SCOPED_TRACE(env);
-    const Outcome r = sh(env + " " + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out"));
+    const Outcome r = sh(env + " " + kSkred + " sweep " + q(d / "discs.toml") +
+                         " --set 'material[0].density=1000:2000:2' -o " + q(d / "sweep"));
     EXPECT_EQ(r.code, 4) << r.output;
     EXPECT_NE(r.output.find("one of " + env.substr(env.find('=') + 1) + " processes"), std::string::npos)
         << r.output;
-    EXPECT_FALSE(fs::exists(d / "out"));
+    EXPECT_FALSE(fs::exists(d / "sweep"));
   }
-  // `skred bench` runs across processes (parallel/processes.hpp): the real launcher's two processes
-  // split the points, and the first prints the figures of both.
-  const Outcome bench = sh("OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 " + kSkred +
-                           " bench --problem block --particles 1000 --steps 2 --repeats 1 --threads 1");
+  const std::string mpirun = "OMP_NUM_THREADS=1 mpirun --allow-run-as-root --oversubscribe -np 2 ";
+  // `skred run`: one folder, one report, the frames in pieces.
+  const Outcome run =
+      sh(mpirun + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out") + " --threads 1");
+  EXPECT_EQ(run.code, 0) << run.output;
+  EXPECT_NE(run.output.find("completed"), std::string::npos) << run.output;
+  EXPECT_EQ(run.output.find("completed"), run.output.rfind("completed"))
+      << "one process reports: " << run.output;
+  EXPECT_TRUE(fs::exists(d / "out" / "particles_000000.pvtu"));
+  EXPECT_TRUE(fs::exists(d / "out" / "particles_000000" / "piece_0001.vtu"));
+  EXPECT_NE(read(d / "out" / "summary.json").find("\"processes\": {\"count\": 2,"), std::string::npos);
+  // A failure stops every process, each naming itself: no checkpoint to resume from.
+  const Outcome bad = sh(mpirun + kSkred + " resume " + q(d / "out"));
+  EXPECT_EQ(bad.code, 1) << bad.output;
+  EXPECT_NE(bad.output.find("skred: process "), std::string::npos) << bad.output;
+  EXPECT_NE(bad.output.find("checkpoint"), std::string::npos) << bad.output;
+  // `skred bench`: the first process prints the figures of both.
+  const Outcome bench =
+      sh(mpirun + kSkred + " bench --problem block --particles 1000 --steps 2 --repeats 1 --threads 1");
   EXPECT_EQ(bench.code, 0) << bench.output;
   EXPECT_NE(bench.output.find("2 processes x 1 thread(s)"), std::string::npos) << bench.output;
   EXPECT_EQ(bench.output.find("median:"), bench.output.rfind("median:"))
       << "one process prints: " << bench.output;
   // One process (mpirun -np 1) runs as without the launcher.
   const Outcome one =
-      sh("OMPI_COMM_WORLD_SIZE=1 " + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "out"));
+      sh("OMPI_COMM_WORLD_SIZE=1 " + kSkred + " run " + q(d / "discs.toml") + " -o " + q(d / "one"));
   EXPECT_EQ(one.code, 0) << one.output;
-  EXPECT_TRUE(fs::exists(d / "out" / "summary.json"));
+  EXPECT_TRUE(fs::exists(d / "one" / "particles_000000.vtu"));
 }
 
 TEST(CliRun, InvalidScenarioExitsWithCode5NamingTheKey) {

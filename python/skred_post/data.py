@@ -93,8 +93,9 @@ def read_frame(path, time=math.nan, step=-1, view=None):
     """The Frame in a particle VTU file. A 3D frame is cut to `view` (a View) for a picture;
     with view None it keeps every point (quads then holds the z- faces in x-y)."""
     from vtkmodules.util.numpy_support import vtk_to_numpy
-    from vtkmodules.vtkIOXML import vtkXMLUnstructuredGridReader
-    reader = vtkXMLUnstructuredGridReader()
+    from vtkmodules.vtkIOXML import vtkXMLPUnstructuredGridReader, vtkXMLUnstructuredGridReader
+    # .pvtu: a frame of a run split among processes, one piece per process
+    reader = vtkXMLPUnstructuredGridReader() if path.endswith(".pvtu") else vtkXMLUnstructuredGridReader()
     reader.SetFileName(path)
     reader.Update()
     if reader.GetErrorCode() != 0:

@@ -1,6 +1,6 @@
-// How many processes an MPI launcher started together with this one. skred runs a scenario in
-// one process, on the machine's cores through OpenMP; runs across processes (issue 55) are not
-// built yet, and N copies of one run under `mpirun -np N` would write one output folder at once.
+// How many processes an MPI launcher started together with this one: MPI is started only then
+// (parallel/processes.hpp). `run`, `resume` and `bench` split among them; the other commands run
+// in one process, and N copies of them would write one output folder at once, so they refuse.
 #pragma once
 #include <cerrno>
 #include <cstdlib>

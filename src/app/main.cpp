@@ -5,6 +5,7 @@
 
 #include <CLI/CLI.hpp>
 #include <cmath>
+#include <exception>
 #include <filesystem>
 #include <new>
 #include <sstream>
@@ -47,10 +48,24 @@ int cmd_run(const std::string& file, const std::string& outdir, int threads, skr
             bool overwrite) {
   skred::watch_stop_signals();
   const skred::AnyScenario s = skred::load_any_scenario(file);
-  if (opt.restart.empty()) skred::prepare_output_folder(outdir, overwrite, file);
+  const skred::Processes& procs = opt.processes;
+  if (opt.restart.empty()) {  // by the first process; the others wait to hear that it could
+    std::exception_ptr failed;
+    if (procs.rank() == 0) try {
+        skred::prepare_output_folder(outdir, overwrite, file);
+      } catch (...) {
+        failed = std::current_exception();
+      }
+    if (procs.any(failed != nullptr)) {
+      if (failed) std::rethrow_exception(failed);
+      return code::kError;
+    }
+  }
   opt.threads = threads > 0 ? threads : omp_get_max_threads();
   opt.handle_signals = true;
   const auto res = skred::run_simulation(s, outdir, opt);
+  if (procs.rank() != 0)  // (the first process reports)
+    return res.interrupted ? code::kInterrupted : res.completed ? code::kSuccess : code::kUnstable;
   if (res.interrupted) {
     fmt::print(stderr, "skred: {}\n", res.message);
     return code::kInterrupted;
@@ -308,16 +323,38 @@ static int command(int argc, char** argv) {
   }
   if (post.chosen()) return post.run();
   if (const skred::Launch launch = skred::launched_processes();
-      launch.processes > 1 && (*run || *resume || *sweep || *refine || *fos)) {
+      launch.processes > 1 && (*sweep || *refine || *fos)) {
     if (skred::Processes::world().rank() == 0)
-      fmt::print(stderr,
-                 "skred: error: started as one of {} processes by an MPI launcher ({}={}); skred runs a "
-                 "scenario in one process, on all of the machine's cores with OpenMP, and {} copies of this "
-                 "command would write the same results at once. Start it without the launcher (or with -np "
-                 "1); of the commands, only `skred bench` runs across processes yet.\n",
-                 launch.processes, launch.variable, launch.processes, launch.processes);
+      fmt::print(
+          stderr,
+          "skred: error: started as one of {} processes by an MPI launcher ({}={}); `skred {}` runs in "
+          "one process, on all of the machine's cores with OpenMP, and {} copies of it would write the "
+          "same results at once. Start it without the launcher (or with -np 1); of the commands, `skred "
+          "run`, `skred resume` and `skred bench` run across processes.\n",
+          launch.processes, launch.variable, launch.processes,
+          *sweep    ? "sweep"
+          : *refine ? "refine"
+                    : "fos",
+          launch.processes);
     return code::kUsage;
   }
+  const skred::Processes world = skred::Processes::world();
+  ro.processes = world;
+  // A failure in one process of several stops them all (the others may wait for it in a
+  // collective call), naming the process; a scenario error, the same in each, the first reports.
+  const auto fail = [&](int c, const std::string& text) {
+    if (!world.distributed()) {
+      fmt::print(stderr, "skred: {}\n", text);
+      return c;
+    }
+    if (c == code::kInvalidScenario) {
+      if (world.rank() == 0) fmt::print(stderr, "skred: {}\n", text);
+      return c;
+    }
+    fmt::print(stderr, "skred: process {} of {}: {}\n", world.rank(), world.size(), text);
+    std::fflush(stderr);
+    skred::abort_processes(c);
+  };
   try {
     if (*run) {
       ro.restart = restart;
@@ -400,6 +437,9 @@ static int command(int argc, char** argv) {
                  r.peak_rss_bytes / 1e6, (r.peak_rss_bytes - r.idle_rss_bytes) / 1e6,
                  (r.peak_rss_bytes - r.idle_rss_bytes) / r.own_particles);
       if (bo.threads > 1) fmt::print("OpenMP wait: {}\n", skred::omp_wait_description());
+      if (bo.processes.distributed())
+        fmt::print("exchanged per step by each process: {:.0f} collective calls, {:.2f} MB\n",
+                   r.calls_per_step, r.bytes_per_step / 1e6);
       double total = 0.0;
       for (const auto& [name, s] : r.phase_seconds) total += s;
       fmt::print("time per phase (all repeats):\n");
@@ -407,26 +447,21 @@ static int command(int argc, char** argv) {
         fmt::print("  {:<24} {:8.3f} s  {:5.1f} %\n", name, s, 100.0 * s / total);
     }
   } catch (const skred::CheckpointError& e) {
-    fmt::print(stderr, "skred: {}\n", e.what());
-    return code::kError;
+    return fail(code::kError, e.what());
   } catch (const skred::ScenarioError& e) {
-    fmt::print(stderr, "skred: {}\n", e.what());
-    return code::kInvalidScenario;
+    return fail(code::kInvalidScenario, e.what());
   } catch (const CLI::ValidationError& e) {  // e.g. sweep's --set, checked after parsing
-    fmt::print(stderr, "skred: {}\n", e.what());
-    return code::kUsage;
+    return fail(code::kUsage, e.what());
   } catch (const std::bad_alloc&) {  // (fuzzing: a run past `ulimit -v` said only "std::bad_alloc")
-    fmt::print(
-        stderr,
-        "skred: error: out of memory: an allocation failed with {} left to this process (the machine's "
-        "memory, its cgroup's memory.max and the address-space limit, ulimit -v). `skred check "
-        "SCENARIO` estimates what a run needs; coarsen the grid, lower particles_per_cell or raise the "
-        "limit\n",
-        memory_text(skred::available_memory_bytes()));
-    return code::kError;
+    return fail(
+        code::kError,
+        fmt::format("error: out of memory: an allocation failed with {} left to this process (the "
+                    "machine's memory, its cgroup's memory.max and the address-space limit, ulimit -v). "
+                    "`skred check SCENARIO` estimates what a run needs; coarsen the grid, lower "
+                    "particles_per_cell or raise the limit",
+                    memory_text(skred::available_memory_bytes())));
   } catch (const std::exception& e) {
-    fmt::print(stderr, "skred: error: {}\n", e.what());
-    return code::kError;
+    return fail(code::kError, fmt::format("error: {}", e.what()));
   }
   return code::kSuccess;
 }

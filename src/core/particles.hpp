@@ -145,6 +145,17 @@ struct Particles {
     for_each_present_field([&](const auto&, auto& a) { reserve_huge(a, n); });
   }
 
+  // Gives back the capacity beyond the points held (after erase() of most of them), the arrays
+  // moved to buffers of their size (asking for huge pages as reserve() does).
+  void shrink() {
+    for_each_present_field([&](const auto&, auto& a) {
+      std::decay_t<decltype(a)> b;
+      reserve_huge(b, a.size());
+      b.assign(a.begin(), a.end());
+      a.swap(b);
+    });
+  }
+
   // Appends one point with every field at its initial value; returns its index.
   std::size_t add_default() {
     for_each_present_field([&](const auto& f, auto& a) { a.push_back(f.initial()); });
@@ -199,6 +210,21 @@ struct Particles {
     volume0[p] *= 0.5;
     volume0[q] = volume0[p];
     return q;
+  }
+
+  // Appends the points of `o` after these (an optional field that one of them lacks takes its
+  // initial value there). Joins the pieces of a checkpoint written by several processes.
+  void append(const Particles& o) {
+    const std::size_t n = size(), m = o.size();
+    for_each_field([&](const auto& f, auto& a) {
+      const auto& b = o.*f.member;
+      if (f.optional && a.empty() && b.empty()) return;
+      if (a.size() != n) a.assign(n, f.initial());
+      if (b.size() == m)
+        a.insert(a.end(), b.begin(), b.end());
+      else
+        a.insert(a.end(), m, f.initial());
+    });
   }
 
   // Removes the points whose keep[p] is 0, keeping the order of the others (stable

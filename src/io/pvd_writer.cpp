@@ -30,7 +30,8 @@ std::string xml_attribute_escape(const std::string& s) {
 
 }  // namespace
 
-PvdWriter::PvdWriter(const std::filesystem::path& folder, const std::string& name) : file_(folder / name) {}
+PvdWriter::PvdWriter(const std::filesystem::path& folder, const std::string& name)
+    : file_(folder.empty() ? folder : folder / name) {}
 
 void PvdWriter::add(double time, const std::string& vtu_filename) {
   if (!std::isfinite(time))
@@ -39,6 +40,7 @@ void PvdWriter::add(double time, const std::string& vtu_filename) {
   entries_ += fmt::format("    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", time,
                           xml_attribute_escape(vtu_filename));
   ++count_;
+  if (file_.empty()) return;
   constexpr bool little = std::endian::native == std::endian::little;
   write_file_atomically(file_, [&](std::ostream& os) {
     os << "<?xml version=\"1.0\"?>\n"

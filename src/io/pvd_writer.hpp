@@ -9,7 +9,7 @@ namespace skred {
 class PvdWriter {
  public:
   // The index is `folder`/`name` (particles.pvd unless told otherwise, e.g. grid.pvd).
-  // Nothing is written until the first add().
+  // Nothing is written until the first add(); never, for an empty `folder` (it only counts).
   explicit PvdWriter(const std::filesystem::path& folder, const std::string& name = "particles.pvd");
 
   // Appends a DataSet entry for `vtu_filename` (relative to the output folder, as ParaView

@@ -36,6 +36,7 @@ SeriesWriter::~SeriesWriter() {
 
 void SeriesWriter::add(const SeriesRow& r) {
   rows_.push_back(r);
+  if (file_.empty()) return;  // (rows only)
   format_row(r, text_);
   dirty_ = true;
 }
@@ -90,6 +91,7 @@ bool append(const std::filesystem::path& file, const std::string& text) {
 }  // namespace
 
 void SeriesWriter::flush() {
+  if (file_.empty()) return;
   if (started_ && append(file_, text_)) {
     text_.clear();
     dirty_ = false;

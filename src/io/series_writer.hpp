@@ -73,6 +73,8 @@ struct SeriesColumns {
 class SeriesWriter {
  public:
   // Nothing is written until the first flush(). The rows end with the `extra` columns asked for.
+  // An empty `file`: the rows are kept (for checkpoints) and nothing is written (the processes
+  // of a distributed run besides the first).
   explicit SeriesWriter(const std::filesystem::path& file, SeriesColumns extra = {});
   // Flushes rows added since the last flush(); errors are swallowed here (call flush()
   // yourself to see them), so a run that ends by an exception still leaves its series.

@@ -158,6 +158,16 @@ std::string implicit_json(const Summary& s) {
       json_number(m.max_factor_bytes), m.elastic_fallbacks, forces);
 }
 
+std::string processes_json(const Summary& s) {
+  if (s.processes <= 1) return {};
+  const double mean = static_cast<double>(s.particles) / s.processes;
+  return fmt::format(
+      "  \"processes\": {{\"count\": {}, \"points_min\": {}, \"points_max\": {}, \"imbalance\": {}, "
+      "\"setup_peak_bytes\": {}}},\n",
+      s.processes, s.share_min, s.share_max, json_number(mean > 0 ? s.share_max / mean : NAN),
+      json_number(s.setup_peak_bytes));
+}
+
 }  // namespace
 
 void write_summary_json(const std::filesystem::path& file, const Summary& s) {
@@ -173,7 +183,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       "  \"wall_seconds\": {},\n"
       "  \"particle_updates_per_second\": {},\n"
       "  \"memory\": {{\"peak_bytes\": {}, \"bytes_per_point\": {}}},\n"
-      "  \"threads\": {},\n"
+      "  \"threads\": {},\n{}"
       "  \"scenario\": {},\n"
       "  \"interpolation\": {},\n"
       "  \"scheme\": {},\n{}{}"
@@ -187,7 +197,7 @@ void write_summary_json(const std::filesystem::path& file, const Summary& s) {
       json_number(s.end_time), s.particles, s.cells,
       s.dimension == 2 ? std::string() : fmt::format("  \"dimension\": {},\n", s.dimension),
       json_number(s.wall_seconds), json_number(s.particle_updates_per_second),
-      json_number(s.peak_memory_bytes), json_number(s.memory_bytes_per_point), s.threads,
+      json_number(s.peak_memory_bytes), json_number(s.memory_bytes_per_point), s.threads, processes_json(s),
       json_string(s.scenario), json_string(s.interpolation), json_string(s.scheme), transfer_json(s),
       limit_equilibrium_json(s), json_number(s.time_step), implicit_json(s), phases_json(s.phase_seconds),
       stages_json(s.stages), maps_json(s.maps), json_string(s.version), json_string(s.git_commit));

@@ -66,6 +66,12 @@ struct Summary {
   // The process's peak resident memory, and that peak less the resident memory before the points
   // were made, per point (the points' and the grid's cost; run/memory_use.hpp). NaN: unknown.
   double peak_memory_bytes = NAN, memory_bytes_per_point = NAN;
+  // A run split among processes (written after threads when more than one): their count and the
+  // fewest and most points one held at the end; the imbalance is most / mean. The memory is then
+  // the sum of the processes' peaks after the set-up, where each built all the points in turn.
+  int processes = 1;
+  long share_min = 0, share_max = 0;
+  double setup_peak_bytes = 0.0;  // the largest peak of a process in the set-up (0: not apart)
   // The velocity transfer and volumetric strain the run used (written after the scheme when
   // set; "auto" resolved): xpic_order and xpic_period [h/c] for "xpic", pic_fraction for "flip".
   std::string velocity_transfer = {}, volumetric_strain = {};

@@ -57,14 +57,9 @@ double* put_corners(double* out, const Particles<D>& P, std::size_t p) {
 // slope: 0.06 mm against voxels of centimetres or more); georeferenced ones (UTM, |x| ~ 5e5 m:
 // 3 cm) fall back to Float64 rather than draw jagged voxels.
 template <int D>
-bool corners_fit_float32(const Particles<D>& P) {
-  double reach = 0.0, half = std::numeric_limits<double>::infinity();
-  for (std::size_t p = 0; p < P.size(); ++p) {
-    reach = std::max(reach, P.x[p].cwiseAbs().maxCoeff() + (P.F[p] * P.half0[p]).cwiseAbs().maxCoeff() +
-                                P.half0[p].maxCoeff());
-    half = std::min(half, P.half0[p].minCoeff());
-  }
-  return reach * std::ldexp(1.0, -24) <= 1e-3 * half;
+bool corners_fit_float32(const Particles<D>& P, const VtuOptions& options) {
+  if (options.corners_float32) return *options.corners_float32;
+  return corners_fit_float32(corner_span(P));
 }
 
 // Cell connectivity and offsets as Int32 while the point count allows, else Int64.
@@ -88,12 +83,13 @@ void add_cells(std::vector<Block>& blocks, const char* type) {
 }
 
 template <int D>
-std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra) {
+std::vector<Block> make_blocks(const Particles<D>& P, const ParticleFields& extra,
+                               const VtuOptions& options) {
   const std::vector<std::string>& voigt = voigt_names();
   std::vector<Block> blocks;
   constexpr std::size_t corners = 1 << D;
 
-  blocks.push_back(real_block("Points", "", 3, 3 * corners, corners_fit_float32(P),
+  blocks.push_back(real_block("Points", "", 3, 3 * corners, corners_fit_float32(P, options),
                               [&P](std::size_t p, double* o) { put_corners<D>(o, P, p); }));
   if (corners * P.size() <= static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max()))
     add_cells<std::int32_t, corners>(blocks, "Int32");
@@ -216,7 +212,7 @@ void write_vtu(const std::filesystem::path& file, const Particles<D>& P, const P
                const VtuOptions& options) {
   check_sizes(P, extra);
   const std::size_t n = P.size();
-  const std::vector<Block> blocks = chosen(make_blocks(P, extra), options.fields);
+  const std::vector<Block> blocks = chosen(make_blocks(P, extra, options), options.fields);
   std::vector<vtk::AppendedArray> arrays;
   for (const Block& b : blocks) arrays.push_back({n, b.bytes_per_particle(), b.fill});
   write_file_atomically(file, [&](std::ostream& os) {
@@ -229,7 +225,58 @@ void write_vtu(const std::filesystem::path& file, const Particles<D>& P, const P
   });
 }
 
+// The index of a frame in pieces: the arrays of make_blocks without their data.
+template <int D>
+void write_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                const Particles<D>& P, const ParticleFields& extra, const VtuOptions& options) {
+  const std::vector<Block> blocks = chosen(make_blocks(P, extra, options), options.fields);
+  std::string h = "<?xml version=\"1.0\"?>\n" + vtk::vtkfile_element("PUnstructuredGrid", options.compress);
+  auto out = std::back_inserter(h);
+  fmt::format_to(out, "  <PUnstructuredGrid GhostLevel=\"0\">\n");
+  for (const char* section : {"Points", "CellData"}) {
+    fmt::format_to(out, "    <P{}>\n", section);
+    for (const Block& b : blocks) {
+      if (std::strcmp(b.section, section) != 0) continue;
+      fmt::format_to(out, "      <PDataArray type=\"{}\"", b.type);
+      if (!b.name.empty()) fmt::format_to(out, " Name=\"{}\"", b.name);
+      if (b.components != 1) fmt::format_to(out, " NumberOfComponents=\"{}\"", b.components);
+      for (std::size_t c = 0; c < b.component_names.size(); ++c)
+        fmt::format_to(out, " ComponentName{}=\"{}\"", c, b.component_names[c]);
+      h += "/>\n";
+    }
+    fmt::format_to(out, "    </P{}>\n", section);
+  }
+  for (const std::string& piece : pieces) fmt::format_to(out, "    <Piece Source=\"{}\"/>\n", piece);
+  h += "  </PUnstructuredGrid>\n</VTKFile>\n";
+  write_file_atomically(file, [&](std::ostream& os) { os << h; });
+}
+
 }  // namespace
+
+template <int D>
+CornerSpan corner_span(const Particles<D>& P) {
+  CornerSpan c;
+  for (std::size_t p = 0; p < P.size(); ++p) {
+    c.reach = std::max(c.reach, P.x[p].cwiseAbs().maxCoeff() + (P.F[p] * P.half0[p]).cwiseAbs().maxCoeff() +
+                                    P.half0[p].maxCoeff());
+    c.half = std::min(c.half, P.half0[p].minCoeff());
+  }
+  return c;
+}
+template CornerSpan corner_span<2>(const Particles<2>&);
+template CornerSpan corner_span<3>(const Particles<3>&);
+
+bool corners_fit_float32(const CornerSpan& c) { return c.reach * std::ldexp(1.0, -24) <= 1e-3 * c.half; }
+
+void write_particles_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                          const Particles<2>& P, const ParticleFields& extra, const VtuOptions& options) {
+  write_pvtu(file, pieces, P, extra, options);
+}
+
+void write_particles_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                          const Particles<3>& P, const ParticleFields& extra, const VtuOptions& options) {
+  write_pvtu(file, pieces, P, extra, options);
+}
 
 void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& P,
                          const ParticleFields& extra, const VtuOptions& options) {

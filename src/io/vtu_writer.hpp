@@ -1,6 +1,8 @@
 // Material points as a VTK XML UnstructuredGrid (.vtu) for ParaView (Post §3).
 #pragma once
+#include <cmath>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,7 +32,20 @@ struct VtuOptions {
   std::vector<std::string> fields;
   // zlib-compressed arrays (VTK's vtkZLibDataCompressor), else raw.
   bool compress = true;
+  // Float32 corners (true) or Float64 (false); unset: as corners_fit_float32 finds for the points
+  // written (the pieces of one frame must agree: a distributed run decides for all of them).
+  std::optional<bool> corners_float32 = std::nullopt;
 };
+
+// How far the corners of the points reach from the origin (the largest |coordinate|) and the
+// smallest half-size of a point: Float32 corners fit while rounding them moves them by at most
+// 1e-3 of the smallest voxel.
+struct CornerSpan {
+  double reach = 0.0, half = INFINITY;
+};
+template <int D>
+CornerSpan corner_span(const Particles<D>& P);
+bool corners_fit_float32(const CornerSpan& c);
 
 // Writes every material point as its deformed voxel: a VTK_QUAD whose corners, counter-
 // clockwise, are x_p + F_p (+-l0x, +-l0y) with l0 = P.half0[p] (Thesis eq. 3.6-3.12), z = 0.
@@ -65,5 +80,14 @@ void write_particles_vtu(const std::filesystem::path& file, const Particles<2>& 
 // face), vectors with their z components, the full 3D stress and F; the same fields.
 void write_particles_vtu(const std::filesystem::path& file, const Particles<3>& P,
                          const ParticleFields& extra = {}, const VtuOptions& options = {});
+
+// The index of one frame written in pieces, one .vtu per process of a distributed run: a VTK
+// XML PUnstructuredGrid (.pvtu) naming the `pieces` (paths relative to its folder) and the
+// arrays write_particles_vtu writes with the same `extra` and `options` (whose corners_float32
+// must be set: the pieces' corner type). `P` is any of the pieces' points. Written atomically.
+void write_particles_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                          const Particles<2>& P, const ParticleFields& extra, const VtuOptions& options);
+void write_particles_pvtu(const std::filesystem::path& file, const std::vector<std::string>& pieces,
+                          const Particles<3>& P, const ParticleFields& extra, const VtuOptions& options);
 
 }  // namespace skred

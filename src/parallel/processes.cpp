@@ -14,6 +14,8 @@ namespace skred {
 namespace {
 
 bool started = false;
+int machine_rank = 0, machine_size = 1;  // among the processes of this machine (start_processes)
+Exchanged traffic;                       // (only the main thread calls MPI)
 
 MPI_Comm comm_of(void* c) { return c ? static_cast<MPI_Comm>(c) : MPI_COMM_SELF; }
 
@@ -24,8 +26,14 @@ int start_processes(int* argc, char*** argv) {
   // OpenMP threads compute between the calls; only the main thread calls MPI.
   MPI_Init_thread(argc, argv, MPI_THREAD_FUNNELED, &provided);
   started = true;
-  int size = 1;
+  int size = 1, rank = 0;
   MPI_Comm_size(MPI_COMM_WORLD, &size);
+  MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+  MPI_Comm machine;  // the processes that share this one's memory
+  MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &machine);
+  MPI_Comm_rank(machine, &machine_rank);
+  MPI_Comm_size(machine, &machine_size);
+  MPI_Comm_free(&machine);
   return size;
 }
 
@@ -42,21 +50,26 @@ void abort_processes(int code) {
   std::exit(code);
 }
 
-bool processes_started() { return started; }
-
 Processes Processes::world() {
   Processes p;
   if (!started) return p;
   MPI_Comm_rank(MPI_COMM_WORLD, &p.rank_);
   MPI_Comm_size(MPI_COMM_WORLD, &p.size_);
   if (p.size_ > 1) p.comm_ = static_cast<void*>(MPI_COMM_WORLD);
+  p.local_rank_ = machine_rank;
+  p.local_size_ = machine_size;
   return p;
 }
 
 namespace {
 // data <- op over the processes, in place.
 void allreduce(void* comm, void* data, std::size_t n, MPI_Datatype type, MPI_Op op) {
-  if (comm && n > 0) MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), type, op, comm_of(comm));
+  if (!comm || n == 0) return;
+  int bytes = 0;
+  MPI_Type_size(type, &bytes);
+  ++traffic.calls;
+  traffic.bytes += static_cast<double>(bytes) * static_cast<double>(n);
+  MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), type, op, comm_of(comm));
 }
 }  // namespace
 
@@ -75,9 +88,19 @@ long Processes::max(long v) const {
   return v;
 }
 
+Exchanged exchanged() { return traffic; }
+
+void Processes::barrier() const {
+  if (!distributed()) return;
+  ++traffic.calls;
+  MPI_Barrier(comm_of(comm_));
+}
+
 long Processes::offset(long v) const {
   long below = 0;
   if (distributed()) {
+    ++traffic.calls;
+    traffic.bytes += sizeof v;
     MPI_Exscan(&v, &below, 1, MPI_LONG, MPI_SUM, comm_of(comm_));
     if (rank_ == 0) below = 0;  // (MPI_Exscan leaves rank 0's result undefined)
   }
@@ -91,6 +114,8 @@ void Processes::gather(const double* data, std::size_t n, double* all, std::size
   }
   std::vector<int> counts(static_cast<std::size_t>(size_)), starts(static_cast<std::size_t>(size_));
   const int mine = static_cast<int>(n);
+  traffic.calls += 2;
+  traffic.bytes += sizeof mine + static_cast<double>(n) * sizeof(double);
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_of(comm_));
   int at = 0;
   for (int r = 0; r < size_; ++r) {

@@ -14,12 +14,16 @@ namespace skred {
 class Processes {
  public:
   Processes() = default;  // one process alone
-  // MPI's world (start_processes must have run); one process alone if it has size 1.
+  // MPI's world (start_processes must have run); one process alone if it has size 1. Not a
+  // collective call.
   static Processes world();
 
   int rank() const { return rank_; }
   int size() const { return size_; }
   bool distributed() const { return size_ > 1; }
+  // This process among those on its machine (that share its memory), and their number.
+  int local_rank() const { return local_rank_; }
+  int local_size() const { return local_size_; }
 
   // Collective (every process calls them in the same order; no-ops for one process):
   void sum(double* data, std::size_t n) const;  // in place
@@ -28,6 +32,8 @@ class Processes {
   void max(double* data, std::size_t n) const;
   long min(long v) const;
   long max(long v) const;
+  bool any(bool v) const { return max(v ? 1L : 0L) > 0; }
+  void barrier() const;
   long sum_of(long v) const {
     sum(&v, 1);
     return v;
@@ -39,17 +45,26 @@ class Processes {
   void gather(const double* data, std::size_t n, double* all, std::size_t all_n) const;
 
  private:
-  int rank_ = 0, size_ = 1;
+  int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
   void* comm_ = nullptr;  // the MPI communicator (MPI_Comm), when distributed
 };
+
+// What this process has exchanged with the others so far: its collective calls, and the bytes it
+// gave to them (an allreduce of n doubles: 8 n; a gather: its own part). For the exchange's share
+// of a step (skred bench; docs/studies).
+struct Exchanged {
+  long calls = 0;
+  double bytes = 0.0;
+};
+Exchanged exchanged();
 
 // MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
 // Returns the world's size.
 int start_processes(int* argc, char*** argv);
 // MPI_Finalize if started; the exit code passes through.
 int finish_processes(int code);
-// Stops every process of the world with `code`, after this one printed its error.
+// Stops every process of the world with `code`, after this one printed its error (one process
+// that fails while the others wait in a collective call would leave them waiting for ever).
 [[noreturn]] void abort_processes(int code);
-bool processes_started();
 
 }  // namespace skred

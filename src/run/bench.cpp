@@ -37,6 +37,13 @@ std::vector<double> sorted(std::vector<double> v) {
 }
 
 // Adds the phase times of the timed steps (the timer's `after` less `before`) to res.
+// The exchange per step since `before`, over `steps` steps.
+void count_exchange(BenchResult& res, const Exchanged& before, int steps) {
+  const Exchanged now = exchanged();
+  res.calls_per_step = static_cast<double>(now.calls - before.calls) / std::max(steps, 1);
+  res.bytes_per_step = (now.bytes - before.bytes) / std::max(steps, 1);
+}
+
 void add_phases(BenchResult& res, const PhaseTimer& before, const PhaseTimer& after) {
   for (std::size_t k = 0; k < PhaseTimer::kCount; ++k) {
     const Phase p = static_cast<Phase>(k);
@@ -123,8 +130,10 @@ BenchResult run_column(const BenchOptions& opt) {
     st.xpic_period = opt.xpic_period * stable_time_step(s);  // seconds
     st.volumetric_averaging = opt.volumetric_averaging;
     ExplicitSolver<D> solver(grid, P, stage_materials(s, s.stages[0]), st, opt.threads);
-    const SurfaceProfile before = start_profile(P, 0.0, s.cell_size, s.cells[0], 0.5 * s.cell_size);
+    const SurfaceProfile before =
+        start_profile(P, 0.0, s.cell_size, s.cells[0], 0.5 * s.cell_size, 0, -INFINITY, opt.processes);
     const PhaseTimer before_phases = solver.phase_times();
+    const Exchanged sent = exchanged();
     const auto t0 = std::chrono::steady_clock::now();
     for (int k = 0; k < opt.steps; ++k)
       if (!sorted_step(P, solver, opt.sort_every).ok) {
@@ -132,14 +141,13 @@ BenchResult run_column(const BenchOptions& opt) {
         break;
       }
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    count_exchange(res, sent, opt.steps);
     opt.processes.max(&sec, 1);  // the slowest process's
     res.own_particles = static_cast<long>(P.size());
     res.particles = opt.processes.sum_of(res.own_particles);
     res.nodes = static_cast<long>(grid.node_count());
     res.updates_per_second.push_back(static_cast<double>(res.particles) * solver.steps() / sec);
-    double front = runout_of(before, P, 0.0, s.cell_size, 0.5 * s.cell_size).x_max;
-    opt.processes.max(&front, 1);
-    res.runout = front;
+    res.runout = runout_of(before, P, 0.0, s.cell_size, 0.5 * s.cell_size, 0, -INFINITY, opt.processes).x_max;
     res.yielding = solver.totals().yielding;
     add_phases(res, before_phases, solver.phase_times());
   }
@@ -194,9 +202,11 @@ BenchResult run_bench(const BenchOptions& opt) {
     ExplicitSolver<2> solver(grid, P, {soil}, st, opt.threads);
     sorted_step(P, solver, opt.sort_every);  // warm-up (first touch of the grid and buffers)
     const PhaseTimer before_phases = solver.phase_times();
+    const Exchanged sent = exchanged();
     const auto t0 = std::chrono::steady_clock::now();
     for (int s = 0; s < opt.steps; ++s) sorted_step(P, solver, opt.sort_every);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    count_exchange(res, sent, opt.steps);
     opt.processes.max(&sec, 1);  // the slowest process's
     res.own_particles = static_cast<long>(P.size());
     res.particles = opt.processes.sum_of(res.own_particles);

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "io/atomic_file.hpp"
+#include "parallel/point_shares.hpp"
 #include "scenario/initial_stress.hpp"
 
 namespace skred {
@@ -97,6 +99,12 @@ void watch_stop_signals() {
 
 fs::path checkpoint_file(const fs::path& outdir) { return outdir / "checkpoint.skc"; }
 
+fs::path checkpoint_piece(const fs::path& outdir, int rank, int processes) {
+  return outdir / fmt::format("checkpoint.{}-of-{}.skc", rank, processes);
+}
+
+fs::path checkpoint_manifest(const fs::path& outdir) { return outdir / "checkpoint.manifest"; }
+
 std::uint64_t scenario_hash(const std::string& source) {
   std::ifstream in(source, std::ios::binary);
   std::string text = source;
@@ -108,7 +116,10 @@ std::uint64_t scenario_hash(const std::string& source) {
 template <int D>
 Checkpointing<D>::Checkpointing(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt)
     : s_(s),
-      file_(checkpoint_file(outdir)),
+      procs_(opt.processes),
+      outdir_(outdir),
+      file_(procs_.distributed() ? checkpoint_piece(outdir, procs_.rank(), procs_.size())
+                                 : checkpoint_file(outdir)),
       restart_(opt.restart),
       every_(opt.checkpoint_every),
       stop_at_(opt.stop_at_step),
@@ -141,6 +152,48 @@ void Checkpointing<D>::write(const Particles<D>& P, const Integrator<D>& solver,
   for (SeriesRow r : series.rows()) archive_row(w, r);
   P.serialise(os);
   write_checkpoint(file_, {D, scenario_hash(s_.source)}, os.str());
+  std::error_code ec;
+  if (!procs_.distributed()) {
+    fs::remove(checkpoint_manifest(outdir_), ec);  // (an older checkpoint in pieces)
+    return;
+  }
+  procs_.barrier();  // every piece is on disk before the manifest names them
+  if (procs_.rank() != 0) return;
+  write_file_atomically(checkpoint_manifest(outdir_), [&](std::ostream& m) {
+    m << "skred checkpoint in pieces\nprocesses " << procs_.size() << "\nstep " << c.steps << '\n';
+  });
+  fs::remove(checkpoint_file(outdir_), ec);
+}
+
+// The pieces of the checkpoint `manifest` names (Checkpointing::restore).
+template <int D>
+void Checkpointing<D>::load_pieces(const fs::path& manifest, Particles<D>& P, SolverClock& c,
+                                   RunProgress<D>& at, std::vector<SeriesRow>& rows) const {
+  std::ifstream in(manifest);
+  std::string head, key_n, key_step;
+  long n = 0, step = -1;
+  std::getline(in, head);
+  if (!(head == "skred checkpoint in pieces" && in >> key_n >> n >> key_step >> step &&
+        key_n == "processes" && key_step == "step" && n >= 1 && n <= 1000000))
+    throw CheckpointError(fmt::format("checkpoint manifest '{}' is not one skred wrote", manifest.string()));
+  const auto piece = [&](long r, Particles<D>& into) {
+    const fs::path file = checkpoint_piece(manifest.parent_path(), static_cast<int>(r), static_cast<int>(n));
+    load_checkpoint(file, s_, into, c, at, rows);
+    if (c.steps != step)
+      throw CheckpointError(fmt::format("checkpoint piece '{}' is of step {}, its manifest '{}' of step {}",
+                                        file.string(), c.steps, manifest.string(), step));
+  };
+  if (n == procs_.size()) {  // the same split: this process's own points
+    piece(procs_.rank(), P);
+    return;
+  }
+  P = Particles<D>();  // another count: all the points, in the order of the pieces, then the share
+  for (long r = 0; r < n; ++r) {
+    Particles<D> part;
+    piece(r, part);
+    P.append(part);
+  }
+  keep_share(P, procs_);
 }
 
 template <int D>
@@ -169,13 +222,21 @@ bool Checkpointing<D>::restore(Particles<D>& P, Integrator<D>& solver, RunProgre
   if (restart_.empty()) return false;
   SolverClock c;
   std::vector<SeriesRow> rows;
-  load_checkpoint(restart_, s_, P, c, at, rows);
+  if (const fs::path manifest = checkpoint_manifest(restart_.parent_path());
+      restart_.filename() == checkpoint_file("").filename() && fs::exists(manifest)) {
+    load_pieces(manifest, P, c, at, rows);
+  } else {
+    load_checkpoint(restart_, s_, P, c, at, rows);
+    keep_share(P, procs_);
+  }
   if (every_ == 0) every_ = at.checkpoint_every;  // a resume keeps the run's period
   for (const SeriesRow& row : rows) series.add(row);
   const std::size_t stage = std::min<std::size_t>(at.stage, s_.stages.size() - 1);
   solver.restore(c, stage_materials(s_, s_.stages[stage]));
-  for (std::size_t f = 0; f < at.frame_times.size(); ++f) {
-    particles_pvd.add(at.frame_times[f], fmt::format("particles_{:06}.vtu", f));
+  for (std::size_t f = 0; f < at.frame_times.size(); ++f) {  // .pvtu: a frame in pieces
+    const std::string in_pieces = fmt::format("particles_{:06}.pvtu", f);
+    particles_pvd.add(at.frame_times[f],
+                      fs::exists(outdir_ / in_pieces) ? in_pieces : fmt::format("particles_{:06}.vtu", f));
     grid_pvd.add(at.frame_times[f], fmt::format("grid_{:06}.vtr", f));
   }
   return true;
@@ -184,7 +245,7 @@ bool Checkpointing<D>::restore(Particles<D>& P, Integrator<D>& solver, RunProgre
 template <int D>
 bool Checkpointing<D>::after_step(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                                   const SeriesWriter& series) {
-  if (g_stop_requested || solver.steps() == stop_at_) {
+  if (procs_.any(g_stop_requested || solver.steps() == stop_at_)) {
     write(P, solver, at, series);
     return true;
   }

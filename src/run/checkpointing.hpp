@@ -39,6 +39,12 @@ void watch_stop_signals();
 
 // The name of the checkpoint file in an output folder.
 std::filesystem::path checkpoint_file(const std::filesystem::path& outdir);
+// A run split among N processes checkpoints in pieces, one per process (its points and the run's
+// state), checkpoint.<rank>-of-<N>.skc, and the first process then writes checkpoint.manifest
+// naming the count and the step: the pieces it names are the newest checkpoint (the last written
+// of checkpoint.skc and the manifest is; writing one removes the other).
+std::filesystem::path checkpoint_piece(const std::filesystem::path& outdir, int rank, int processes);
+std::filesystem::path checkpoint_manifest(const std::filesystem::path& outdir);
 // The scenario hash a checkpoint is bound to: FNV-1a of the scenario file's text (of its
 // source name when it is not a file).
 std::uint64_t scenario_hash(const std::string& source);
@@ -60,11 +66,15 @@ class Checkpointing {
 
   // When opt.restart is set: reads it into the particles, the solver (clock and the current
   // stage's materials), the progress and the output indexes and series; returns true. Throws
-  // CheckpointError for a checkpoint that cannot be used.
+  // CheckpointError for a checkpoint that cannot be used. Next to a checkpoint.manifest (a
+  // checkpoint in pieces), a run on as many processes reads its own piece (and goes on bit for
+  // bit); on another count, every process reads every piece and keeps its share, as it does of a
+  // single checkpoint.skc. Collective.
   bool restore(Particles<D>& P, Integrator<D>& solver, RunProgress<D>& at, SeriesWriter& series,
                PvdWriter& particles_pvd, PvdWriter& grid_pvd);
-  // After a step: writes the periodic checkpoint when one is due; when a signal arrived (or
-  // the step is opt.stop_at_step) writes one and returns true: the run stops.
+  // After a step: writes the periodic checkpoint when one is due; when a signal arrived (at any
+  // of the processes) or the step is opt.stop_at_step, writes one and returns true: the run
+  // stops. Collective.
   bool after_step(const Particles<D>& P, const Integrator<D>& solver, RunProgress<D>& at,
                   const SeriesWriter& series);
   // At the end of a completed run (when checkpoints are enabled).
@@ -76,11 +86,14 @@ class Checkpointing {
 
  private:
   const ScenarioOf<D>& s_;
-  std::filesystem::path file_, restart_;
+  Processes procs_;
+  std::filesystem::path outdir_, file_, restart_;
   long every_ = 0, stop_at_ = -1;
   bool signals_ = false;
   struct sigaction old_int_ {
   }, old_term_{};
+  void load_pieces(const std::filesystem::path& manifest, Particles<D>& P, SolverClock& c, RunProgress<D>& at,
+                   std::vector<SeriesRow>& rows) const;
 };
 
 }  // namespace skred

@@ -2,6 +2,7 @@
 #include "run/hazard_maps.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -32,6 +33,8 @@ double HazardMaps::tops(const Particles<3>& P, std::vector<double>& top) const {
     floor = std::min(floor, P.x[p][1] - l);
     if (const long c = column_of(P.x[p]); c >= 0) top[c] = std::max(top[c], P.x[p][1] + l);
   }
+  procs_.max(top.data(), top.size());
+  procs_.min(&floor, 1);
   return floor;
 }
 
@@ -71,6 +74,16 @@ void HazardMaps::sample(const Particles<3>& P, double time) {
     stage_.max_displacement[c] = std::max(stage_.max_displacement[c], d);
     if (d > threshold_ && std::isnan(stage_.arrival[c])) stage_.arrival[c] = time - stage_start_;
   }
+  if (!procs_.distributed()) return;
+  procs_.max(stage_.max_speed.data(), stage_.max_speed.size());
+  procs_.max(stage_.max_displacement.data(), stage_.max_displacement.size());
+  // Every process samples at the same times: a column's arrival is this sample's time wherever
+  // one of them found it, so the earliest (NaN: none yet, as +inf) is every process's.
+  for (double& a : stage_.arrival)
+    if (std::isnan(a)) a = INFINITY;
+  procs_.min(stage_.arrival.data(), stage_.arrival.size());
+  for (double& a : stage_.arrival)
+    if (std::isinf(a)) a = NAN;
 }
 
 void HazardMaps::finish_stage(Particles<3>& P) {
@@ -87,6 +100,8 @@ void HazardMaps::finish_stage(Particles<3>& P) {
       if (P.moved[p]) run_.thickness[c] += P.volume0[p] / area;
     }
   }
+  procs_.sum(stage_.thickness.data(), stage_.thickness.size());
+  procs_.sum(run_.thickness.data(), run_.thickness.size());
   std::vector<double> top;
   tops(P, top);
   for (std::size_t c = 0; c < top.size(); ++c) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/particles.hpp"
+#include "parallel/processes.hpp"
 
 namespace skred {
 
@@ -40,6 +41,10 @@ class HazardMaps {
   // `threshold` from where it was at its stage's start.
   HazardMaps(double x0, double z0, double h, int nx, int nz, double threshold);
   bool enabled() const { return nx_ > 0; }
+  // The processes the points are split among: the maps are over all of their points, and the
+  // calls below collective (not archived: set again after a restart).
+  void set_processes(const Processes& procs) { procs_ = procs; }
+  const Processes& processes() const { return procs_; }
   int nx() const { return nx_; }
   int nz() const { return nz_; }
   double cell() const { return h_; }
@@ -71,6 +76,7 @@ class HazardMaps {
   int nx_ = 0, nz_ = 0;
   double threshold_ = 0.0, stage_start_ = 0.0;
   MapSet run_, stage_;
+  Processes procs_;
   long column_of(const Vec<3>& x) const;  // -1 outside the footprint
   double tops(const Particles<3>& P, std::vector<double>& top) const;
   void start(const Particles<3>& P, MapSet& set) const;

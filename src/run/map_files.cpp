@@ -103,23 +103,27 @@ void write_map_tif(const fs::path& base, int nx, int nz, const std::vector<doubl
 std::vector<std::string> write_map_set(const Scenario3& s, const HazardMaps& maps, const MapSet& set,
                                        const fs::path& outdir, const std::string& folder) {
   const MapGeoreference g = map_georeference(s);
-  fs::create_directories(outdir / folder);
+  const bool writes = maps.processes().rank() == 0;  // (every process has the maps)
+  if (writes) fs::create_directories(outdir / folder);
   std::vector<std::string> files;
   for (const std::string& name : map_names()) {
     const fs::path rel = fs::path(folder) / name;
     const std::vector<double>& v = HazardMaps::field(set, name);
-    write_map_asc(outdir / rel, maps.nx(), maps.nz(), v, g);
-    write_map_tif(outdir / rel, maps.nx(), maps.nz(), v, g);
+    if (writes) {
+      write_map_asc(outdir / rel, maps.nx(), maps.nz(), v, g);
+      write_map_tif(outdir / rel, maps.nx(), maps.nz(), v, g);
+    }
     files.push_back(rel.string() + ".asc");
     files.push_back(rel.string() + ".tif");
   }
   return files;
 }
 
-HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P) {
+HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P, const Processes& procs) {
   if (!s.output_maps) return {};
   const double threshold = s.map_threshold > 0 ? s.map_threshold : 0.5 * s.cell_size;
   HazardMaps maps(s.origin[0], s.origin[2], s.cell_size, s.cells[0], s.cells[2], threshold);
+  maps.set_processes(procs);
   maps.begin_run(P);
   return maps;
 }

@@ -35,12 +35,12 @@ void write_map_tif(const std::filesystem::path& base, int nx, int nz, const std:
                    const MapGeoreference& g);
 
 // Writes every map of `set` into `outdir`/`folder` (map_names(): NAME.asc and NAME.tif) and returns
-// their paths relative to `outdir`.
+// their paths relative to `outdir` (split among processes, the first writes them).
 std::vector<std::string> write_map_set(const Scenario3& s, const HazardMaps& maps, const MapSet& set,
                                        const std::filesystem::path& outdir, const std::string& folder);
 
 // The maps of a run of `s` from the points `P` at its start (off when output.maps is false).
-HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P);
+HazardMaps start_hazard_maps(const Scenario3& s, const Particles<3>& P, const Processes& procs = {});
 
 // After stage `k`: its maps taken and merged into the run's (HazardMaps::finish_stage); written
 // under maps/stage_<k+1> when the run has more than one stage, their paths added to `files`.

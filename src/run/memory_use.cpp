@@ -27,4 +27,11 @@ double status_bytes(const char* key) {
 double peak_rss_bytes() { return status_bytes("VmHWM:"); }
 double current_rss_bytes() { return status_bytes("VmRSS:"); }
 
+bool reset_peak_rss() {
+  std::ofstream f("/proc/self/clear_refs");
+  f << "5";
+  f.flush();
+  return static_cast<bool>(f);
+}
+
 }  // namespace skred

@@ -9,5 +9,8 @@ namespace skred {
 double peak_rss_bytes();
 // Resident set size of this process now in bytes (VmRSS), 0 if unknown.
 double current_rss_bytes();
+// Starts the peak over from the resident set now (/proc/self/clear_refs, "5"); false if the
+// kernel does not allow it. A distributed run's set-up peaks once per process (in_turns).
+bool reset_peak_rss();
 
 }  // namespace skred

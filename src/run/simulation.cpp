@@ -17,11 +17,13 @@
 #include "io/series_writer.hpp"
 #include "io/summary_writer.hpp"
 #include "io/vtu_writer.hpp"
+#include "parallel/point_shares.hpp"
 #include "post/elastic_plastic_split.hpp"
 #include "post/material_strength.hpp"
 #include "run/checkpointing.hpp"
 #include "run/density_trigger.hpp"
 #include "run/dilation_continuum.hpp"
+#include "run/frame_files.hpp"
 #include "run/map_files.hpp"
 #include "run/memory_use.hpp"
 #include "run/slide_measures.hpp"
@@ -109,28 +111,13 @@ void copy_scenario(const std::string& source, const fs::path& outdir) {
   write_file_atomically(target, [&](std::ostream& os) { os << text.str(); });
 }
 
-// The grid node file of one frame (grid_NNNNNN.vtr) from the nodal fields of the last
-// smoothed_stress() call, and its entry in grid.pvd (post).
-template <int D>
-void write_grid_frame(const Integrator<D>& solver, const fs::path& outdir, int frame, PvdWriter& index,
-                      bool compress) {
-  const std::string name = fmt::format("grid_{:06}.vtr", frame);
-  GridNodeFieldsOf<D> fields{solver.node_mass(), solver.node_velocity(), solver.node_stress()};
-  std::vector<double> k_mag, f_mag;
-  if (solver.node_magnitudes(k_mag, f_mag)) {
-    fields.stiffness_magnitude = k_mag;
-    fields.internal_force_magnitude = f_mag;
-  }
-  write_grid_vtr(outdir / name, solver.grid(), fields, compress);
-  index.add(solver.time(), name);
-}
-
 // The run's integrators, made when a stage first needs one; the current one advances the points.
 // A stage of the other kind takes the clock (time, steps, gravity ramp, energies) over from it.
 template <int D>
 class Integrators {
  public:
-  Integrators(const ScenarioOf<D>& s, Particles<D>& P, int threads) : s_(s), P_(P), threads_(threads) {}
+  Integrators(const ScenarioOf<D>& s, Particles<D>& P, int threads, const Processes& procs)
+      : s_(s), P_(P), threads_(threads), procs_(procs) {}
   Integrator<D>& current() { return *current_; }
   ImplicitSolver<D>* implicit() { return implicit_.get(); }
   ExplicitSolver<D>* explicit_solver() { return explicit_ ? &explicit_->solver() : nullptr; }
@@ -139,9 +126,12 @@ class Integrators {
   Integrator<D>& use(const Stage& st) {
     Integrator<D>* next = nullptr;
     if (st.integrator == IntegratorKind::Explicit) {
-      if (!explicit_)
+      if (!explicit_) {
+        SolverSettings<D> settings = solver_settings(s_);
+        settings.processes = procs_;
         explicit_ = std::make_unique<ExplicitIntegrator<D>>(scenario_grid(s_), P_, stage_materials(s_, st),
-                                                            solver_settings(s_), threads_);
+                                                            settings, threads_);
+      }
       next = explicit_.get();
     } else {
       if (!implicit_)
@@ -170,6 +160,7 @@ class Integrators {
   const ScenarioOf<D>& s_;
   Particles<D>& P_;
   int threads_;
+  Processes procs_;
   std::unique_ptr<ExplicitIntegrator<D>> explicit_;
   std::unique_ptr<ImplicitSolver<D>> implicit_;
   Integrator<D>* current_ = nullptr;
@@ -185,7 +176,14 @@ template <int D>
 RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const RunOptions& opt) {
   const auto setup_start = Clock::now();
   const double idle_bytes = current_rss_bytes();  // before the points and the grid exist
-  const bool report_setup = opt.progress && estimate_size(s).points >= kSetupReportPoints;
+  const Processes& procs = opt.processes;
+  const bool first = procs.rank() == 0;  // writes the run's files and reports
+  if (procs.distributed() && s.any_implicit())
+    throw ScenarioError(
+        fmt::format("{}: its implicit stages do not run across processes yet (issue 55): run it "
+                    "in one process, without mpirun",
+                    s.source));
+  const bool report_setup = first && opt.progress && estimate_size(s).points >= kSetupReportPoints;
   const auto setup = [&](const std::string& what) {
     if (!report_setup) return;
     fmt::print(stderr, "set-up: {} ({:.1f} s)\n", what,
@@ -193,16 +191,35 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     std::fflush(stderr);
   };
   setup(fmt::format("filling the bodies with about {:.3g} points", estimate_size(s).points));
-  Particles<D> particles = build_particles(s);
-  if (s.initial_stress.rule != K0Rule::None) setup("the initial stress");
-  apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
-  Integrators<D> integrators(s, particles, opt.threads);
+  Particles<D> particles;
+  in_turns(
+      procs,
+      [&] {
+        particles = build_particles(s);
+        if (s.initial_stress.rule != K0Rule::None) setup("the initial stress");
+        apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
+        keep_share(particles, procs);        // (each process builds all the points)
+      },
+      [&] {
+        build_particles(s);  // (another process failed here: this one meets the same error)
+        throw std::runtime_error("another process could not build the points");
+      });
+  // Each process built all the points in its turn: that peak is the set-up's (summary.json's
+  // processes.setup_peak_bytes), the run's memory is what it holds after (one process: both).
+  double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
+  if (procs.distributed() && !reset_peak_rss()) setup_peak = 0.0;
+  procs.max(&setup_peak, 1);
+  Integrators<D> integrators(s, particles, opt.threads, procs);
   Integrator<D>* solver = &integrators.use(s.stages.front());
 
-  fs::create_directories(outdir);
-  PvdWriter pvd(outdir);
-  copy_scenario(s.source, outdir);
-  PvdWriter grid_pvd(outdir, "grid.pvd");  // post: grid node fields per frame
+  if (first) {
+    fs::create_directories(outdir);
+    copy_scenario(s.source, outdir);
+  }
+  procs.barrier();                                       // the folder exists for every process
+  const fs::path written = first ? outdir : fs::path();  // the others only count (io/pvd_writer.hpp)
+  PvdWriter pvd(written);
+  PvdWriter grid_pvd(written, "grid.pvd");  // post: grid node fields per frame
   // Strength of the current stage's materials (as plastic, also in an elastic stage), for the
   // relative yield function; Fe and the stress recomputed from it (Post eq. 67-77).
   std::vector<MaterialStrength> strength = material_strengths(s.materials);
@@ -214,16 +231,22 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const bool material_speed = std::any_of(s.stages.begin(), s.stages.end(), [&](const Stage& st) {
     return rest_measure_of(s, st) == Stage::RestMeasure::Material;
   });
-  SeriesWriter series(outdir / "series.csv", {.momentum_z = D == 3,
-                                              .contact_work = solver_settings(s).contact.enabled(),
-                                              .damping_work = damped,
-                                              .material_speed = material_speed,
-                                              .implicit = s.any_implicit(),
-                                              .forces = force_columns(s)});
+  SeriesWriter series(first ? outdir / "series.csv" : fs::path(),
+                      {.momentum_z = D == 3,
+                       .contact_work = solver_settings(s).contact.enabled(),
+                       .damping_work = damped,
+                       .material_speed = material_speed,
+                       .implicit = s.any_implicit(),
+                       .forces = force_columns(s)});
   RunProgress<D> at;  // where the run stands: saved in checkpoints (run/checkpointing.hpp)
   Checkpointing<D> checkpoints(s, outdir, opt);
-  if (!checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd))
-    if constexpr (D == 3) at.maps = start_hazard_maps(s, particles);  // run/hazard_maps.hpp
+  if (!checkpoints.restore(particles, *solver, at, series, pvd, grid_pvd)) {
+    if constexpr (D == 3) at.maps = start_hazard_maps(s, particles, procs);  // run/hazard_maps.hpp
+  } else {                                                                   // (not in checkpoints)
+    at.tracker.set_processes(procs);
+    at.maps.set_processes(procs);
+    solver->particles_changed();
+  }
   std::vector<Sym3> smoothed;
   const VtuOptions vtu_options{s.output_fields, s.output_compression};
   const bool wants_split = output_fields::wants_elastic_split(s.output_fields);
@@ -231,9 +254,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     const int frame = static_cast<int>(at.frame_times.size());
     at.frame_times.push_back(solver->time());
     solver->smoothed_stress(smoothed);
-    write_grid_frame(*solver, outdir, frame, grid_pvd,
-                     s.output_compression);  // post: after smoothed_stress()
-    const std::string name = fmt::format("particles_{:06}.vtu", frame);
+    write_grid_frame(*solver, outdir, frame, grid_pvd, s.output_compression,
+                     first);  // post: after smoothed_stress()
     ParticleFields extra;
     extra.smoothed_stress = &smoothed;
     extra.strength = &strength;  // post: relative yield
@@ -249,17 +271,22 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       extra.elastic_F = &elastic_F;
       extra.stress_from_elastic_F = &stress_from_Fe;
     }
-    write_particles_vtu(outdir / name, particles, extra, vtu_options);
+    std::string name = fmt::format("particles_{:06}.vtu", frame);
+    if (procs.distributed())
+      name = write_frame_pieces(outdir, frame, particles, extra, vtu_options, procs);
+    else
+      write_particles_vtu(outdir / name, particles, extra, vtu_options);
     pvd.add(solver->time(), name);
     series.flush();
   };
 
   const DilationContinua dilation(s);  // Paper III §C.3.2 (empty without dilated continua)
+  SplitSettings split = s.splitting;   // Thesis §3.4 (its cap set per step when distributed)
   // The explicit stages' time step; an implicit stage takes its own (stage_time_step).
   const double explicit_dt = scenario_time_step(s);
   // The instability detector (run/stability.hpp): a step above the stable limit stops the run
   // before it starts; afterwards every series row and every frame is checked.
-  StabilityWatch<D> watch(s, explicit_dt, solver->totals().mass);
+  StabilityWatch<D> watch(s, explicit_dt, solver->totals().mass, procs);
   StepStatus unstable;     // ok, or the point and reason found by the detector
   long unstable_step = 0;  // the step after which it was found
   bool left_grid = false;
@@ -269,18 +296,20 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     unstable_step = solver->steps();
   };
   if (std::string why = watch.unusable_step(); !why.empty())  // name a point if one is the cause
-    stop_unstable(std::move(why), watch.initial_speed_finite() ? -1 : offending_point(particles));
+    stop_unstable(std::move(why), watch.initial_speed_finite() ? -1 : offending_point(particles, procs));
   else if (std::string above = watch.step_above_limit(); !above.empty() && !s.allow_unstable_time_step)
     stop_unstable(std::move(above), -1);
   long total_steps = 0;  // upper bound: every stage to its full duration
   if (unstable.ok)
     for (const Stage& st : s.stages) total_steps += stage_step_count(st.duration, stage_time_step(s, st));
   const bool tty = isatty(fileno(stderr));
+  long points = procs.sum_of(static_cast<long>(particles.size()));  // of all processes, at the last row
   RunResult res;
 
   const auto start = Clock::now();
   double compute_seconds = 0.0;
-  long computed_updates = 0;  // point updates stepped (the point count may change)
+  long computed_updates = 0;  // point updates stepped here (the point count may change)
+  long shown_updates = 0;     // and by all processes, as the progress line counts them
   auto last_report = start;
   StepStatus status;
   bool stopped = false;  // by a signal, after a checkpoint
@@ -307,10 +336,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       at.in_stage = true;
       at.stage_first_step = solver->steps();
       at.stage_start = solver->time();
-      at.tracker =
-          StageTracker<D>(st.name, particles, at.stage_start, solver->totals().kinetic_energy, st.rest_speed,
-                          st.rest_time, s.origin[0], s.cell_size, s.cells[0] * s.cell_size,
-                          st.runout_thickness, s.origin[D - 1], D == 3 ? s.cells[D - 1] * s.cell_size : 0.0);
+      at.tracker = StageTracker<D>(st.name, particles, at.stage_start, solver->totals().kinetic_energy,
+                                   st.rest_speed, st.rest_time, s.origin[0], s.cell_size,
+                                   s.cells[0] * s.cell_size, st.runout_thickness, s.origin[D - 1],
+                                   D == 3 ? s.cells[D - 1] * s.cell_size : 0.0, procs);
       if (measure != Stage::RestMeasure::Displacement) particles.x_rest = {};  // (its first row starts one)
       if constexpr (D == 3) at.maps.begin_stage(particles, at.stage_start);
     }
@@ -318,17 +347,17 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     const double stage_start = at.stage_start;
     StageTracker<D>& tracker = at.tracker;
     DensityTrigger density(s, k);  // Paper III §C.3 trigger
-    watch.begin_stage(tracker.kinetic_start(), stored_stress_energy(particles, solver->materials()));
+    watch.begin_stage(tracker.kinetic_start(), stored_stress_energy(particles, solver->materials(), procs));
     auto sample = [&]() {
       const ParticleTotals<D> t = solver->totals();
-      SeriesRow row = series_row(*solver, t, static_cast<long>(particles.size()), static_cast<int>(k),
-                                 tracker.runout(particles));
+      points = procs.sum_of(static_cast<long>(particles.size()));
+      SeriesRow row = series_row(*solver, t, points, static_cast<int>(k), tracker.runout(particles));
       if (material_speed) row.material_speed = solver->material_mean_speed();
       if constexpr (D == 3) at.maps.sample(particles, solver->time());
       series.add(row);
       if (std::string why = watch.check(t, solver->energy()); !why.empty())
-        stop_unstable(std::move(why), offending_point(particles));
-      else if (watch.observe_dilation(particles))  // once, when the limit is first passed
+        stop_unstable(std::move(why), offending_point(particles, procs));
+      else if (watch.observe_dilation(particles) && first)  // once, when the limit is first passed
         fmt::print(stderr, "{}warning at t = {:.4g} s: {}\n", tty ? "\n" : "", solver->time(),
                    watch.dilation_note());
       const bool ramping = solver->time() - stage_start < 0.5 * st.gravity_ramp_time ||
@@ -366,22 +395,30 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       if (!density.empty() && density.apply(particles, solver->time() - stage_start))
         solver->particles_changed();
       if (!dilation.empty())  // Paper III §C.3.2: dilated points join the new continuum
-        if (const long moved = dilation.apply(particles, solver->threads()); moved > 0) {
+        if (const long moved = procs.sum_of(dilation.apply(particles, solver->threads())); moved > 0) {
           tracker.dilated(moved, solver->time());
           solver->particles_changed();
         }
-      if (!s.splitting.body_splits.empty() && split_points(particles, s.splitting) > 0)
-        solver->particles_changed();  // Thesis §3.4
+      if (!split.body_splits.empty()) {  // Thesis §3.4
+        if (procs.distributed() &&
+            s.splitting.max_points > 0) {  // the cap is the run's: a share of what is left
+          const long own = static_cast<long>(particles.size()),
+                     left = s.splitting.max_points - procs.sum_of(own);
+          split.max_points = own + std::max(0L, left) / procs.size();
+        }
+        if (split_points(particles, split) > 0) solver->particles_changed();
+      }
       const auto t0 = Clock::now();
       status = solver->step();
       compute_seconds += std::chrono::duration<double>(Clock::now() - t0).count();
       if (!status.ok) {
-        left_grid = left_the_grid(particles, status.particle, solver->grid(), watch.speed_bound());
+        left_grid = left_the_grid(particles, status.particle, solver->grid(), watch.speed_bound(), procs);
         not_converged = implicit && status.particle < 0;
         ended_by = left_grid ? "left_grid" : not_converged ? "not_converged" : "unstable";
         break;
       }
       computed_updates += static_cast<long>(particles.size());
+      shown_updates += points;
       const double t = solver->time();
       const bool last = stage_done();
       bool at_rest = false;
@@ -389,11 +426,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         at_rest = sample() && rests;
         while (at.next_series <= t + 0.5 * dt) at.next_series += s.series_interval;
         moved = static_cast<int>(k) == opt.stop_stage &&
-                tracker.max_displacement(particles) > opt.stop_moved * tracker.height_start();
+                tracker.max_displacement_of(particles) > opt.stop_moved * tracker.height_start();
       }
       const bool frame = t >= at.next_output - 0.5 * dt || last || at_rest || moved;
       if (frame && unstable.ok)  // a frame must not hold a non-finite value
-        if (const long p = first_non_finite_point(particles); p >= 0)
+        if (const long p = first_non_finite_point(particles, procs); p >= 0)
           stop_unstable("non-finite position, velocity, deformation gradient or stress", p);
       if (!unstable.ok) {
         ended_by = "unstable";
@@ -404,12 +441,12 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         while (at.next_output <= t + 0.5 * dt) at.next_output += s.output_interval;
       }
       const auto now = Clock::now();
-      if (opt.progress &&
+      if (first && opt.progress &&
           (now - last_report > std::chrono::seconds(tty ? 1 : 10) || last || at_rest || moved)) {
         last_report = now;
         const double elapsed = std::chrono::duration<double>(now - start).count();
         const double frac = std::min(1.0, static_cast<double>(solver->steps()) / total_steps);
-        const double pups = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
+        const double pups = compute_seconds > 0 ? shown_updates / compute_seconds : 0.0;
         const StepReport rep = solver->last_step();
         const std::string newton =
             implicit ? fmt::format("  {} iterations (residual {:.1e}){}", rep.iterations, rep.residual,
@@ -442,11 +479,14 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     at.stage = k + 1;
     if (moved) break;  // the stages after it do not run
   }
-  const long n = static_cast<long>(particles.size());
+  const long own = static_cast<long>(particles.size());
+  const long n = procs.sum_of(own);
   res.particles = n;
   res.wall_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   res.steps = solver->steps();
   res.simulated_time = solver->time();
+  procs.max(&compute_seconds, 1);  // (the slowest process's)
+  computed_updates = procs.sum_of(computed_updates);
   res.particle_updates_per_second = compute_seconds > 0 ? computed_updates / compute_seconds : 0.0;
   if (!status.ok) unstable_step = solver->steps() + 1;  // the step that failed
   if (status.ok) status = unstable;
@@ -456,11 +496,12 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   if (!status.ok) {
     const long p = status.particle;
     const std::string note = watch.dilation_note();  // when dilated material is the likely cause
+    const PointPlace<D> place = p < 0 ? PointPlace<D>{} : point_place(particles, p, procs);
     const std::string where =
-        p < 0 ? std::string()
-              : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
-                            s.bodies[particles.body[p]].name, particles.x[p][0], particles.x[p][1],
-                            D == 3 ? fmt::format(", {:.6g}", particles.x[p][D - 1]) : "");
+        place.body < 0 ? std::string()
+                       : fmt::format(": particle {} of body '{}' at ({:.6g}, {:.6g}{})", p,
+                                     s.bodies[static_cast<std::size_t>(place.body)].name, place.x[0],
+                                     place.x[1], D == 3 ? fmt::format(", {:.6g}", place.x[D - 1]) : "");
     res.message = not_converged ? fmt::format("stopped at step {} (t = {:.6g} s): {}", unstable_step,
                                               solver->time(), status.reason)
                   : left_grid
@@ -472,13 +513,25 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
                                     solver->time(), where, status.reason, note.empty() ? "" : "; " + note);
     write_frame();  // the last state, for diagnosis
   } else if (stopped) {
-    res.message = fmt::format("interrupted at step {} (t = {:.6g} s); continue with: skred resume {}",
-                              solver->steps(), solver->time(), outdir.string());
+    res.message =
+        fmt::format("interrupted at step {} (t = {:.6g} s); continue with: {}skred resume {}",
+                    solver->steps(), solver->time(),
+                    procs.distributed() ? fmt::format("mpirun -np {} ", procs.size()) : "", outdir.string());
     write_frame();  // the state at the checkpoint
   } else {
     checkpoints.at_end(particles, *solver, at, series);
   }
   series.flush();
+  double peak = peak_rss_bytes(), above_idle = peak - idle_bytes;  // (all processes': a sum)
+  procs.sum(&peak, 1);
+  procs.sum(&above_idle, 1);
+  const long share_min = procs.min(own), share_max = procs.max(own);
+  std::vector<std::string> run_maps;
+  if constexpr (D == 3)
+    if (at.maps.enabled() && !stopped)  // the run's maps (a resumed run writes them at its end)
+      run_maps = write_map_set(s, at.maps, at.maps.run(), outdir, "maps");
+  res.stages = at.finished;
+  if (!first) return res;
 
   Summary sum{};
   sum.status = stopped         ? "interrupted"
@@ -495,10 +548,14 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.dimension = D;
   sum.wall_seconds = res.wall_seconds;
   sum.particle_updates_per_second = res.particle_updates_per_second;
-  sum.peak_memory_bytes = peak_rss_bytes();
+  sum.peak_memory_bytes = peak;
   if (n > 0 && sum.peak_memory_bytes > 0.0 && idle_bytes > 0.0)
-    sum.memory_bytes_per_point = (sum.peak_memory_bytes - idle_bytes) / static_cast<double>(n);
+    sum.memory_bytes_per_point = above_idle / static_cast<double>(n);
   sum.threads = solver->threads();
+  sum.processes = procs.size();
+  sum.setup_peak_bytes = setup_peak;
+  sum.share_min = share_min;
+  sum.share_max = share_max;
   sum.scenario = s.source;
   sum.interpolation = to_string(s.interpolation);
   sum.scheme = to_string(s.scheme);
@@ -541,15 +598,14 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   }
   sum.stages = at.finished;
   if constexpr (D == 3)
-    if (at.maps.enabled() && !stopped) {  // the run's maps (a resumed run writes them at its end)
+    if (at.maps.enabled() && !stopped) {
       sum.maps = at.map_files;
-      for (std::string& f : write_map_set(s, at.maps, at.maps.run(), outdir, "maps")) sum.maps.push_back(f);
+      for (std::string& f : run_maps) sum.maps.push_back(f);
     }
   sum.phase_seconds = integrators.phase_seconds();
   sum.version = version();
   sum.git_commit = git_commit();
   write_summary_json(outdir / "summary.json", sum);
-  res.stages = std::move(at.finished);
   return res;
 }
 

@@ -7,6 +7,7 @@
 
 #include "implicit/implicit_solver.hpp"
 #include "io/summary_writer.hpp"
+#include "parallel/processes.hpp"
 #include "scenario/estimate.hpp"
 #include "scenario/scenario.hpp"
 #include "solver/explicit_solver.hpp"
@@ -34,6 +35,11 @@ struct RunOptions {
   // Called before every step; may change the points (their number too) and then returns true
   // (tests of the point lifecycle, adaptive refinement).
   std::function<bool(Particles<2>&, const ExplicitSolver<2>&)> edit_points;
+  // The processes the run is split among (parallel/processes.hpp; docs/method.md, "Runs over
+  // several processes"): each steps its share of the points, the first writes series.csv,
+  // summary.json, the indexes and the grid files, each its piece of every particle frame and
+  // of every checkpoint. Explicit stages only.
+  Processes processes;
 };
 
 struct RunResult {

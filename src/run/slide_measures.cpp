@@ -40,7 +40,7 @@ double column_level(const SurfaceProfile& s, std::size_t b, double threshold, do
 }  // namespace
 
 template <int D>
-MaterialExtent material_extent(const Particles<D>& P) {
+MaterialExtent material_extent(const Particles<D>& P, const Processes& procs) {
   double x_min = INFINITY, x_max = -INFINITY, y_min = INFINITY, y_max = -INFINITY;
   double z_min = D == 3 ? INFINITY : 0.0, z_max = D == 3 ? -INFINITY : 0.0;
   const long n = static_cast<long>(P.size());
@@ -56,15 +56,19 @@ MaterialExtent material_extent(const Particles<D>& P) {
       z_max = std::max(z_max, P.x[p][2] + r[2]);
     }
   }
-  const MaterialExtent e{x_min, x_max, y_min, y_max, z_min, z_max};
+  double lo[] = {x_min, y_min, z_min}, hi[] = {x_max, y_max, z_max};
+  procs.min(lo, 3);
+  procs.max(hi, 3);
+  const MaterialExtent e{lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]};
   return e;
 }
 
 template <int D>
 StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy,
                               double rest_speed, double rest_time, double x0, double width, double length,
-                              double thickness, double z0, double z_length)
-    : start_(material_extent(P)),
+                              double thickness, double z0, double z_length, const Processes& procs)
+    : procs_(procs),
+      start_(material_extent(P, procs)),
       kinetic_start_(kinetic_energy),
       rest_speed_(rest_speed),
       rest_time_(rest_time),
@@ -75,8 +79,8 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
       length_(length),
       z0_(z0),
       z_length_(z_length) {
-  profile_ = start_profile(P, x0_, width_, bins(), threshold_, 0, floor_);
-  if constexpr (D == 3) profile_z_ = start_profile(P, z0_, width_, bins_z(), threshold_, 2, floor_);
+  profile_ = start_profile(P, x0_, width_, bins(), threshold_, 0, floor_, procs_);
+  if constexpr (D == 3) profile_z_ = start_profile(P, z0_, width_, bins_z(), threshold_, 2, floor_, procs_);
   m_.name = std::move(name);
   m_.start_time = time;
   m_.height_start = start_.y_max - start_.y_min;
@@ -84,11 +88,12 @@ StageTracker<D>::StageTracker(std::string name, Particles<D>& P, double time, do
 }
 
 template <int D>
-double StageTracker<D>::max_displacement(const Particles<D>& P) {
+double StageTracker<D>::max_displacement(const Particles<D>& P, const Processes& procs) {
   double largest = 0.0;
   const long n = static_cast<long>(P.size());
 #pragma omp parallel for reduction(max : largest) schedule(static)
   for (long p = 0; p < n; ++p) largest = std::max(largest, (P.x[p] - P.x_ref[p]).squaredNorm());
+  procs.max(&largest, 1);
   return std::sqrt(largest);
 }
 
@@ -110,7 +115,7 @@ void StageTracker<D>::start_window(Particles<D>& P, double time) {
 template <int D>
 bool StageTracker<D>::observe_window(Particles<D>& P, double time, double mean_speed) {
   record_speed(time, mean_speed);
-  if (std::isnan(window_start_) || P.x_rest.size() != P.size()) {
+  if (std::isnan(window_start_) || procs_.any(P.x_rest.size() != P.size())) {
     start_window(P, time);
     return false;
   }
@@ -122,6 +127,9 @@ bool StageTracker<D>::observe_window(Particles<D>& P, double time, double mean_s
     moved += P.mass[p] * (P.x[p] - P.x_rest[p]).norm();
     mass += P.mass[p];
   }
+  double sums[] = {moved, mass};
+  procs_.sum(sums, 2);
+  moved = sums[0], mass = sums[1];
   const double speed = mass > 0.0 ? moved / (mass * length) : 0.0;
   samples_.emplace_back(window_start_, speed);
   start_window(P, time);
@@ -143,7 +151,7 @@ bool StageTracker<D>::observe(double time, double mean_speed, double rest_measur
 
 template <int D>
 SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis,
-                               const std::vector<double>& above) {
+                               const std::vector<double>& above, const Processes& procs) {
   const auto n = static_cast<std::size_t>(bins);
   SurfaceProfile s;
   s.top.assign(n, -INFINITY);
@@ -159,13 +167,16 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
       s.hi[k] = std::max(s.hi[k], q.hi);
     }
   }
+  procs.max(s.top.data(), n);
+  procs.min(s.lo.data(), n);
+  procs.max(s.hi.data(), n);
   return s;
 }
 
 template <int D>
 SurfaceProfile start_profile(const Particles<D>& P, double x0, double width, int bins, double threshold,
-                             int axis, double floor) {
-  SurfaceProfile s = surface_profile(P, x0, width, bins, axis);
+                             int axis, double floor, const Processes& procs) {
+  SurfaceProfile s = surface_profile(P, x0, width, bins, axis, {}, procs);
   const auto n = static_cast<std::size_t>(bins);
   const auto level = [&](int t) { return column_level(s, static_cast<std::size_t>(t), threshold, floor); };
   s.toe_hi.assign(n, -INFINITY);
@@ -205,12 +216,14 @@ SurfaceProfile start_profile(const Particles<D>& P, double x0, double width, int
         }
       }
   }
+  procs.max(s.toe_hi.data(), n);
+  procs.min(s.toe_lo.data(), n);
   return s;
 }
 
 template <int D>
 Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
-                 double threshold, int axis, double floor) {
+                 double threshold, int axis, double floor, const Processes& procs) {
   const int n = static_cast<int>(before.top.size());
   if (before.toe_hi.size() != before.top.size() || before.toe_lo.size() != before.top.size())
     throw std::invalid_argument(
@@ -218,7 +231,7 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
   std::vector<double> level(before.top.size());
   for (std::size_t b = 0; b < level.size(); ++b) level[b] = column_level(before, b, threshold, floor);
   // after.lo/hi: the edges of the points that raise their column by more than `threshold`.
-  const SurfaceProfile after = surface_profile(P, x0, width, n, axis, level);
+  const SurfaceProfile after = surface_profile(P, x0, width, n, axis, level, procs);
   Runout r;
   // The connected deposit: the run of columns holding material around the highest one (the
   // main mass). A point that has left it, across an empty column, moves no front.
@@ -263,7 +276,7 @@ Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0,
 
 template <int D>
 double StageTracker<D>::runout(const Particles<D>& P) const {
-  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_, procs_);
   return std::max(r.x_min, r.x_max);
 }
 
@@ -272,20 +285,20 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
                                       double gravity_work, double strain_energy, double plastic_dissipation,
                                       const std::string& ended_by) const {
   StageMeasures m = m_;
-  const MaterialExtent e = material_extent(P);
+  const MaterialExtent e = material_extent(P, procs_);
   m.end_time = time;
   m.steps = steps;
   m.ended_by = ended_by;
-  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_);
+  const Runout r = runout_of(profile_, P, x0_, width_, threshold_, 0, floor_, procs_);
   m.runout_x_min = r.x_min;
   m.runout_x_max = r.x_max;
   m.runout = std::max(r.x_min, r.x_max);
   if constexpr (D == 3) {
-    const Runout z = runout_of(profile_z_, P, z0_, width_, threshold_, 2, floor_);
+    const Runout z = runout_of(profile_z_, P, z0_, width_, threshold_, 2, floor_, procs_);
     m.runout_z_min = z.x_min;
     m.runout_z_max = z.x_max;
   }
-  m.max_displacement = max_displacement(P);
+  m.max_displacement = max_displacement(P, procs_);
   m.height_end = e.y_max - e.y_min;
   m.gravity_work = gravity_work;
   m.kinetic_energy_change = kinetic_energy - kinetic_start_;
@@ -296,6 +309,8 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
       m.plastic_volume += P.volume(p);
       ++m.plastic_points;
     }
+  procs_.sum(&m.plastic_volume, 1);
+  m.plastic_points = procs_.sum_of(m.plastic_points);
   const double threshold = rest_speed_ > 0.0 ? rest_speed_ : 0.01 * m.peak_mean_speed;
   if (!samples_.empty() && samples_.back().second < threshold && m.peak_mean_speed > 0.0) {
     double since = samples_.back().first;
@@ -306,16 +321,20 @@ StageMeasures StageTracker<D>::finish(const Particles<D>& P, double time, long s
   return m;
 }
 
-template MaterialExtent material_extent<2>(const Particles<2>&);
-template MaterialExtent material_extent<3>(const Particles<3>&);
+template MaterialExtent material_extent<2>(const Particles<2>&, const Processes&);
+template MaterialExtent material_extent<3>(const Particles<3>&, const Processes&);
 template SurfaceProfile surface_profile<2>(const Particles<2>&, double, double, int, int,
-                                           const std::vector<double>&);
+                                           const std::vector<double>&, const Processes&);
 template SurfaceProfile surface_profile<3>(const Particles<3>&, double, double, int, int,
-                                           const std::vector<double>&);
-template SurfaceProfile start_profile<2>(const Particles<2>&, double, double, int, double, int, double);
-template SurfaceProfile start_profile<3>(const Particles<3>&, double, double, int, double, int, double);
-template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int, double);
-template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int, double);
+                                           const std::vector<double>&, const Processes&);
+template SurfaceProfile start_profile<2>(const Particles<2>&, double, double, int, double, int, double,
+                                         const Processes&);
+template SurfaceProfile start_profile<3>(const Particles<3>&, double, double, int, double, int, double,
+                                         const Processes&);
+template Runout runout_of<2>(const SurfaceProfile&, const Particles<2>&, double, double, double, int, double,
+                             const Processes&);
+template Runout runout_of<3>(const SurfaceProfile&, const Particles<3>&, double, double, double, int, double,
+                             const Processes&);
 template class StageTracker<2>;
 template class StageTracker<3>;
 

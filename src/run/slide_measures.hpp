@@ -10,16 +10,19 @@
 
 #include "core/particles.hpp"
 #include "io/summary_writer.hpp"
+#include "parallel/processes.hpp"
 
 namespace skred {
 
 // Extent of the material: the points x_p +- their current half-size l0 det(F_p)^(1/d) (the
-// GIMP domain, Thesis eq. 3.23). In 2D z_min = z_max = 0.
+// GIMP domain, Thesis eq. 3.23). In 2D z_min = z_max = 0. Every function here that reads the
+// points takes the processes they are split among (parallel/processes.hpp) and answers for all
+// of them, on every process (collective).
 struct MaterialExtent {
   double x_min = 0.0, x_max = 0.0, y_min = 0.0, y_max = 0.0, z_min = 0.0, z_max = 0.0;
 };
 template <int D>
-MaterialExtent material_extent(const Particles<D>& P);
+MaterialExtent material_extent(const Particles<D>& P, const Processes& procs = {});
 
 // Surface profile in columns of `width` from x0 along `axis` (0: x; 2: z, in 3D), each point
 // counted as its domain x_p +- l_p, l_p = l0 det(F_p)^(1/d) (the GIMP domain): per column, `top`
@@ -36,7 +39,7 @@ struct SurfaceProfile {
 };
 template <int D>
 SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, int bins, int axis = 0,
-                               const std::vector<double>& above = {});
+                               const std::vector<double>& above = {}, const Processes& procs = {});
 
 // The profile at a stage's start that runout_of measures from: surface_profile, and for each
 // column t as the tip the toe, found from the points then. The toe column is the outermost
@@ -50,7 +53,7 @@ SurfaceProfile surface_profile(const Particles<D>& P, double x0, double width, i
 // measure".)
 template <int D>
 SurfaceProfile start_profile(const Particles<D>& P, double x0, double width, int bins, double threshold,
-                             int axis = 0, double floor = -INFINITY);
+                             int axis = 0, double floor = -INFINITY, const Processes& procs = {});
 
 // Runout towards +x and -x (or z) from the profile `before` (start_profile, with the same
 // `threshold` and `floor`) and the points now. The connected deposit lies in the run of
@@ -69,7 +72,7 @@ struct Runout {
 };
 template <int D>
 Runout runout_of(const SurfaceProfile& before, const Particles<D>& P, double x0, double width,
-                 double threshold, int axis = 0, double floor = -INFINITY);
+                 double threshold, int axis = 0, double floor = -INFINITY, const Processes& procs = {});
 
 // Reads or writes a stage's measures through `a` (see StageTracker::archive).
 template <class A>
@@ -113,11 +116,13 @@ class StageTracker {
   // stage start; > 0 takes it at that thickness, with the floor (the lowest material edge then)
   // for such a column's original surface (runout_of's threshold and floor). Records every
   // point's plastic shear strain in P.plastic_ref (a particle field, so it follows the points
-  // through every change of their number or order).
+  // through every change of their number or order). Its measures are over the points of all of
+  // `procs` (set again by set_processes after a restart: they are not archived).
   StageTracker() = default;  // to be filled by archive() (checkpoint restart)
   StageTracker(std::string name, Particles<D>& P, double time, double kinetic_energy, double rest_speed,
                double rest_time, double x0, double width, double length, double thickness = 0.0,
-               double z0 = 0.0, double z_length = 0.0);
+               double z0 = 0.0, double z_length = 0.0, const Processes& procs = {});
+  void set_processes(const Processes& procs) { procs_ = procs; }
   // Records a sample of the mean speed at `time` (eq. 5.12: peak and final speed) and of the
   // speed the rest test reads (`rest_measure_speed`: the same, or the material's, as
   // Stage::rest_measure says; also the stop time's); true once the rest criterion is met.
@@ -144,7 +149,8 @@ class StageTracker {
   double kinetic_start() const { return kinetic_start_; }  // kinetic energy at the stage start
   double height_start() const { return m_.height_start; }  // the material's height then
   // The largest displacement of a point in the stage, max_p |x_p - x_ref_p|.
-  static double max_displacement(const Particles<D>& P);
+  static double max_displacement(const Particles<D>& P, const Processes& procs = {});
+  double max_displacement_of(const Particles<D>& P) const { return max_displacement(P, procs_); }
 
   // Reads or writes the tracker's whole state through `a` (see run/checkpointing.cpp):
   // a(value) for every member.
@@ -179,6 +185,7 @@ class StageTracker {
 
  private:
   StageMeasures m_;
+  Processes procs_;
   MaterialExtent start_;
   double kinetic_start_ = 0.0;
   double rest_speed_ = 0.0, rest_time_ = 0.0, threshold_ = 0.0;

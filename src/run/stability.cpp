@@ -3,15 +3,29 @@
 #include <fmt/format.h>
 #include <Eigen/LU>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "scenario/estimate.hpp"
 
 namespace skred {
 
+namespace {
+// The global index of this process's point `local` (-1: none here) that comes first over all
+// processes, or -1.
+long global_first(long local, long n, const Processes& procs) {
+  if (!procs.distributed()) return local;
+  const long offset = procs.offset(n);
+  const long first = procs.min(local >= 0 ? offset + local : std::numeric_limits<long>::max());
+  return first == std::numeric_limits<long>::max() ? -1 : first;
+}
+}  // namespace
+
 template <int D>
-StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass)
-    : dt_(dt), h_(s.cell_size) {
+StabilityWatch<D>::StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass,
+                                  const Processes& procs)
+    : dt_(dt), h_(s.cell_size), procs_(procs) {
   for (const Material& m : s.materials)
     if (m.wave_speed() > c_) {
       c_ = m.wave_speed();
@@ -38,10 +52,13 @@ bool StabilityWatch<D>::observe_dilation(const Particles<D>& P) {
     const double J = P.F[p].determinant();
     if (std::isfinite(J)) det_max = std::max(det_max, J);
   }
+  procs_.max(&det_max, 1);
   long at = -1;
-  if (det_max > dilation_limit_)
+  if (det_max > dilation_limit_) {
     for (long p = 0; p < n && at < 0; ++p)
       if (P.F[p].determinant() == det_max) at = p;
+    at = global_first(at, n, procs_);
+  }
   det_max_ = det_max;
   det_point_ = at;
   if (dilation_warned_ || !(det_max > dilation_limit_)) return false;
@@ -88,7 +105,8 @@ void StabilityWatch<D>::begin_stage(double kinetic_energy, double stored) {
 }
 
 template <int D>
-double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials) {
+double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials,
+                            const Processes& procs) {
   double w = 0.0;
   for (std::size_t p = 0; p < P.size(); ++p) {
     const ElasticParams& e = materials[static_cast<std::size_t>(P.material[p])].elastic;
@@ -98,6 +116,7 @@ double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& 
     // sigma : C^-1 : sigma = ((1 + nu) sigma : sigma - nu tr(sigma)^2) / E
     if (e.young > 0.0) w += 0.5 * P.volume(p) * ((1.0 + e.poisson) * ss - e.poisson * tr * tr) / e.young;
   }
+  procs.sum(&w, 1);
   return w;
 }
 
@@ -130,27 +149,51 @@ bool finite(const M& m) {
 }  // namespace
 
 template <int D>
-long first_non_finite_point(const Particles<D>& P) {
+long first_non_finite_point(const Particles<D>& P, const Processes& procs) {
   const long n = static_cast<long>(P.size());
   long bad = n;
 #pragma omp parallel for reduction(min : bad)
   for (long p = 0; p < n; ++p)
     if (!finite(P.x[p]) || !finite(P.v[p]) || !finite(P.F[p]) || !finite(P.stress[p])) bad = std::min(bad, p);
-  return bad < n ? bad : -1;
+  return global_first(bad < n ? bad : -1, n, procs);
 }
 
 template <int D>
-long offending_point(const Particles<D>& P) {
-  const long bad = first_non_finite_point(P);
-  if (bad >= 0 || P.size() == 0) return bad;
-  long fastest = 0;
-  for (long p = 1; p < static_cast<long>(P.size()); ++p)
+long offending_point(const Particles<D>& P, const Processes& procs) {
+  const long bad = first_non_finite_point(P, procs);
+  if (bad >= 0) return bad;
+  const long n = static_cast<long>(P.size());
+  long fastest = n > 0 ? 0 : -1;
+  for (long p = 1; p < n; ++p)
     if (P.v[p].squaredNorm() > P.v[fastest].squaredNorm()) fastest = p;
-  return fastest;
+  double top = fastest >= 0 ? P.v[fastest].squaredNorm() : -1.0;
+  procs.max(&top, 1);
+  return global_first(fastest >= 0 && P.v[fastest].squaredNorm() == top ? fastest : -1, n, procs);
 }
 
 template <int D>
-bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound) {
+PointPlace<D> point_place(const Particles<D>& P, long p, const Processes& procs) {
+  const long local = p - procs.offset(static_cast<long>(P.size()));
+  double v[D + 1];
+  std::fill(v, v + D + 1, -INFINITY);  // (the process that holds p puts its values)
+  if (local >= 0 && local < static_cast<long>(P.size())) {
+    for (int d = 0; d < D; ++d) v[d] = P.x[local][d];
+    v[D] = P.body[local];
+  }
+  procs.max(v, D + 1);
+  PointPlace<D> r;
+  for (int d = 0; d < D; ++d) r.x[d] = v[d];
+  r.body = std::isfinite(v[D]) ? static_cast<int>(v[D]) : -1;
+  return r;
+}
+
+template <int D>
+bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound,
+                   const Processes& procs) {
+  if (procs.distributed()) {  // the process that holds p answers
+    const long local = p - procs.offset(static_cast<long>(P.size()));
+    return procs.any(local >= 0 && left_the_grid(P, local, grid, speed_bound));
+  }
   if (p < 0 || p >= static_cast<long>(P.size())) return false;
   if (!finite(P.x[p]) || !finite(P.v[p]) || !finite(P.F[p]) || !finite(P.stress[p])) return false;
   if (!(P.F[p].determinant() > 0.0) || P.v[p].norm() > speed_bound) return false;
@@ -163,13 +206,15 @@ bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, d
 
 template class StabilityWatch<2>;
 template class StabilityWatch<3>;
-template double stored_stress_energy<2>(const Particles<2>&, const std::vector<Material>&);
-template double stored_stress_energy<3>(const Particles<3>&, const std::vector<Material>&);
-template long first_non_finite_point<2>(const Particles<2>&);
-template long first_non_finite_point<3>(const Particles<3>&);
-template long offending_point<2>(const Particles<2>&);
-template long offending_point<3>(const Particles<3>&);
-template bool left_the_grid<2>(const Particles<2>&, long, const GridGeometry<2>&, double);
-template bool left_the_grid<3>(const Particles<3>&, long, const GridGeometry<3>&, double);
+template double stored_stress_energy<2>(const Particles<2>&, const std::vector<Material>&, const Processes&);
+template double stored_stress_energy<3>(const Particles<3>&, const std::vector<Material>&, const Processes&);
+template long first_non_finite_point<2>(const Particles<2>&, const Processes&);
+template long first_non_finite_point<3>(const Particles<3>&, const Processes&);
+template long offending_point<2>(const Particles<2>&, const Processes&);
+template long offending_point<3>(const Particles<3>&, const Processes&);
+template bool left_the_grid<2>(const Particles<2>&, long, const GridGeometry<2>&, double, const Processes&);
+template bool left_the_grid<3>(const Particles<3>&, long, const GridGeometry<3>&, double, const Processes&);
+template PointPlace<2> point_place<2>(const Particles<2>&, long, const Processes&);
+template PointPlace<3> point_place<3>(const Particles<3>&, long, const Processes&);
 
 }  // namespace skred

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <string>
 
+#include "parallel/processes.hpp"
 #include "scenario/scenario.hpp"
 #include "solver/explicit_solver.hpp"
 
@@ -20,7 +21,8 @@ inline constexpr double kStableCourant = 1.0;
 template <int D>
 class StabilityWatch {
  public:
-  StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass);
+  // Over the points of all of `procs` (parallel/processes.hpp): observe_dilation is collective.
+  StabilityWatch(const ScenarioOf<D>& s, double dt, double total_mass, const Processes& procs = {});
 
   // Empty, or why the time step is not usable: zero or non-finite (e.g. from a non-finite
   // initial speed).
@@ -61,7 +63,8 @@ class StabilityWatch {
   std::string fastest_material_;
   double k0_ = 0.0, max_gravity_work_ = 0.0, max_released_ = 0.0, stored0_ = 0.0;
   double dilation_limit_ = INFINITY;
-  double det_max_ = 1.0;  // the largest det F at the last series row observed, and where
+  Processes procs_;
+  double det_max_ = 1.0;  // the largest det F at the last series row observed, and where (global index)
   long det_point_ = -1;
   bool dilation_warned_ = false;
 };
@@ -71,18 +74,30 @@ class StabilityWatch {
 // go: its first series row holds the kinetic energy the release gave before the stress update
 // books the release, so the watch must not call it created).
 template <int D>
-double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials);
+double stored_stress_energy(const Particles<D>& P, const std::vector<Material>& materials,
+                            const Processes& procs = {});
 
+// The functions below name a point by its global index: its index among the points of all of
+// `procs` in rank order (its own index when the run is not distributed). All are collective.
 // The first point with a non-finite position, velocity, F or stress, or -1 (a frame of it
 // would hold non-finite output).
 template <int D>
-long first_non_finite_point(const Particles<D>& P);
+long first_non_finite_point(const Particles<D>& P, const Processes& procs = {});
 // The point to name for an instability: the first non-finite one, else the fastest.
 template <int D>
-long offending_point(const Particles<D>& P);
+long offending_point(const Particles<D>& P, const Processes& procs = {});
 // Whether point p, sound otherwise (finite state, det F > 0, speed within `speed_bound`),
 // lies outside the grid or within a cell of its edge: it left the grid.
 template <int D>
-bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound);
+bool left_the_grid(const Particles<D>& P, long p, const GridGeometry<D>& grid, double speed_bound,
+                   const Processes& procs = {});
+// Where point p is, for a message: its body and position (on every process).
+template <int D>
+struct PointPlace {
+  int body = -1;
+  Vec<D> x = Vec<D>::Zero();
+};
+template <int D>
+PointPlace<D> point_place(const Particles<D>& P, long p, const Processes& procs = {});
 
 }  // namespace skred

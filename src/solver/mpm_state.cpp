@@ -107,6 +107,12 @@ void smoothed_stress(MpmState<D>& state, std::vector<Sym3>& out) {
         s.velocity[i] += (w * m) * P.v[p];
       });
     }
+    if (const Processes& procs = state.processes; procs.distributed() && nodes > 0) {  // all points' sums
+      static_assert(sizeof(Sym3) == 6 * sizeof(double) && sizeof(Vec<D>) == D * sizeof(double));
+      procs.sum(s.mass.data(), nodes);
+      procs.sum(s.stress[0].data(), 6 * nodes);
+      procs.sum(s.velocity[0].data(), D * nodes);
+    }
     for (std::size_t i = 0; i < nodes; ++i)
       if (s.mass[i] > 0.0) {
         s.stress[i] /= s.mass[i];

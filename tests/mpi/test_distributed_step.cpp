@@ -3,7 +3,8 @@
 // few hundred steps the energies, totals and every point's position must equal those of one
 // process stepping all the points (each process steps that reference itself) within 1e-12,
 // relative. The examples are the reference problems R1-R3, the Mohr-Coulomb soil column under
-// each stress scheme and velocity transfer, the slope collapse and the 3D column.
+// each stress scheme and velocity transfer, the slope collapse and the 3D column. The grid-smoothed stresses
+// too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -38,9 +39,10 @@ std::string example_text(const std::string& name) {
 // What a run of `steps` steps leaves: the energy totals, the particle totals and the points'
 // positions (every process's, in rank order).
 struct Outcome {
-  std::vector<double> figures;  // gravity work, strain energy, plastic and transfer dissipation,
-                                // wall, contact and damping work, kinetic energy, mass, momentum
-  std::vector<double> x;        // positions, D per point
+  std::vector<double> figures;   // gravity work, strain energy, plastic and transfer dissipation,
+                                 // wall, contact and damping work, kinetic energy, mass, momentum
+  std::vector<double> x;         // positions, D per point
+  std::vector<double> smoothed;  // the grid-smoothed stresses, 6 per point (Post eq. 57-58)
   long points = 0;
   bool ok = true;
 };
@@ -80,6 +82,13 @@ Outcome step(const ScenarioOf<D>& s, const Processes& procs, long steps, int thr
     for (int d = 0; d < D; ++d) mine[D * p + static_cast<std::size_t>(d)] = P.x[p][d];
   o.x.assign(static_cast<std::size_t>(D * o.points), 0.0);
   procs.gather(mine.data(), mine.size(), o.x.data(), o.x.size());
+  std::vector<Sym3> sm;
+  solver.smoothed_stress(sm);
+  std::vector<double> own_sm(6 * P.size());
+  for (std::size_t p = 0; p < P.size(); ++p)
+    for (int k = 0; k < 6; ++k) own_sm[6 * p + static_cast<std::size_t>(k)] = sm[p][k];
+  o.smoothed.assign(static_cast<std::size_t>(6 * o.points), 0.0);
+  procs.gather(own_sm.data(), own_sm.size(), o.smoothed.data(), o.smoothed.size());
   return o;
 }
 
@@ -111,6 +120,13 @@ void expect_same(const ScenarioOf<D>& s, long steps, const char* what, bool bitw
     worst = std::max(worst, std::abs(all.x[i] - one.x[i]));
   }
   EXPECT_LE(worst, 1e-12 * extent) << what << ": the positions differ by up to " << worst << " m";
+  double stress = 0.0, off = 0.0;
+  for (std::size_t i = 0; i < one.smoothed.size(); ++i) {
+    stress = std::max(stress, std::abs(one.smoothed[i]));
+    off = std::max(off, std::abs(all.smoothed[i] - one.smoothed[i]));
+  }
+  // (+ 1e-9 Pa: the discs before they meet hold stresses of round-off, 3e-14 Pa)
+  EXPECT_LE(off, 1e-12 * stress + 1e-9) << what << ": the smoothed stresses differ by up to " << off << " Pa";
   // (a figure that moved: the comparison is not between two runs that stood still)
   EXPECT_GT(std::abs(one.figures[7]) + std::abs(one.figures[0]), 0.0) << what;
   if (bitwise && world.size() == 2) {  // (more processes: MPI adds their grids pairwise, threads in turn)
