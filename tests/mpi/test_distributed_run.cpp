@@ -82,8 +82,6 @@ std::map<std::string, std::vector<double>> read_series(const fs::path& file) {
   return cols;
 }
 
-std::string text_of(const fs::path& file) { return test::file_text(file); }
-
 // The series of two runs column by column, each within `tol` of its kind's largest magnitude: the
 // energies' (a sum of terms that cancel, or a term near zero, is compared against the energies
 // it is made of), the momenta's (a component near zero against the one gravity drives), or the
@@ -118,7 +116,7 @@ std::vector<std::pair<Vec<D>, Vec<D>>> final_points(const ScenarioOf<D>& s, cons
   RunProgress<D> at;
   std::vector<SeriesRow> rows;
   if (fs::exists(checkpoint_manifest(outdir))) {  // "processes N" on its second line
-    const std::string m = text_of(checkpoint_manifest(outdir));
+    const std::string m = test::file_text(checkpoint_manifest(outdir));
     const int n = std::stoi(m.substr(m.find("processes ") + 10));
     for (int r = 0; r < n; ++r) {
       Particles<D> part;
@@ -215,16 +213,16 @@ TEST(DistributedRun, SlideEqualsOneProcess) {
   const Processes world = Processes::world();
   const fs::path dir = fs::current_path() / "mpi_run_slide";
   // Frames: an index over the processes' pieces, as many points as one process writes.
-  const std::string pvd = text_of(dir / "all/particles.pvd");
+  const std::string pvd = test::file_text(dir / "all/particles.pvd");
   EXPECT_NE(pvd.find("particles_000000.pvtu"), std::string::npos) << pvd;
   const auto file = pvd.rfind("file=\"") + 6;
   const std::string last = pvd.substr(file, pvd.find(".pvtu", file) - file);  // the last frame
-  const std::string index = text_of(dir / "all" / (last + ".pvtu"));
+  const std::string index = test::file_text(dir / "all" / (last + ".pvtu"));
   long cells = 0;
   for (int r = 0; r < world.size(); ++r) {
     const std::string piece = fmt::format("{}/piece_{:04}.vtu", last, r);
     EXPECT_NE(index.find("Source=\"" + piece + "\""), std::string::npos) << index;
-    const std::string head = text_of(dir / "all" / piece).substr(0, 400);
+    const std::string head = test::file_text(dir / "all" / piece).substr(0, 400);
     const auto at = head.find("NumberOfCells=\"");
     ASSERT_NE(at, std::string::npos) << piece;
     cells += std::stol(head.substr(at + 15));
@@ -233,7 +231,7 @@ TEST(DistributedRun, SlideEqualsOneProcess) {
   EXPECT_NE(index.find("<PDataArray type=\"Float32\" Name=\"stress\" NumberOfComponents=\"6\""),
             std::string::npos);
   // series.csv and summary.json are written once, by the first process, with the count of all.
-  const std::string summary = text_of(dir / "all/summary.json");
+  const std::string summary = test::file_text(dir / "all/summary.json");
   EXPECT_NE(summary.find(fmt::format("\"particles\": {},", one.particles)), std::string::npos) << summary;
   EXPECT_NE(summary.find(fmt::format("\"processes\": {{\"count\": {},", world.size())), std::string::npos);
 }
@@ -283,7 +281,7 @@ TEST(DistributedRun, CheckpointInPiecesResumes) {
   const RunResult resumed = run(s, dir / "cut", world, -1, checkpoint_file(dir / "cut"));
   ASSERT_TRUE(resumed.completed) << resumed.message;
   if (world.rank() != 0) return;
-  EXPECT_EQ(text_of(dir / "cut/series.csv"), text_of(dir / "whole/series.csv"));
+  EXPECT_EQ(test::file_text(dir / "cut/series.csv"), test::file_text(dir / "whole/series.csv"));
   expect_same_points(s, dir / "whole", dir / "cut", 0.0, "resumed on as many processes");
   // Another count (one process reads every piece): within round-off of the run it continues.
   const RunResult alone = run(s, dir / "cut_alone", Processes{}, -1, checkpoint_file(dir / "cut_alone"));
@@ -327,8 +325,8 @@ TEST(DistributedRun, Column3DWithHazardMaps) {
   expect_same_series(dir / "one/series.csv", dir / "all/series.csv", 1e-12, "3D column");
   expect_same_points(s, dir / "one", dir / "all", 1e-12, "3D column");
   for (const char* map : {"max_speed", "max_displacement", "deposit_thickness", "terrain"}) {
-    std::stringstream a(text_of(dir / "one/maps" / (std::string(map) + ".asc"))),
-        b(text_of(dir / "all/maps" / (std::string(map) + ".asc")));
+    std::stringstream a(test::file_text(dir / "one/maps" / (std::string(map) + ".asc"))),
+        b(test::file_text(dir / "all/maps" / (std::string(map) + ".asc")));
     std::vector<double> va, vb;  // (the header's words are skipped)
     for (std::string w; a >> w;)
       if (w.find_first_not_of("0123456789.-+eE") == std::string::npos) va.push_back(std::stod(w));
