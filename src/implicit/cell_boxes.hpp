@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -17,6 +18,7 @@
 #include "core/grid.hpp"
 #include "core/particles.hpp"
 #include "implicit/point_stencils.hpp"
+#include "parallel/processes.hpp"
 #include "solver/volumetric_averaging.hpp"
 
 namespace skred {
@@ -36,19 +38,34 @@ struct CellBoxes {
   // From the step's stencils (Sp nodes wide), the points' volumes and, in axisymmetric geometry,
   // 1 / r_p (else empty). Returns a point whose stencil does not fit its cell's box (a
   // particle size beyond a cell: no box of S + 1 nodes holds the cell's stencils), or -1.
+  //
+  // Across processes (issue 55) the cells are those any process's points occupy, numbered in
+  // the grid's order alike in all of them (a cell without points here has none in `points`);
+  // a box starts at the lowest stencil base of all its cell's points, and V_c and b_c are every
+  // process's sums. A process returns its own failing point or -1, and all of them return early
+  // alike (the caller agrees on the point).
   long build(const PointStencils<D>& st, int Sp, const GridGeometry<D>& g, const Particles<D>& P,
-             const std::vector<double>& point_volume, const std::vector<double>& inv_r, int threads) {
+             const std::vector<double>& point_volume, const std::vector<double>& inv_r, int threads,
+             const Processes& procs = {}) {
     const std::size_t n = P.size();
     const int Kp = st.K;
-    // Group the points by cell (counting sort over the grid's cells, in point order).
-    slot_.assign(g.node_count(), -1);
+    // The occupied cells (one bit per grid cell, by its lower node), numbered in the grid's order.
+    const std::size_t grid_cells = g.node_count();
+    occupied_.assign((grid_cells + 63) / 64, 0);
     cell.resize(n);
-    int cells = 0;
     for (std::size_t p = 0; p < n; ++p) {
-      std::int32_t& s = slot_[VolumetricAveraging<D>::cell_of(g, P.x[p])];
-      if (s < 0) s = cells++;
-      cell[p] = s;
+      const std::uint32_t c = VolumetricAveraging<D>::cell_of(g, P.x[p]);
+      cell[p] = static_cast<std::int32_t>(c);
+      occupied_[c / 64] |= std::uint64_t{1} << (c % 64);
     }
+    procs.bit_or(occupied_.data(), occupied_.size());
+    slot_.assign(grid_cells, -1);
+    int cells = 0;
+    for (std::size_t w = 0; w < occupied_.size(); ++w)
+      for (std::uint64_t bits = occupied_[w]; bits; bits &= bits - 1)
+        slot_[64 * w + static_cast<std::size_t>(std::countr_zero(bits))] = cells++;
+    for (std::size_t p = 0; p < n; ++p) cell[p] = slot_[static_cast<std::size_t>(cell[p])];
+    // The points grouped by cell (counting sort, in point order).
     start.assign(static_cast<std::size_t>(cells) + 1, 0);
     for (std::size_t p = 0; p < n; ++p) ++start[static_cast<std::size_t>(cell[p]) + 1];
     for (int c = 0; c < cells; ++c) start[c + 1] += start[c];
@@ -59,25 +76,35 @@ struct CellBoxes {
       for (std::size_t p = 0; p < n; ++p) points[fill[cell[p]]++] = static_cast<std::int32_t>(p);
     }
     // Each cell's box starts at its points' lowest stencil base; S = Sp + the largest spread.
-    base_.resize(static_cast<std::size_t>(cells));
-    int spread = 0;
-    long bad = -1;
+    // extent_: per cell, the lowest base and minus the highest per axis (one min over processes).
+    extent_.assign(static_cast<std::size_t>(cells) * 2 * D, 1e300);
     for (int c = 0; c < cells; ++c) {
-      std::array<int, D> lo, hi;
-      lo.fill(1 << 30);
-      hi.fill(-1);
+      double* e = &extent_[static_cast<std::size_t>(c) * 2 * D];
       for (int q = start[c]; q < start[c + 1]; ++q) {
         const auto ij =
             g.unflatten(static_cast<std::size_t>(st.node[static_cast<std::size_t>(points[q]) * Kp]));
-        for (int d = 0; d < D; ++d) lo[d] = std::min(lo[d], ij[d]), hi[d] = std::max(hi[d], ij[d]);
+        for (int d = 0; d < D; ++d)
+          e[d] = std::min(e[d], double(ij[d])), e[D + d] = std::min(e[D + d], -double(ij[d]));
       }
-      for (int d = 0; d < D; ++d) {
-        spread = std::max(spread, hi[d] - lo[d]);
-        if (hi[d] - lo[d] > 1 && bad < 0) bad = points[start[c]];
-      }
-      base_[static_cast<std::size_t>(c)] = lo;
     }
-    if (bad >= 0) return bad;
+    procs.min(extent_.data(), extent_.size());
+    base_.resize(static_cast<std::size_t>(cells));
+    int spread = 0;
+    long bad = -1;
+    bool wide = false;
+    for (int c = 0; c < cells; ++c) {
+      const double* e = &extent_[static_cast<std::size_t>(c) * 2 * D];
+      for (int d = 0; d < D; ++d) {
+        const int lo = static_cast<int>(e[d]), hi = static_cast<int>(-e[D + d]);
+        base_[static_cast<std::size_t>(c)][static_cast<std::size_t>(d)] = lo;
+        spread = std::max(spread, hi - lo);
+        if (hi - lo > 1) {
+          wide = true;
+          if (bad < 0 && start[c] < start[c + 1]) bad = points[start[c]];
+        }
+      }
+    }
+    if (wide) return bad;
     S = Sp + spread;
     K = 1;
     for (int d = 0; d < D; ++d) K *= S;
@@ -115,8 +142,13 @@ struct CellBoxes {
         }
       }
       volume[static_cast<std::size_t>(c)] = vc;
-      for (int j = 0; j < K; ++j) b[j] /= vc;
     }
+    procs.sum(volume.data(), volume.size());
+    static_assert(sizeof(Vec<D>) == D * sizeof(double), "b_c summed as doubles");
+    procs.sum(mean_div.empty() ? nullptr : mean_div[0].data(), mean_div.size() * D);
+    for (int c = 0; c < cells; ++c)
+      for (int j = 0; j < K; ++j)
+        mean_div[static_cast<std::size_t>(c) * K + j] /= volume[static_cast<std::size_t>(c)];
     return -1;
   }
 
@@ -124,6 +156,8 @@ struct CellBoxes {
 
  private:
   std::vector<std::int32_t> slot_, fill_;  // per grid cell; per cell (scratch)
+  std::vector<std::uint64_t> occupied_;    // one bit per grid cell
+  std::vector<double> extent_;             // per cell: lowest base, minus highest (per axis)
   std::vector<std::array<int, D>> base_;   // per cell: the box's low node
 };
 

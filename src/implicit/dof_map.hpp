@@ -5,6 +5,9 @@
 // (cell_boxes.hpp). A component held by a wall (Dirichlet condition) keeps its row as an
 // identity row with a zero right-hand side, so the matrix keeps the symmetry of the tangent and
 // a node's D unknowns stay together (PETSc's block size, the multigrid's near null space).
+// Across processes (issue 55) the masses are every process's sums, so all number the unknowns
+// alike, and the pattern is the union of the processes' blocks; each remembers the rows its own
+// blocks touch (contributing_rows).
 #pragma once
 #include <omp.h>
 
@@ -16,6 +19,7 @@
 
 #include "core/grid.hpp"
 #include "implicit/linear_system.hpp"
+#include "parallel/processes.hpp"
 
 namespace skred {
 
@@ -27,7 +31,8 @@ class DofMap {
   // `mass` per grid node (its active nodes: mass > 0), `held` per grid node the bits c of its
   // components held by a wall.
   void build(const std::int64_t* block_node, std::size_t blocks, int Sb, int Sp, const GridGeometry<D>& g,
-             const std::vector<double>& mass, const std::vector<std::uint8_t>& held, int threads) {
+             const std::vector<double>& mass, const std::vector<std::uint8_t>& held, int threads,
+             const Processes& processes = {}) {
     S_ = Sb;
     W_ = 2 * Sb - 1;
     int box = 1;
@@ -61,6 +66,16 @@ class DofMap {
           __atomic_fetch_or(&m[o / 64], std::uint64_t{1} << (o % 64), __ATOMIC_RELAXED);
         }
       }
+    contributing_.clear();
+    if (processes.distributed()) {  // this process's rows, then every process's couplings
+      contributing_.assign(nodes_.size() * D, 0);
+      for (std::size_t a = 0; a < nodes_.size(); ++a) {
+        bool any = false;
+        for (int w = 0; w < words_; ++w) any = any || mask_[a * words_ + w] != 0;
+        for (int c = 0; c < D; ++c) contributing_[a * D + c] = any;
+      }
+      processes.bit_or(mask_.data(), mask_.size());
+    }
     // Rows: node a's D rows each hold D entries per coupled node, in flat (= active) order.
     const std::size_t rows = nodes_.size() * D;
     pattern_.row_start.assign(rows + 1, 0);
@@ -112,6 +127,8 @@ class DofMap {
   std::int64_t node(std::size_t a) const { return nodes_[a]; }
   bool held(std::size_t a, int c) const { return (held_[a] >> c) & 1u; }
   const SparsePattern& pattern() const { return pattern_; }
+  // Across processes: per row, 1 where this process's blocks touch it (empty for one process).
+  const std::vector<std::uint8_t>& contributing_rows() const { return contributing_; }
   int box_width() const { return W_; }
   // Whether every active node's own block is in the pattern (a node no block holds has none).
   bool every_node_coupled_to_itself() const {
@@ -160,6 +177,7 @@ class DofMap {
   std::vector<std::int64_t> nodes_;
   std::vector<std::uint8_t> held_;
   std::vector<std::uint64_t> mask_;
+  std::vector<std::uint8_t> contributing_;
   std::vector<int> pair_offset_, box_offset_;
   SparsePattern pattern_;
 };

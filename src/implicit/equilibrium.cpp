@@ -73,7 +73,12 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   trial_plastic_.resize(n);
   trial_state_.resize(n);
   if (tangent) tangent_.resize(n);
-  r_ = f_ext_;
+  // Across processes each sums its own points' internal forces, and all of them the whole.
+  const bool split = state_.processes.distributed();
+  if (split)
+    r_.assign(f_ext_.size(), 0.0);
+  else
+    r_ = f_ext_;
   double* r = r_.data();
   timer_.time(ImplicitPhase::StressUpdate, [&] {
     if (!settings_.at_points()) {
@@ -88,38 +93,56 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
       }
       return;
     }
+    // Three passes, each cell's sums over the processes between them: theta_c, then the laws
+    // and q_c, then the forces.
     const Sym3 m = volumetric_axes();
     const double d = m.sum();
     vol_corr_.resize(n);
     mean_.resize(n);
-#pragma omp parallel for num_threads(state_.threads) schedule(static)
-    for (std::size_t p = 0; p < n; ++p) deps_[p] = point_strain(p, du);
     const int cells = cells_.cells();
+    cell_theta_.assign(static_cast<std::size_t>(cells), 0.0);
+    cell_mean_.assign(static_cast<std::size_t>(cells), 0.0);
 #pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
     for (int c = 0; c < cells; ++c) {
-      const int q0 = cells_.start[c], q1 = cells_.start[c + 1];
       double theta = 0.0;
-      for (int q = q0; q < q1; ++q) {
+      for (int q = cells_.start[c]; q < cells_.start[c + 1]; ++q) {
         const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
+        deps_[p] = point_strain(p, du);
         theta += volume_[p] * m.dot(deps_[p]);
       }
-      theta /= cells_.volume[static_cast<std::size_t>(c)];
+      cell_theta_[static_cast<std::size_t>(c)] = theta;
+    }
+    state_.processes.sum(cell_theta_.data(), cell_theta_.size());
+#pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
+    for (int c = 0; c < cells; ++c) {
+      const double theta =
+          cell_theta_[static_cast<std::size_t>(c)] / cells_.volume[static_cast<std::size_t>(c)];
       double mean = 0.0;
-      for (int q = q0; q < q1; ++q) {
+      for (int q = cells_.start[c]; q < cells_.start[c + 1]; ++q) {
         const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
         vol_corr_[p] = (theta - m.dot(deps_[p])) / d;
         const Sym3& s = update_point(p, Sym3(deps_[p] + vol_corr_[p] * m), tangent);
         mean_[p] = m.dot(s) / d;
         mean += volume_[p] * mean_[p];
       }
-      mean /= cells_.volume[static_cast<std::size_t>(c)];
-      for (int q = q0; q < q1; ++q) {
+      cell_mean_[static_cast<std::size_t>(c)] = mean;
+    }
+    state_.processes.sum(cell_mean_.data(), cell_mean_.size());
+#pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
+    for (int c = 0; c < cells; ++c) {
+      const double mean =
+          cell_mean_[static_cast<std::size_t>(c)] / cells_.volume[static_cast<std::size_t>(c)];
+      for (int q = cells_.start[c]; q < cells_.start[c + 1]; ++q) {
         const std::size_t p = static_cast<std::size_t>(cells_.points[q]);
         subtract_internal_force(p, volume_[p] * (voigt_weighted(trial_stress_[p]) + (mean - mean_[p]) * m),
                                 r);
       }
     }
   });
+  if (split) {
+    state_.processes.sum(r, r_.size());
+    for (std::size_t i = 0; i < r_.size(); ++i) r_[i] += f_ext_[i];
+  }
   const bool inertia = dynamic() && !v_bar_.empty();
   const double c0 = 4.0 / (dt * dt), c1 = 4.0 / dt;
   double s = 0.0;
@@ -228,6 +251,7 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
         add_point_block(p, WT, true, g.data(), h.data(), v);
         s += m.dot(WT * m) / (d * d);
       }
+      if (cells_.start[c] == cells_.start[c + 1]) continue;  // (another process's cell)
       const std::int64_t* box = &cells_.node[static_cast<std::size_t>(c) * Kc];
       const Vec<D>* b = &cells_.mean_div[static_cast<std::size_t>(c) * Kc];
       for (int i = 0; i < Kc; ++i) {
@@ -247,12 +271,13 @@ void ImplicitSolver<D>::assemble(double dt, bool elastic) {
 }
 
 // The diagonal's 4 m_i / dt^2 (eq. 10, dynamic) and the held rows' identity; `centre` is a
-// node's offset to itself in the pattern.
+// node's offset to itself in the pattern. Across processes, each adds them to its own rows.
 template <int D>
 void ImplicitSolver<D>::add_inertia_and_held(double dt, int centre, double* v) const {
   const double c0 = dynamic() ? 4.0 / (dt * dt) : 0.0;
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int r = 0; r < D; ++r) {
+      if (!system_.owns(a * D + static_cast<std::size_t>(r))) continue;
       const std::int32_t e = dofs_.row_entry(a, r, centre) + r;
       v[e] += dofs_.held(a, r) ? 1.0 : c0 * mass_[a * D + r];
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "material/law.hpp"
 
@@ -17,12 +18,17 @@ ImplicitSolver<D>::ImplicitSolver(ImplicitModel<D> model, Particles<D>& particle
                                   std::vector<Material> materials, int threads)
     : model_(std::move(model)),
       state_(particles, model_.grid, model_.interpolation, model_.quadrature_points, {}, threads) {
+  state_.processes = model_.processes;
   restore(SolverClock{}, std::move(materials));
 }
 
 template <int D>
 void ImplicitSolver<D>::set_stage(const ImplicitSettings& settings, double dt, double end_time) {
   settings_ = settings;
+  if (state_.processes.distributed() && !settings_.at_points())
+    throw std::invalid_argument(
+        "the implicit integrator runs across processes at the points only: not with Acosta's remedies "
+        "(issue 55)");
   dt_ = dt;
   end_time_ = end_time;
   // The tangent is symmetric unless a material's flow is non-associated (Mohr-Coulomb with
@@ -41,7 +47,7 @@ void ImplicitSolver<D>::set_stage(const ImplicitSettings& settings, double dt, d
     symmetric = false;
   if (!configured_ || symmetric != symmetric_) {
     symmetric_ = symmetric;
-    system_.configure(settings_.linear_solver, settings_.petsc_options, symmetric_, D);
+    system_.configure(settings_.linear_solver, settings_.petsc_options, symmetric_, D, state_.processes);
     configured_ = true;
     totals_.linear_solver = system_.description();
   }

@@ -17,6 +17,7 @@
 #pragma once
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -46,6 +47,12 @@ struct ImplicitModel {
   std::vector<BoundaryPressure> pressures;
   bool volumetric_averaging = false;  // the cell-averaged volumetric strain (cell_boxes.hpp)
   std::vector<PrescribedVelocity> prescribed;
+  // The processes the points are split among (issue 55): the grid's sums over the points (m_i,
+  // v_i, a_i, F_ext, F_int, the tangent) are every process's, so all of them hold the same
+  // unknowns and iterate alike; the linear solves run on PETSc's parallel matrices. The
+  // cell-averaged volumetric strain's cells are every process's (cell_boxes.hpp). At the points
+  // only: Acosta's remedies are refused (the run says so).
+  Processes processes;
 };
 
 // The phases of an implicit step whose wall time summary.json reports ("implicit_" + name).
@@ -104,7 +111,9 @@ class ImplicitSolver final : public Integrator<D> {
   const MpmState<D>& state() const override { return state_; }
   void particles_changed() override {}
   double dt() const override { return dt_; }
-  ParticleTotals<D> totals() const override { return particle_totals(state_.points, state_.threads); }
+  ParticleTotals<D> totals() const override {
+    return particle_totals(state_.points, state_.threads, state_.processes);
+  }
   double material_mean_speed() override { return totals().mean_speed; }
   bool sort_by_nearest_node() const override { return false; }
   bool contact_on() const override { return false; }
@@ -148,10 +157,13 @@ class ImplicitSolver final : public Integrator<D> {
   static constexpr int kMaxBox = D == 3 ? 125 : 25;     // (4 + 1)^D
   // implicit_step.cpp (and equilibrium.cpp: point_strain to assemble)
   StepStatus map_step();
+  long agreed_point(long bad) const;  // the first failing point over the processes (-1: none)
   void held_components();
   void lumped_masses();
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
   void pressure_forces(double t, std::vector<double>& f) const;  // loads.cpp
+  void keep_outermost_over_processes(std::unordered_map<std::int64_t, std::size_t>& outermost, int axis,
+                                     bool hi) const;
   Sym3 point_strain(std::size_t p, const std::vector<double>& du) const;
   const Sym3& update_point(std::size_t p, const Sym3& de, bool tangent);
   void subtract_internal_force(std::size_t p, const Sym3& ws, double* r) const;
@@ -224,8 +236,9 @@ class ImplicitSolver final : public Integrator<D> {
   std::vector<Sym3> deps_, trial_stress_, trial_plastic_;
   std::vector<PointState> trial_state_;
   std::vector<Mat6> tangent_;
-  std::vector<double> vol_corr_, mean_;  // (theta_c - theta_p) / d and q_p (cell averaging)
-  std::vector<Mat6> elastic_tangent_;    // per material
+  std::vector<double> vol_corr_, mean_;         // (theta_c - theta_p) / d and q_p (cell averaging)
+  std::vector<double> cell_theta_, cell_mean_;  // per cell: V_c theta_c and V_c q_c
+  std::vector<Mat6> elastic_tangent_;           // per material
 };
 
 }  // namespace skred

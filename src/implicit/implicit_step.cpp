@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include <algorithm>
+#include <climits>
 #include <cmath>
 #include <numeric>
 
@@ -14,6 +15,7 @@
 #include "implicit/strain_matrix.hpp"
 #include "material/law.hpp"
 #include "solver/gravity.hpp"
+#include "solver/process_sums.hpp"
 
 namespace skred {
 
@@ -40,6 +42,18 @@ void ImplicitSolver<D>::lumped_masses() {
 #pragma omp atomic
       gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * state_.points.mass[p];
     }
+  state_.processes.sum(gm, grid_mass_.size());  // every process's points
+}
+
+// A point that failed on some process, named by its index over all of them in rank order, on
+// every process; -1 when none did.
+template <int D>
+long ImplicitSolver<D>::agreed_point(long bad) const {
+  const Processes& procs = state_.processes;
+  if (!procs.distributed()) return bad;
+  const long offset = procs.offset(static_cast<long>(state_.points.size()));
+  const long first = procs.min(bad >= 0 ? offset + bad : LONG_MAX);
+  return first == LONG_MAX ? -1 : first;
 }
 
 // The step's map (Acosta §2.1, eq. 43-44): the points' weights at x^k, the lumped masses
@@ -53,6 +67,7 @@ StepStatus ImplicitSolver<D>::map_step() {
     width_ = std::decay_t<decltype(kernel)>::StencilT::width;
     bad = stencils_.build(kernel, g, state_.points, state_.threads);
   });
+  bad = agreed_point(bad);
   if (bad >= 0) return {false, bad, "a point left the grid"};
   const std::size_t n = state_.points.size();
   lumped_masses();
@@ -62,6 +77,7 @@ StepStatus ImplicitSolver<D>::map_step() {
   double rho_max = 0.0;
   for (std::size_t p = 0; p < n; ++p)
     rho_max = std::max(rho_max, state_.points.mass[p] / state_.points.volume(p));
+  state_.processes.max(&rho_max, 1);
   const double m_min = settings_.min_node_fill * rho_max * std::pow(g.h, D);
   sliver_.assign(g.node_count(), 0);
   bool any = false;
@@ -86,8 +102,9 @@ StepStatus ImplicitSolver<D>::map_step() {
   }
   held_components();
   if (!settings_.at_points()) {
-    const long wide = mapped_.build(settings_.integration, settings_.stress_recovery, stencils_, g,
-                                    state_.points, volume_, inv_r_, grid_mass_, state_.threads);
+    const long wide =
+        agreed_point(mapped_.build(settings_.integration, settings_.stress_recovery, stencils_, g,
+                                   state_.points, volume_, inv_r_, grid_mass_, state_.threads));
     if (wide >= 0) return {false, wide, "its stencil spreads beyond the 4 nodes per axis around its cell"};
     // Acosta's stiffness (eq. 19-20) couples the corners of a cell only: its pattern is the
     // cells' (as narrow as linear MPM's), unless a node with mass lies in no mapped cell.
@@ -102,13 +119,25 @@ StepStatus ImplicitSolver<D>::map_step() {
       dofs_.build(mapped_.box.data(), n, mapped_.width, mapped_.width, g, grid_mass_, grid_held_,
                   state_.threads);
   } else if (averaging()) {
-    const long wide = cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads);
+    const long wide = agreed_point(
+        cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads, state_.processes));
     if (wide >= 0)
       return {false, wide, "its stencil spreads beyond its cell's box (cell-averaged volumetric strain)"};
-    dofs_.build(cells_.node.data(), static_cast<std::size_t>(cells_.cells()), cells_.S, width_, g, grid_mass_,
-                grid_held_, state_.threads);
+    const std::int64_t* boxes = cells_.node.data();
+    std::size_t count = static_cast<std::size_t>(cells_.cells());
+    if (state_.processes.distributed()) {  // the boxes of the cells this process's points are in
+      cell_blocks_.clear();
+      for (int c = 0; c < cells_.cells(); ++c)
+        if (cells_.start[c] < cells_.start[c + 1])
+          cell_blocks_.insert(cell_blocks_.end(), boxes + static_cast<std::size_t>(c) * cells_.K,
+                              boxes + static_cast<std::size_t>(c + 1) * cells_.K);
+      boxes = cell_blocks_.data();
+      count = cell_blocks_.size() / static_cast<std::size_t>(cells_.K);
+    }
+    dofs_.build(boxes, count, cells_.S, width_, g, grid_mass_, grid_held_, state_.threads, state_.processes);
   } else {
-    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, state_.threads);
+    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, state_.threads,
+                state_.processes);
   }
   const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
   totals_.max_unknowns = std::max(totals_.max_unknowns, static_cast<long>(dofs));
@@ -123,6 +152,7 @@ StepStatus ImplicitSolver<D>::map_step() {
     driven_[a] = grid_driven_[static_cast<std::size_t>(dofs_.node(a))];
   }
   system_.set_pattern(dofs_.pattern());
+  system_.set_contributing_rows(dofs_.contributing_rows());
   if (settings_.linear_solver == LinearSolverKind::Iterative) {
     std::vector<double>& xyz = trial_du_;  // (scratch until the iterations start)
     xyz.resize(dofs);
@@ -151,6 +181,8 @@ StepStatus ImplicitSolver<D>::map_step() {
         ab[a * D + c] += wm * state_.points.acceleration[p][c];
       }
     }
+  state_.processes.sum(vb, dofs);
+  state_.processes.sum(ab, dofs);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c) {
       const std::size_t i = a * D + c;
@@ -418,12 +450,15 @@ void ImplicitSolver<D>::commit_step(double dt) {
     std::vector<double> f0(du_.size(), 0.0), f1(du_.size(), 0.0);
     pressure_forces(state_.clock.time, f0);
     pressure_forces(state_.clock.time + dt, f1);
+    state_.processes.sum(f0.data(), f0.size());
+    state_.processes.sum(f1.data(), f1.size());
     double w = 0.0;
     for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
       for (int c = 0; c < D; ++c)
         if (!dofs_.held(a, c)) w += 0.5 * (f0[a * D + c] + f1[a * D + c]) * du_[a * D + c];
     state_.clock.energy.load_work += w;
   }
+  sum_over_processes(state_.processes, strain, plastic, gravity);
   state_.clock.energy.strain_energy += strain;
   state_.clock.energy.plastic_dissipation += plastic;
   state_.clock.energy.gravity_work += gravity;
@@ -468,6 +503,7 @@ void ImplicitSolver<D>::commit_boundary_forces(double dt) {
 
 #define SKRED_IMPLICIT_STEP(D)                                       \
   template StepStatus ImplicitSolver<D>::map_step();                 \
+  template long ImplicitSolver<D>::agreed_point(long) const;         \
   template void ImplicitSolver<D>::held_components();                \
   template bool ImplicitSolver<D>::solve_step(double, std::string&); \
   template void ImplicitSolver<D>::initial_acceleration();           \

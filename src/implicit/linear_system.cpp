@@ -44,7 +44,14 @@ void start_petsc() {
     setenv("PETSC_OPTIONS", (std::string(given ? given : "") + " -no_signal_handler").c_str(), 1);
     check(PetscInitializeNoArguments(), "PetscInitialize");
     PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-    std::atexit([] { PetscFinalize(); });
+    // PETSc stops before MPI does (finish_processes) when skred started MPI, else at exit.
+    const auto stop = [] {
+      PetscBool stopped = PETSC_FALSE;
+      PetscFinalized(&stopped);
+      if (!stopped) PetscFinalize();
+    };
+    stop_before_finish(stop);
+    std::atexit(stop);
   });
 }
 
@@ -54,7 +61,19 @@ struct LinearSystem::Petsc {
   Mat matrix = nullptr;
   KSP ksp = nullptr;
   std::vector<PetscInt> rows, columns;
+  // Across processes: the right-hand side and solution (owned rows), the whole solution on every
+  // process, and the scatter that fills it; the whole pattern's columns.
+  Vec b = nullptr, x = nullptr, x_all = nullptr;
+  VecScatter to_all = nullptr;
+  std::vector<PetscInt> all_columns;
+  void destroy_vectors() {
+    if (to_all) VecScatterDestroy(&to_all);
+    if (x_all) VecDestroy(&x_all);
+    if (x) VecDestroy(&x);
+    if (b) VecDestroy(&b);
+  }
   ~Petsc() {
+    destroy_vectors();
     if (ksp) KSPDestroy(&ksp);
     if (matrix) MatDestroy(&matrix);
   }
@@ -64,15 +83,16 @@ LinearSystem::LinearSystem() = default;
 LinearSystem::~LinearSystem() = default;
 
 void LinearSystem::configure(LinearSolverKind kind, const std::string& petsc_options, bool symmetric,
-                             int block) {
+                             int block, const Processes& processes) {
   start_petsc();
+  processes_ = processes;
   kind_ = kind;
   options_ = petsc_options;
   symmetric_ = symmetric;
   block_ = block;
   petsc_ = std::make_unique<Petsc>();
   Petsc& p = *petsc_;
-  SKRED_PETSC(KSPCreate(PETSC_COMM_SELF, &p.ksp));
+  SKRED_PETSC(KSPCreate(processes_.distributed() ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &p.ksp));
   PC pc = nullptr;
   SKRED_PETSC(KSPGetPC(p.ksp, &pc));
   if (kind == LinearSolverKind::Direct) {
@@ -89,10 +109,16 @@ void LinearSystem::configure(LinearSolverKind kind, const std::string& petsc_opt
 }
 
 void LinearSystem::set_pattern(const SparsePattern& pattern) {
-  if (!petsc_) configure(kind_, options_, symmetric_, block_);
+  if (!petsc_) configure(kind_, options_, symmetric_, block_, processes_);
   Petsc& p = *petsc_;
   pattern_ = pattern;
   values_.assign(pattern_.column.size(), 0.0);
+  first_row_ = 0;
+  end_row_ = pattern_.size();
+  if (processes_.distributed()) {
+    set_parallel_pattern();
+    return;
+  }
   p.rows.assign(pattern_.row_start.begin(), pattern_.row_start.end());
   p.columns.assign(pattern_.column.begin(), pattern_.column.end());
   if (p.matrix) {  // a new size: the solver forgets the old operator and its factor
@@ -116,10 +142,14 @@ void LinearSystem::set_coordinates(const std::vector<double>& xyz) {
 
 void LinearSystem::factorise() {
   Petsc& p = *petsc_;
-  PetscScalar* a = nullptr;
-  SKRED_PETSC(MatSeqAIJGetArray(p.matrix, &a));
-  std::copy(values_.begin(), values_.end(), a);
-  SKRED_PETSC(MatSeqAIJRestoreArray(p.matrix, &a));
+  if (processes_.distributed()) {
+    add_parallel_values();
+  } else {
+    PetscScalar* a = nullptr;
+    SKRED_PETSC(MatSeqAIJGetArray(p.matrix, &a));
+    std::copy(values_.begin(), values_.end(), a);
+    SKRED_PETSC(MatSeqAIJRestoreArray(p.matrix, &a));
+  }
   SKRED_PETSC(MatAssemblyBegin(p.matrix, MAT_FINAL_ASSEMBLY));
   SKRED_PETSC(MatAssemblyEnd(p.matrix, MAT_FINAL_ASSEMBLY));
   SKRED_PETSC(KSPSetOperators(p.ksp, p.matrix, p.matrix));
@@ -128,9 +158,9 @@ void LinearSystem::factorise() {
     SKRED_PETSC(KSPGetPC(p.ksp, &pc));
     PetscBool gamg = PETSC_FALSE;
     SKRED_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCGAMG, &gamg));
-    if (gamg)
-      SKRED_PETSC(PCSetCoordinates(pc, block_, static_cast<PetscInt>(coordinates_.size()) / block_,
-                                   coordinates_.data()));
+    if (gamg)  // the owned nodes' coordinates
+      SKRED_PETSC(PCSetCoordinates(pc, block_, static_cast<PetscInt>(end_row_ - first_row_) / block_,
+                                   coordinates_.data() + first_row_));
   }
   SKRED_PETSC(KSPSetUp(p.ksp));
 }
@@ -139,20 +169,27 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
   Petsc& p = *petsc_;
   const PetscInt n = pattern_.size();
   x.assign(static_cast<std::size_t>(n), 0.0);
-  Vec vb = nullptr, vx = nullptr;
-  SKRED_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, b.data(), &vb));
-  SKRED_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, x.data(), &vx));
-  const PetscErrorCode code = KSPSolve(p.ksp, vb, vx);
-  VecDestroy(&vb);
-  VecDestroy(&vx);
+  PetscErrorCode code = 0;
+  if (processes_.distributed()) {
+    code = parallel_solve(b, x);
+  } else {
+    Vec vb = nullptr, vx = nullptr;
+    SKRED_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, b.data(), &vb));
+    SKRED_PETSC(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, x.data(), &vx));
+    code = KSPSolve(p.ksp, vb, vx);
+    VecDestroy(&vb);
+    VecDestroy(&vx);
+  }
   KSPConvergedReason why = KSP_CONVERGED_ITERATING;
   KSPGetConvergedReason(p.ksp, &why);
   PetscInt its = 0;
   KSPGetIterationNumber(p.ksp, &its);
   iterations_ = static_cast<int>(its);
   if (code != 0 || why < 0) {
-    // A failed factorisation leaves the preconditioner failed: the next factorise() starts afresh.
-    KSPReset(p.ksp);
+    // A failed factorisation leaves the preconditioner failed: the next factorise() starts afresh
+    // (a Krylov solver's multigrid is set up again from the next operator anyway; reset, it would
+    // lose the near null space's block layout).
+    if (kind_ == LinearSolverKind::Direct) KSPReset(p.ksp);
     const char* name = nullptr;
     if (why < 0) name = KSPConvergedReasons[why];
     reason_ = code != 0 ? fmt::format("PETSc error {} in KSPSolve", static_cast<int>(code))
@@ -165,6 +202,72 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
       return false;
     }
   return true;
+}
+
+// The owned rows of a pattern every process knows: whole nodes in contiguous runs, as even as
+// the node count allows; their compressed rows preallocate PETSc's parallel matrix exactly.
+void LinearSystem::set_parallel_pattern() {
+  Petsc& p = *petsc_;
+  const long n = pattern_.size(), nodes = n / block_, rank = processes_.rank(), size = processes_.size();
+  first_row_ = static_cast<int>(block_ * (nodes * rank / size));
+  end_row_ = static_cast<int>(block_ * (nodes * (rank + 1) / size));
+  const PetscInt local = end_row_ - first_row_, r0 = pattern_.row_start[static_cast<std::size_t>(first_row_)];
+  p.rows.resize(static_cast<std::size_t>(local) + 1);
+  for (PetscInt r = 0; r <= local; ++r)
+    p.rows[static_cast<std::size_t>(r)] = pattern_.row_start[static_cast<std::size_t>(first_row_ + r)] - r0;
+  p.all_columns.assign(pattern_.column.begin(), pattern_.column.end());
+  p.columns.assign(p.all_columns.begin() + r0, p.all_columns.begin() + r0 + p.rows.back());
+  if (p.matrix) {
+    SKRED_PETSC(KSPReset(p.ksp));
+    SKRED_PETSC(MatDestroy(&p.matrix));
+  }
+  p.destroy_vectors();
+  SKRED_PETSC(MatCreate(PETSC_COMM_WORLD, &p.matrix));
+  SKRED_PETSC(MatSetSizes(p.matrix, local, local, n, n));
+  SKRED_PETSC(MatSetType(p.matrix, MATMPIAIJ));
+  if (block_ > 1) SKRED_PETSC(MatSetBlockSize(p.matrix, block_));
+  SKRED_PETSC(MatMPIAIJSetPreallocationCSR(p.matrix, p.rows.data(), p.columns.data(), nullptr));
+  SKRED_PETSC(MatSetOption(p.matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
+  if (symmetric_) SKRED_PETSC(MatSetOption(p.matrix, MAT_SYMMETRIC, PETSC_TRUE));
+  SKRED_PETSC(MatCreateVecs(p.matrix, &p.x, &p.b));
+  SKRED_PETSC(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all));
+}
+
+// This process's values into the parallel matrix: its contributing rows and its own; PETSc adds
+// them up in the rows' owners (MatAssembly).
+void LinearSystem::add_parallel_values() {
+  Petsc& p = *petsc_;
+  SKRED_PETSC(MatZeroEntries(p.matrix));
+  const int n = pattern_.size();
+  for (int row = 0; row < n; ++row) {
+    const bool mine = row >= first_row_ && row < end_row_;
+    if (!mine && !(static_cast<std::size_t>(row) < contributing_.size() &&
+                   contributing_[static_cast<std::size_t>(row)]))
+      continue;
+    const std::int32_t e0 = pattern_.row_start[static_cast<std::size_t>(row)];
+    const PetscInt len = pattern_.row_start[static_cast<std::size_t>(row) + 1] - e0;
+    const PetscInt r = row;
+    SKRED_PETSC(
+        MatSetValues(p.matrix, 1, &r, len, p.all_columns.data() + e0, values_.data() + e0, ADD_VALUES));
+  }
+}
+
+// Solves with the owned rows of b and gives every process the whole solution.
+int LinearSystem::parallel_solve(const std::vector<double>& b, std::vector<double>& x) {
+  Petsc& p = *petsc_;
+  PetscScalar* a = nullptr;
+  SKRED_PETSC(VecGetArray(p.b, &a));
+  std::copy(b.begin() + first_row_, b.begin() + end_row_, a);
+  SKRED_PETSC(VecRestoreArray(p.b, &a));
+  const PetscErrorCode code = KSPSolve(p.ksp, p.b, p.x);
+  if (code != 0) return static_cast<int>(code);
+  SKRED_PETSC(VecScatterBegin(p.to_all, p.x, p.x_all, INSERT_VALUES, SCATTER_FORWARD));
+  SKRED_PETSC(VecScatterEnd(p.to_all, p.x, p.x_all, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* all = nullptr;
+  SKRED_PETSC(VecGetArrayRead(p.x_all, &all));
+  std::copy(all, all + x.size(), x.begin());
+  SKRED_PETSC(VecRestoreArrayRead(p.x_all, &all));
+  return 0;
 }
 
 double LinearSystem::factor_bytes() const {
@@ -188,7 +291,9 @@ std::string LinearSystem::description() const {
   PCGetType(pc, &pt);
   MatSolverType st = nullptr;
   if (kind_ == LinearSolverKind::Direct) PCFactorGetMatSolverType(pc, &st);
-  return fmt::format("{} + {}{}", kt ? kt : "?", pt ? pt : "?", st ? fmt::format(" ({})", st) : "");
+  return fmt::format(
+      "{} + {}{}{}", kt ? kt : "?", pt ? pt : "?", st ? fmt::format(" ({})", st) : "",
+      processes_.distributed() ? fmt::format(", parallel over {} processes", processes_.size()) : "");
 }
 
 }  // namespace skred

@@ -4,13 +4,21 @@
 // it to PETSc, factorises it (direct: MUMPS' Cholesky where the matrix is symmetric, LU where
 // not) or sets up a Krylov solver with algebraic multigrid (iterative), and solves. PETSc stays
 // behind this header: nothing else in skred includes it.
+//
+// Across processes (issue 55) every process knows the whole pattern, the right-hand side and the
+// solution; the matrix is PETSc's parallel one (MPIAIJ), its rows owned in contiguous runs of
+// whole nodes (first_row, end_row). Each process adds its own points' values (the rows it marks
+// with set_contributing_rows, and those it owns); PETSc sends them to the rows' owners, and
+// MUMPS or the multigrid factorise and solve on all processes together.
 #pragma once
 #include <cstdint>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "parallel/processes.hpp"
 #include "solver/implicit_settings.hpp"
 
 namespace skred {
@@ -37,14 +45,26 @@ class LinearSystem {
   // The solver's choice: direct or iterative, extra PETSc options, and whether the matrices
   // are symmetric (Cholesky, CG) or not (LU, GMRES). `block` is the unknowns per node (the
   // multigrid's near null space: the rigid-body modes need the nodes' coordinates, block_coords).
-  void configure(LinearSolverKind kind, const std::string& petsc_options, bool symmetric, int block);
+  // `processes`: those the matrix is split among (one alone: PETSc's sequential matrices).
+  void configure(LinearSolverKind kind, const std::string& petsc_options, bool symmetric, int block,
+                 const Processes& processes = {});
   // A new pattern (each step: the points moved); the values are zeroed.
   void set_pattern(const SparsePattern& pattern);
   // The nodes' coordinates (block values each, in the unknowns' order): the multigrid builds
   // the rigid-body modes of elasticity from them (its near null space). Iterative only.
   void set_coordinates(const std::vector<double>& xyz);
-  // The values in the pattern's order, to assemble into.
+  // The values in the pattern's order, to assemble into: across processes, this process's part
+  // of the sums (its points' terms; terms that every process knows alike only in its own rows).
   std::vector<double>& values() { return values_; }
+  // The rows this process owns, [first_row, end_row) (all of them for one process).
+  int first_row() const { return first_row_; }
+  int end_row() const { return end_row_; }
+  bool owns(std::size_t row) const {
+    return static_cast<int>(row) >= first_row_ && static_cast<int>(row) < end_row_;
+  }
+  // Across processes: per row, nonzero where this process's values may be nonzero (its points'
+  // rows); factorise() sends those rows to their owners. Ignored for one process.
+  void set_contributing_rows(std::vector<std::uint8_t> rows) { contributing_ = std::move(rows); }
   // Hands the assembled values to PETSc and factorises (direct) or sets the preconditioner up.
   void factorise();
   // x = K^-1 b with the last factorisation; false (with reason()) when the solve failed.
@@ -68,6 +88,12 @@ class LinearSystem {
   LinearSolverKind kind_ = LinearSolverKind::Direct;
   std::string options_;
   int block_ = 2;
+  Processes processes_;
+  int first_row_ = 0, end_row_ = 0;
+  std::vector<std::uint8_t> contributing_;
+  void set_parallel_pattern();                                               // set_pattern across processes
+  void add_parallel_values();                                                // factorise across processes
+  int parallel_solve(const std::vector<double>& b, std::vector<double>& x);  // PETSc's error code
 };
 
 }  // namespace skred

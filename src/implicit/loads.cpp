@@ -32,9 +32,38 @@ void ImplicitSolver<D>::external_forces(double t, std::vector<double>& f) const 
       }
     }
   pressure_forces(t, f);
+  state_.processes.sum(fa, f.size());  // every process's points
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c)
       if (dofs_.held(a, c)) f[a * D + c] = 0.0;
+}
+
+// Across processes (issue 55): of each row's outermost points, one per process, only the
+// outermost of all stays, the first in rank order where they tie (as one process would keep the
+// first in index order); the others leave `outermost`. Every process calls it alike.
+template <int D>
+void ImplicitSolver<D>::keep_outermost_over_processes(
+    std::unordered_map<std::int64_t, std::size_t>& outermost, int axis, bool hi) const {
+  const Processes& procs = state_.processes;
+  if (!procs.distributed()) return;
+  std::vector<double> mine;  // (row key, coordinate) pairs; keys below 2^53 are exact doubles
+  mine.reserve(2 * outermost.size());
+  for (const auto& [key, p] : outermost) {
+    mine.push_back(static_cast<double>(key));
+    mine.push_back(state_.points.x[p][axis]);
+  }
+  const long start = procs.offset(static_cast<long>(mine.size()));
+  std::vector<double> all(static_cast<std::size_t>(procs.sum_of(static_cast<long>(mine.size()))));
+  procs.gather(mine.data(), mine.size(), all.data(), all.size());
+  std::unordered_map<std::int64_t, std::size_t> best;  // row key -> its outermost entry in `all`
+  for (std::size_t e = 0; e < all.size(); e += 2) {
+    auto [it, fresh] = best.try_emplace(static_cast<std::int64_t>(all[e]), e);
+    if (!fresh && (hi ? all[e + 1] > all[it->second + 1] : all[e + 1] < all[it->second + 1])) it->second = e;
+  }
+  std::erase_if(outermost, [&](const auto& row) {
+    const std::size_t e = best.at(row.first);
+    return e < static_cast<std::size_t>(start) || e >= static_cast<std::size_t>(start) + mine.size();
+  });
 }
 
 // A pressure on the `side` face of a body: the body's points are grouped in rows across the
@@ -66,6 +95,7 @@ void ImplicitSolver<D>::pressure_forces(double t, std::vector<double>& f) const 
                         : state_.points.x[p][axis] < state_.points.x[it->second][axis]))
         it->second = p;
     }
+    keep_outermost_over_processes(outermost, axis, hi);
     for (const auto& [key, p] : outermost) {
       Vec<D> edge = state_.points.x[p];
       edge[axis] +=
@@ -96,6 +126,10 @@ void ImplicitSolver<D>::pressure_forces(double t, std::vector<double>& f) const 
   }
 }
 
+template void ImplicitSolver<2>::keep_outermost_over_processes(std::unordered_map<std::int64_t, std::size_t>&,
+                                                               int, bool) const;
+template void ImplicitSolver<3>::keep_outermost_over_processes(std::unordered_map<std::int64_t, std::size_t>&,
+                                                               int, bool) const;
 template void ImplicitSolver<2>::external_forces(double, std::vector<double>&) const;
 template void ImplicitSolver<3>::external_forces(double, std::vector<double>&) const;
 template void ImplicitSolver<2>::pressure_forces(double, std::vector<double>&) const;

@@ -273,6 +273,7 @@ bool ImplicitSolver<D>::node_magnitudes(std::vector<double>& k_mag, std::vector<
       add(a, a, 0, Mat<D>(volume_[p] * B.transpose() * WT * B));
     }
   }
+  state_.processes.sum(diag.data(), diag.size());
   k_mag.assign(nodes, 0.0);
   f_mag.assign(nodes, 0.0);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a) {

@@ -163,9 +163,9 @@ std::string processes_json(const Summary& s) {
   const double mean = static_cast<double>(s.particles) / s.processes;
   return fmt::format(
       "  \"processes\": {{\"count\": {}, \"points_min\": {}, \"points_max\": {}, \"imbalance\": {}, "
-      "\"setup_peak_bytes\": {}}},\n",
+      "\"setup_peak_bytes\": {}, \"rebalances\": {}}},\n",
       s.processes, s.share_min, s.share_max, json_number(mean > 0 ? s.share_max / mean : NAN),
-      json_number(s.setup_peak_bytes));
+      json_number(s.setup_peak_bytes), s.rebalances);
 }
 
 }  // namespace

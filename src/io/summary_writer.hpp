@@ -72,6 +72,7 @@ struct Summary {
   int processes = 1;
   long share_min = 0, share_max = 0;
   double setup_peak_bytes = 0.0;  // the largest peak of a process in the set-up (0: not apart)
+  long rebalances = 0;            // how often the shares were evened out (splitting)
   // The velocity transfer and volumetric strain the run used (written after the scheme when
   // set; "auto" resolved): xpic_order and xpic_period [h/c] for "xpic", pic_fraction for "flip".
   std::string velocity_transfer = {}, volumetric_strain = {};

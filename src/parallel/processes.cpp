@@ -6,7 +6,10 @@
 #define MPICH_SKIP_MPICXX 1
 #include <mpi.h>
 
+#include <algorithm>
+#include <climits>
 #include <cstdlib>
+#include <stdexcept>
 #include <vector>
 
 namespace skred {
@@ -16,6 +19,7 @@ namespace {
 bool started = false;
 int machine_rank = 0, machine_size = 1;  // among the processes of this machine (start_processes)
 Exchanged traffic;                       // (only the main thread calls MPI)
+std::vector<void (*)()> stops;           // stop_before_finish
 
 MPI_Comm comm_of(void* c) { return c ? static_cast<MPI_Comm>(c) : MPI_COMM_SELF; }
 
@@ -37,7 +41,11 @@ int start_processes(int* argc, char*** argv) {
   return size;
 }
 
+void stop_before_finish(void (*stop)()) { stops.push_back(stop); }
+
 int finish_processes(int code) {
+  for (auto it = stops.rbegin(); it != stops.rend(); ++it) (*it)();
+  stops.clear();
   if (started) {
     started = false;
     MPI_Finalize();
@@ -77,6 +85,9 @@ void Processes::sum(double* data, std::size_t n) const { allreduce(comm_, data, 
 void Processes::sum(long* data, std::size_t n) const { allreduce(comm_, data, n, MPI_LONG, MPI_SUM); }
 void Processes::min(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MIN); }
 void Processes::max(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MAX); }
+void Processes::bit_or(std::uint64_t* data, std::size_t n) const {
+  allreduce(comm_, data, n, MPI_UINT64_T, MPI_BOR);
+}
 
 long Processes::min(long v) const {
   allreduce(comm_, &v, 1, MPI_LONG, MPI_MIN);
@@ -124,6 +135,31 @@ void Processes::gather(const double* data, std::size_t n, double* all, std::size
   }
   if (static_cast<std::size_t>(at) > all_n) abort_processes(3);  // (the caller sized `all` wrongly)
   MPI_Allgatherv(data, mine, MPI_DOUBLE, all, counts.data(), starts.data(), MPI_DOUBLE, comm_of(comm_));
+}
+
+void Processes::exchange(const void* send, const std::vector<long>& send_bytes, void* recv,
+                         const std::vector<long>& recv_bytes) const {
+  if (!distributed()) {
+    if (!send_bytes.empty() && send != recv)
+      std::copy_n(static_cast<const char*>(send), send_bytes[0], static_cast<char*>(recv));
+    return;
+  }
+  const std::size_t k = static_cast<std::size_t>(size_);
+  std::vector<int> sc(k), sd(k), rc(k), rd(k);
+  long s_at = 0, r_at = 0;
+  for (std::size_t q = 0; q < k; ++q) {
+    if (send_bytes[q] > INT_MAX || recv_bytes[q] > INT_MAX || s_at > INT_MAX || r_at > INT_MAX)
+      throw std::length_error("a process's exchange of points is beyond MPI's 2 GB per call");
+    sc[q] = static_cast<int>(send_bytes[q]);
+    sd[q] = static_cast<int>(s_at);
+    rc[q] = static_cast<int>(recv_bytes[q]);
+    rd[q] = static_cast<int>(r_at);
+    s_at += send_bytes[q];
+    r_at += recv_bytes[q];
+  }
+  ++traffic.calls;
+  traffic.bytes += static_cast<double>(s_at);
+  MPI_Alltoallv(send, sc.data(), sd.data(), MPI_BYTE, recv, rc.data(), rd.data(), MPI_BYTE, comm_of(comm_));
 }
 
 }  // namespace skred

@@ -7,7 +7,9 @@
 // mpi.h stays in processes.cpp: a single process never calls MPI.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
+#include <vector>
 
 namespace skred {
 
@@ -30,6 +32,7 @@ class Processes {
   void sum(long* data, std::size_t n) const;
   void min(double* data, std::size_t n) const;
   void max(double* data, std::size_t n) const;
+  void bit_or(std::uint64_t* data, std::size_t n) const;  // in place: the union of bit sets
   long min(long v) const;
   long max(long v) const;
   bool any(bool v) const { return max(v ? 1L : 0L) > 0; }
@@ -43,6 +46,11 @@ class Processes {
   // Concatenates each process's `n` doubles in rank order into `all` (size: the sum of the n's),
   // on every process.
   void gather(const double* data, std::size_t n, double* all, std::size_t all_n) const;
+  // Sends send_bytes[q] bytes from `send` (the runs for q = 0, 1, ... in order) to each process q
+  // and receives recv_bytes[q] from each into `recv`, in rank order (MPI_Alltoallv; each count
+  // below 2^31).
+  void exchange(const void* send, const std::vector<long>& send_bytes, void* recv,
+                const std::vector<long>& recv_bytes) const;
 
  private:
   int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;
@@ -61,8 +69,11 @@ Exchanged exchanged();
 // MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
 // Returns the world's size.
 int start_processes(int* argc, char*** argv);
-// MPI_Finalize if started; the exit code passes through.
+// MPI_Finalize if started, after the libraries that work on MPI (PETSc) stopped: their `stop`
+// functions (registered with stop_before_finish) run first, last registered first. The exit code
+// passes through.
 int finish_processes(int code);
+void stop_before_finish(void (*stop)());
 // Stops every process of the world with `code`, after this one printed its error (one process
 // that fails while the others wait in a collective call would leave them waiting for ever).
 [[noreturn]] void abort_processes(int code);

@@ -15,10 +15,11 @@ void write_grid_frame(const Integrator<D>& solver, const std::filesystem::path& 
                       PvdWriter& index, bool compress, bool writes) {
   const std::string name = fmt::format("grid_{:06}.vtr", frame);
   index.add(solver.time(), name);
+  std::vector<double> k_mag, f_mag;  // (every process: the implicit stiffness is a sum over them all)
+  const bool magnitudes = solver.node_magnitudes(k_mag, f_mag);
   if (!writes) return;  // (the grid is whole in every process: the first writes it)
   GridNodeFieldsOf<D> fields{solver.node_mass(), solver.node_velocity(), solver.node_stress()};
-  std::vector<double> k_mag, f_mag;
-  if (solver.node_magnitudes(k_mag, f_mag)) {
+  if (magnitudes) {
     fields.stiffness_magnitude = k_mag;
     fields.internal_force_magnitude = f_mag;
   }

@@ -26,6 +26,7 @@
 #include "run/frame_files.hpp"
 #include "run/map_files.hpp"
 #include "run/memory_use.hpp"
+#include "run/run_summary.hpp"
 #include "run/slide_measures.hpp"
 #include "run/slope_stability.hpp"
 #include "run/stability.hpp"
@@ -134,9 +135,12 @@ class Integrators {
       }
       next = explicit_.get();
     } else {
-      if (!implicit_)
+      if (!implicit_) {
+        ImplicitModel<D> model = implicit_model(s_);
+        model.processes = procs_;
         implicit_ =
-            std::make_unique<ImplicitSolver<D>>(implicit_model(s_), P_, stage_materials(s_, st), threads_);
+            std::make_unique<ImplicitSolver<D>>(std::move(model), P_, stage_materials(s_, st), threads_);
+      }
       next = implicit_.get();
     }
     if (current_ && next != current_) {
@@ -178,11 +182,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const double idle_bytes = current_rss_bytes();  // before the points and the grid exist
   const Processes& procs = opt.processes;
   const bool first = procs.rank() == 0;  // writes the run's files and reports
-  if (procs.distributed() && s.any_implicit())
-    throw ScenarioError(
-        fmt::format("{}: its implicit stages do not run across processes yet (issue 55): run it "
-                    "in one process, without mpirun",
-                    s.source));
+  if (procs.distributed()) refuse_implicit_across_processes(s);
   const bool report_setup = first && opt.progress && estimate_size(s).points >= kSetupReportPoints;
   const auto setup = [&](const std::string& what) {
     if (!report_setup) return;
@@ -309,6 +309,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const auto start = Clock::now();
   double compute_seconds = 0.0;
   long computed_updates = 0;  // point updates stepped here (the point count may change)
+  long rebalances = 0;        // the shares evened out after splitting (processes)
   long shown_updates = 0;     // and by all processes, as the progress line counts them
   auto last_report = start;
   StepStatus status;
@@ -407,6 +408,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
           split.max_points = own + std::max(0L, left) / procs.size();
         }
         if (split_points(particles, split) > 0) solver->particles_changed();
+        if (procs.distributed() && share_imbalance(particles, procs) > split.rebalance_above) {
+          even_out_shares(particles, procs);  // (split points land unevenly)
+          solver->particles_changed();
+          ++rebalances;
+        }
       }
       const auto t0 = Clock::now();
       status = solver->step();
@@ -554,48 +560,12 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.threads = solver->threads();
   sum.processes = procs.size();
   sum.setup_peak_bytes = setup_peak;
+  sum.rebalances = rebalances;
   sum.share_min = share_min;
   sum.share_max = share_max;
-  sum.scenario = s.source;
-  sum.interpolation = to_string(s.interpolation);
-  sum.scheme = to_string(s.scheme);
-  sum.velocity_transfer = to_string(s.velocity_transfer);
-  sum.xpic_order = s.xpic_order;
-  sum.xpic_period = s.xpic_period;
-  sum.pic_fraction = s.pic_fraction;
-  sum.volumetric_strain = s.volumetric_averaging ? "cell-average" : "point";
-  // Bishop's F of the bodies at the start (docs/method.md, "Limit equilibrium"); slope_stability
-  // builds them afresh, so not for the largest runs.
-  if constexpr (D == 2)
-    if (n <= 2'000'000) {
-      const SlopeStability le = slope_stability(s);
-      if (le.computed) {
-        res.limit_equilibrium = sum.limit_equilibrium = le.critical.factor;
-        const SlipCircle& c = le.critical.circle;
-        sum.slip_circle = {c.xc, c.yc, c.radius, le.critical.x_from, le.critical.x_to};
-      }
-    }
+  res.limit_equilibrium = describe_scenario(sum, s, n);
   sum.time_step = explicit_dt;
-  if (ImplicitSolver<D>* im = integrators.implicit()) {
-    const ImplicitTotals& t = im->implicit_totals();
-    const Stage* last = nullptr;
-    for (const Stage& st : s.stages)
-      if (st.integrator == IntegratorKind::Implicit) last = &st;
-    sum.implicit = Summary::Implicit{to_string(s.geometry),
-                                     to_string(last->implicit.analysis),
-                                     to_string(last->implicit.iteration),
-                                     t.linear_solver,
-                                     t.steps,
-                                     t.iterations,
-                                     t.factorisations,
-                                     t.cut_steps,
-                                     t.max_unknowns,
-                                     t.max_factor_bytes,
-                                     t.elastic_fallbacks};
-    const BoundaryForces f = im->clock().boundary_force;
-    for (std::size_t b = 0; b < s.prescribed.size(); ++b)
-      sum.implicit->forces.emplace_back(s.prescribed[b].name, std::vector<double>(&f[3 * b], &f[3 * b] + D));
-  }
+  if (ImplicitSolver<D>* im = integrators.implicit()) describe_implicit(sum, s, *im);
   sum.stages = at.finished;
   if constexpr (D == 3)
     if (at.maps.enabled() && !stopped) {

@@ -448,6 +448,7 @@ void parse_splitting(const TableReader& root, ScenarioOf<D>& s) {
   sp.gamma = r.number("gamma");
   sp.reference_after = static_cast<int>(r.integer("reference_after"));
   sp.min_volume = std::pow(r.number("min_size") * s.cell_size, D);
+  sp.rebalance_above = r.number("rebalance_above");
   double points = 0;
   for (const auto& b : s.bodies) points += static_cast<double>(count_points(s, b));
   s.max_points_given = r.has("max_points");

@@ -377,6 +377,12 @@ void add_model_sections(std::vector<Section>& s) {
                     .def = derived("10 x the initial points"),
                     .range = Range::closed(1, 1e9),
                     .doc = "no point splits once the run holds this many"},
+                   {.name = "rebalance_above",
+                    .unit = "-",
+                    .def = value(1.1),
+                    .range = Range::closed(1.0, 100.0),
+                    .doc = "across processes: the points are shared out evenly again once the most a "
+                           "process holds pass this multiple of the mean (split points land unevenly)"},
                }});
 }
 

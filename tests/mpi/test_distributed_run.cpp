@@ -2,7 +2,8 @@
 // two-stage slide run whole by run_simulation, its series.csv, stage measures, frames and final
 // points against one process's run of it (within 1e-12, relative); a checkpoint in pieces resumed
 // on the same count (bit for bit) and on another (within round-off); a 3D column with its hazard
-// maps. The first process runs the one-process references and compares.
+// maps; the implicit R6 cylinder (within the solver's tolerance), and Acosta's remedies, which
+// it does not split yet, refused. The first process runs the one-process references and compares.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
@@ -102,6 +103,11 @@ void expect_same_series(const fs::path& a, const fs::path& b, double tol, const 
   for (const auto& [name, ref] : one) {
     const std::vector<double>& v = all.at(name);
     ASSERT_EQ(v.size(), ref.size()) << what << ": rows of " << name;
+    if (name == "residual") {  // (an implicit step's converged residual: round-off, below the tolerance)
+      for (std::size_t i = 0; i < ref.size(); ++i)
+        EXPECT_LE(std::max(v[i], ref[i]), 1e-8) << what << " row " << i;
+      continue;
+    }
     const double scale = scales[kind_of(name)];
     for (std::size_t i = 0; i < ref.size(); ++i)
       EXPECT_LE(std::abs(v[i] - ref[i]), tol * scale) << what << ": " << name << " row " << i;
@@ -250,6 +256,28 @@ TEST(DistributedRun, SlideWithSplittingEqualsOneProcess) {
 
 // The cap binds: its points are the run's, not each process's (where it binds, which points split
 // depends on the split).
+// Split points land unevenly among the processes: once the most one holds pass rebalance_above
+// times the mean, the shares are evened out (the points handed on in their order), and the run
+// still equals one process's.
+TEST(DistributedRun, SplitSharesAreEvenedOut) {
+  std::string text = kSlope;
+  const std::string shape = "shape = \"polygon\"";
+  text.replace(text.find(shape), shape.size(), shape + "\nsplit = true");
+  RunResult one;
+  if (!expect_run_equals_one(
+          text + "[splitting]\nalpha = 1.3\nbeta = 0.75\ngamma = 0.3\nrebalance_above = 1.01\n", "evened",
+          one))
+    return;
+  const std::string summary = test::file_text(fs::current_path() / "mpi_run_evened/all/summary.json");
+  const auto at = summary.find("\"rebalances\": ");
+  ASSERT_NE(at, std::string::npos) << summary;
+  EXPECT_GT(std::stol(summary.substr(at + 15)), 0) << "the shares were never evened out";
+  const auto im = summary.find("\"imbalance\": ");
+  ASSERT_NE(im, std::string::npos);
+  EXPECT_LE(std::stod(summary.substr(im + 13)), 1.01) << summary;
+  EXPECT_GT(one.particles, 1500) << "no point split";
+}
+
 TEST(DistributedRun, SplittingCapIsTheRuns) {
   std::string text = kSlope;
   const std::string shape = "shape = \"polygon\"";
@@ -340,6 +368,80 @@ TEST(DistributedRun, Column3DWithHazardMaps) {
       worst = std::max(worst, std::abs(va[i] - vb[i]));
     }
     EXPECT_LE(worst, 1e-6 * scale) << map << " (written with 7 digits)";
+  }
+}
+
+// The implicit integrator's run (R6, examples/hollow_cylinder.toml: quasi-static, a pressure
+// that follows the inner face) split against one process's, within the solver's tolerance.
+TEST(DistributedRun, ImplicitCylinderEqualsOneProcess) {
+  const Processes world = Processes::world();
+  const std::string path = std::string(SKRED_SOURCE_DIR) + "/examples/hollow_cylinder.toml";
+  const Scenario s = std::get<Scenario>(load_any_scenario(path));
+  const fs::path dir = folder("cylinder", world);
+  const RunResult all = run(s, dir / "all", world);
+  ASSERT_TRUE(all.completed) << all.message;
+  if (world.rank() != 0) return;
+  const RunResult one = run(s, dir / "one", Processes{});
+  ASSERT_TRUE(one.completed) << one.message;
+  EXPECT_EQ(all.steps, one.steps);
+  expect_same_series(dir / "one/series.csv", dir / "all/series.csv", 1e-8, "R6 cylinder");
+  expect_same_points(s, dir / "one", dir / "all", 1e-8, "R6 cylinder");
+  const std::string summary = test::file_text(dir / "all/summary.json");
+  EXPECT_NE(summary.find(fmt::format("parallel over {} processes", world.size())), std::string::npos)
+      << "not PETSc's parallel matrix: " << summary;
+}
+
+// The implicit R6 cylinder (quasi-static, four load steps) interrupted after two at N processes
+// and resumed, at N and alone, within the solver's tolerance. With the iterative solver:
+// MUMPS' factorisation over several processes is not the same to the bit from run to run (its
+// dynamic scheduling; measured: one run in three differs in the last digits), so a resumed run
+// cannot be compared with it to the bit.
+TEST(DistributedRun, ImplicitCheckpointInPiecesResumes) {
+  const Processes world = Processes::world();
+  std::string text = test::file_text(std::string(SKRED_SOURCE_DIR) + "/examples/hollow_cylinder.toml");
+  const std::string key = "load_steps = 4";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), key + "\nlinear_solver = \"iterative\"");
+  const Scenario s = parse_scenario(text, "hollow_cylinder.toml");
+  const fs::path dir = folder("implicit_resume", world);
+  const RunResult whole = run(s, dir / "whole", world);
+  ASSERT_TRUE(whole.completed) << whole.message;
+  ASSERT_EQ(whole.steps, 4);
+  const RunResult cut = run(s, dir / "cut", world, 2);
+  ASSERT_TRUE(cut.interrupted) << cut.message;
+  if (world.rank() == 0) fs::copy(dir / "cut", dir / "cut_alone", fs::copy_options::recursive);
+  world.barrier();
+  const RunResult resumed = run(s, dir / "cut", world, -1, checkpoint_file(dir / "cut"));
+  ASSERT_TRUE(resumed.completed) << resumed.message;
+  if (world.rank() != 0) return;
+  // (not yet to the bit: the resumed steps differ from the whole run's by 1e-13 m; open, issue 55)
+  expect_same_series(dir / "whole/series.csv", dir / "cut/series.csv", 1e-8, "implicit, resumed on as many");
+  expect_same_points(s, dir / "whole", dir / "cut", 1e-8, "implicit, resumed on as many processes");
+  const RunResult alone = run(s, dir / "cut_alone", Processes{}, -1, checkpoint_file(dir / "cut_alone"));
+  ASSERT_TRUE(alone.completed) << alone.message;
+  // (alone, the multigrid's coarsening differs: within the tolerances of its solve and of Newton's)
+  expect_same_series(dir / "whole/series.csv", dir / "cut_alone/series.csv", 1e-8, "implicit, resumed alone");
+  expect_same_points(s, dir / "whole", dir / "cut_alone", 1e-8, "implicit, resumed alone");
+}
+
+// An implicit stage with Acosta's remedies is refused before anything runs, naming the key, on
+// every process.
+TEST(DistributedRun, ImplicitRemediesAreRefused) {
+  const Processes world = Processes::world();
+  if (!world.distributed()) GTEST_SKIP() << "one process";
+  const std::string path = std::string(SKRED_SOURCE_DIR) + "/examples/vertical_cut_implicit.toml";
+  const fs::path dir = folder("refused", world);
+  std::string text = test::file_text(path);
+  const std::string key = "[implicit]\n";
+  ASSERT_NE(text.find(key), std::string::npos);
+  text.replace(text.find(key), key.size(), key + "integration = \"double-mapping-gimp\"\n");
+  const Scenario dm = parse_scenario(text, path);
+  try {
+    run(dm, dir / "dm", world);
+    ADD_FAILURE() << "the run was not refused";
+  } catch (const ScenarioError& e) {
+    EXPECT_NE(std::string(e.what()).find("integration = \"double-mapping-gimp\""), std::string::npos)
+        << e.what();
   }
 }
 
