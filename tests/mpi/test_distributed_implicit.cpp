@@ -19,6 +19,7 @@
 #include <variant>
 #include <vector>
 
+#include "../support.hpp"
 #include "implicit/implicit_solver.hpp"
 #include "parallel/point_shares.hpp"
 #include "parallel/processes.hpp"
@@ -133,31 +134,7 @@ Outcome expect_same(const ScenarioOf<D>& s, const char* what, double tol = 1e-10
 }
 
 // R2's column (0.02 x 0.1 m, rho = 1800, E = 1 MPa, nu = 0, rollers beside, fixed base).
-std::string column_text(const std::string& solver) {
-  return R"(
-[grid]
-size = [0.02, 0.1]
-cell_size = 0.005
-[[material]]
-name = "soil"
-model = "linear-elastic"
-density = 1800.0
-young = 1e6
-poisson = 0.0
-[[body]]
-name = "column"
-material = "soil"
-shape = "rectangle"
-min = [0.0, 0.0]
-max = [0.02, 0.1]
-[gravity]
-acceleration = [0, -9.81]
-[boundary]
-x_min = "roller"
-x_max = "roller"
-y_min = "fixed"
-)" + solver;
-}
+std::string column_text(const std::string& solver) { return test::r2_column_text(solver); }
 
 constexpr double kRho = 1800.0, kG = 9.81, kH = 0.1, kM = 1e6;
 
