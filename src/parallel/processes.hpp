@@ -1,9 +1,11 @@
 // The processes a run is distributed over (issue 55): MPI's world when skred was started by an
 // MPI launcher (`mpirun -np N`), else the one process alone. The explicit solver's points are
-// split among them; the grid is whole in each, and every grid sum the points make (mass,
-// momentum, forces, remapped momentum, the filters' fields) is summed over the processes where
-// the per-thread scatter buffers are (Transfer::reduce), so the grid phases run alike in all of
-// them. The points' own sums (energies, totals, the first failing point) are summed here too.
+// split among them in slabs of the grid (point_shares.hpp); each works on the box of nodes its
+// points reach, and every grid sum the points make (mass, momentum, forces, remapped momentum, the
+// filters' fields) is completed where the boxes overlap, after the per-thread scatter buffers
+// (Transfer::reduce, transfer/box_exchange.hpp), so every process has the same bits at a node it
+// holds. The implicit integrator sums its grid whole (process_sums.hpp). The points' own sums
+// (energies, totals, the first failing point) are summed here too.
 // mpi.h stays in processes.cpp: a single process never calls MPI.
 #pragma once
 #include <cstddef>

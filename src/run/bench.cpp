@@ -25,6 +25,9 @@ namespace {
 // `every` (the rule of run_simulation, docs/method.md "Point order").
 template <int D>
 StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
+  if (solver.steps() % (every > 0 ? every : kSortEvery) == 0 &&
+      repartition_in_slabs(P, solver.grid(), solver.processes()))  // (split among processes)
+    solver.particles_changed();
   if (every > 0 && solver.steps() % every == 0 &&
       P.sort_by_cell(solver.grid(), solver.sort_by_nearest_node(), solver.threads()))
     solver.particles_changed();
@@ -122,8 +125,9 @@ BenchResult run_column(const BenchOptions& opt) {
   for (int r = 0; r < opt.repeats; ++r) {
     Particles<D> P = build_particles(s);
     apply_initial_stress(s, P);
-    keep_share(P, opt.processes);
     const GridGeometry<D> grid = scenario_grid(s);
+    keep_share(P, opt.processes);
+    repartition_in_slabs(P, grid, opt.processes);  // (the set-up's: not timed)
     SolverSettings<D> st = solver_settings(s);
     st.processes = opt.processes;
     st.velocity_transfer = opt.velocity_transfer;
@@ -187,6 +191,7 @@ BenchResult run_bench(const BenchOptions& opt) {
         P.add(Vec<2>((i + 0.5) * q, (j + 0.5) * q), Vec<2>::Zero(), soil.density * vol, vol,
               Vec<2>(q / 2, q / 2), 0, 0);
     keep_share(P, opt.processes);
+    repartition_in_slabs(P, grid, opt.processes);
     SolverSettings<2> st;
     st.processes = opt.processes;
     st.interpolation = opt.interpolation;

@@ -309,7 +309,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const auto start = Clock::now();
   double compute_seconds = 0.0;
   long computed_updates = 0;  // point updates stepped here (the point count may change)
-  long rebalances = 0;        // the shares evened out after splitting (processes)
+  long rebalances = 0;        // the repartitions that moved points (processes)
   long shown_updates = 0;     // and by all processes, as the progress line counts them
   auto last_report = start;
   StepStatus status;
@@ -386,6 +386,12 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     };
     while (unstable.ok && !stage_done()) {
       // Point order and point changes between steps (docs/method.md, "Point order").
+      // Split among processes, the points are kept in slabs of the grid (point_shares.hpp).
+      if (solver->steps() % (opt.sort_every > 0 ? opt.sort_every : kSortEvery) == 0 &&
+          repartition_in_slabs(particles, solver->grid(), procs)) {
+        solver->particles_changed();
+        ++rebalances;
+      }
       if (opt.sort_every > 0 && solver->steps() % opt.sort_every == 0 &&
           particles.sort_by_cell(solver->grid(), solver->sort_by_nearest_node(), solver->threads()))
         solver->particles_changed();
@@ -409,9 +415,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         }
         if (split_points(particles, split) > 0) solver->particles_changed();
         if (procs.distributed() && share_imbalance(particles, procs) > split.rebalance_above) {
-          even_out_shares(particles, procs);  // (split points land unevenly)
-          solver->particles_changed();
-          ++rebalances;
+          if (repartition_in_slabs(particles, solver->grid(), procs)) {  // (split points land unevenly)
+            solver->particles_changed();
+            ++rebalances;
+          }
         }
       }
       const auto t0 = Clock::now();

@@ -108,7 +108,8 @@ void Boundaries<D>::constrain_velocity(GridArray<Vec<D>>& velocity, const NodeBo
 }
 
 template <int D>
-WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const {
+WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box,
+                                                const BoxExchange<D>* exchange) const {
   double work = 0.0, rule = 0.0, loss_end = 0.0, loss_change = 0.0;
   double stopped_energy[2 * D] = {}, energy[2 * D] = {};  // per side: sum m |dt s_i|^2, sum m |v_i|^2
   const long rows = box_rows(box);
@@ -135,7 +136,7 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, 
       for (int w = 0; w < b.count; ++w) vnew = wall_velocity<D>(walls_[b.walls[w]], vnew);
       // Each wall rule only stops motion (coulomb_friction.hpp).
       assert(vnew.squaredNorm() <= trial.squaredNorm() * (1.0 + 1e-12));
-      rule += 0.5 * m * (trial.squaredNorm() - vnew.squaredNorm());
+      const double rule_here = 0.5 * m * (trial.squaredNorm() - vnew.squaredNorm());
       // Energy the walls took: the node's kinetic energy change less the work of the forces
       // over the velocity the points move with, (v^k + v^{k+1}) / 2 (eq. 2.55), so that the
       // balance closes with the points' gravity work. Its normal part is (1/2) m (v* . n)^2,
@@ -146,7 +147,6 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, 
       // (clipping each node's instead booked 0.9 % of the soil column's gravity work too much).
       const double taken =
           0.5 * m * (v_free.squaredNorm() - vnew.squaredNorm()) + 0.5 * dt * m * a.dot(v_k + vnew);
-      work += taken;
       grid.acceleration[i] = (vnew - v_free) / dt;
       // s_i, the stopped motion's acceleration (GridFields::stopped_acceleration)
       Vec<D> stopped = Vec<D>::Zero();
@@ -159,14 +159,26 @@ WallEnergy Boundaries<D>::constrain_end_of_step(GridFields<D>& grid, double dt, 
         if (wall.side.kind == BoundaryKind::Fixed) break;
       }
       grid.stopped_acceleration[i] = stopped;
+      grid.velocity_move[i] = 0.5 * (v_k + vnew);
+      if (exchange && !exchange->counts(i)) continue;  // another process's node in the totals
+      rule += rule_here;
+      work += taken;
       for (int w = 0; w < b.count; ++w) {
         stopped_energy[b.walls[w]] += m * dt * dt * stopped.squaredNorm();
         energy[b.walls[w]] += m * v_free.squaredNorm();
       }
       loss_end += 0.5 * dt * m * stopped.dot(vnew);
       loss_change += 0.5 * dt * m * stopped.dot(vnew - v_free);
-      grid.velocity_move[i] = 0.5 * (v_k + vnew);
     }
+  }
+  if (exchange) {  // every process's nodes
+    double sums[4 + 4 * D] = {work, rule, loss_end, loss_change};
+    for (int side = 0; side < 2 * D; ++side)
+      sums[4 + side] = stopped_energy[side], sums[4 + 2 * D + side] = energy[side];
+    exchange->processes().sum(sums, 4 + 4 * D);
+    work = sums[0], rule = sums[1], loss_end = sums[2], loss_change = sums[3];
+    for (int side = 0; side < 2 * D; ++side)
+      stopped_energy[side] = sums[4 + side], energy[side] = sums[4 + 2 * D + side];
   }
   WallEnergy e;
   e.work = std::max(work, 0.0);

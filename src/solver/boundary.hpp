@@ -10,6 +10,7 @@
 #include "core/grid.hpp"
 #include "solver/boundary_side.hpp"
 #include "solver/grid_fields.hpp"
+#include "transfer/box_exchange.hpp"
 #include "transfer/node_box.hpp"
 
 namespace skred {
@@ -73,8 +74,10 @@ class Boundaries {
   // v^{k+1} from the trial v^k + dt accel (friction: coulomb_friction.hpp), then
   // accel = (v^{k+1} - v*) / dt (so the particles' FLIP update also obeys the wall) and
   // velocity_move = (v^k + v^{k+1}) / 2 and stopped_acceleration = the change of accel. Returns
-  // the energy the walls took (WallEnergy).
-  WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box) const;
+  // the energy the walls took (WallEnergy): split among processes (`exchange` not null), summed
+  // over them, each node counted once (collective).
+  WallEnergy constrain_end_of_step(GridFields<D>& grid, double dt, const NodeBox<D>& box,
+                                   const BoxExchange<D>* exchange = nullptr) const;
 
   // Which layers of a point's block of S nodes per axis from flat node `base` lie on (or beyond)
   // a side in `sides` (bit 2 axis + 0 low / 1 high; near_stopping_sides): per axis a bitmask of

@@ -193,6 +193,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     return c.outline_normal[b](Vec<D>(g.node_position(i) - state_.clock.time * c.rigid_velocity[b]));
   };
   constexpr std::size_t kPad = 16;  // one cache line of sums per thread
+  const BoxExchange<D>* exchange = transfer_.exchange();
   std::fill(contact_sums_.begin(), contact_sums_.end(), 0.0);
   // The rule at node i; `traction`: some pair decides by the traction rule (a compile-time
   // flag, so that the fill rule's loop carries none of its work).
@@ -310,6 +311,7 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
       const auto b = static_cast<std::size_t>(ids[k]);
       if (!c.rigid[b]) set(bodies_[b], i, v[merged[k]]);
     }
+    if (exchange && !exchange->counts(i)) return;  // another process's node in the totals
     double* s = &contact_sums_[kPad * static_cast<std::size_t>(omp_get_thread_num())];
     s[0] += sum.normal;
     s[1] += sum.friction;
@@ -327,6 +329,8 @@ ContactLoss ExplicitSolver<D>::couple_nodes(Get&& get, Set&& set, Start&& start)
     total.friction_sum += contact_sums_[t + 2];
     total.rule_dissipation += contact_sums_[t + 3];
   }
+  sum_points(total.normal, total.friction, total.friction_sum,
+             total.rule_dissipation);  // every process's nodes
   return total;
 }
 

@@ -51,8 +51,7 @@ long ExplicitSolver<D>::move_and_map_rigid(const K& kernel, Extent<D>& all) {
       }
       buffers.touched(t, span);
     }
-    transfer_.set_box(extent);
-    transfer_.reduce(f.mass.data(), f.momentum.data());
+    transfer_.reduce_threads(extent, f.mass.data(), f.momentum.data());  // (the processes': set_next_box)
     first_bad = std::min(first_bad, bad);
     all.merge(extent);
   }

@@ -71,8 +71,9 @@ struct SolverSettings {
   // phase couples them. Rigid bodies need it.
   ContactSettings<D> contact;
   // The processes the points are split among (parallel/processes.hpp; default: this one alone).
-  // Each holds its share of the points and the whole grid; the grid sums and the points' sums are
-  // every process's, so the grid phases run alike in all of them.
+  // Each holds its share of the points, in a slab of the grid (repartition_in_slabs), and works on
+  // the box of nodes they reach; the grid sums are completed where boxes overlap
+  // (transfer/box_exchange.hpp) and the points' sums over every process.
   Processes processes;
 };
 
@@ -106,6 +107,7 @@ class ExplicitSolver {
 
   // The points, grid, materials and clock it advances (mpm_state.hpp).
   const MpmState<D>& state() const { return state_; }
+  const Processes& processes() const { return state_.processes; }
   double time() const { return state_.clock.time; }
   long steps() const { return state_.clock.steps; }
   double dt() const { return settings_.dt; }
@@ -280,6 +282,24 @@ class ExplicitSolver {
   void rigid_velocity();
   template <class K>
   long move_and_map_rigid(const K& kernel, Extent<D>& all);
+  // The maps that end a step, into a continuum's fields: the threads' parts over its moved
+  // points' reach, then the processes' (with contact, once every body's points are mapped, over
+  // the whole box of the step: set_next_box; each process needs every body's fields on it).
+  void reduce_moved(const Extent<D>& extent, GridFields<D>& f) {
+    if (!contact_on()) {
+      transfer_.set_box(extent);
+      transfer_.reduce(f.mass.data(), f.momentum.data());
+    } else {
+      transfer_.reduce_threads(extent, f.mass.data(), f.momentum.data());
+    }
+  }
+  // The next step's box, of every moved point (`all`).
+  void set_next_box(const Extent<D>& all) {
+    transfer_.set_box(all);
+    if (!contact_on()) return;
+    body_box_ = transfer_.box();
+    for (auto& f : bodies_) transfer_.sum_processes(f.mass.data(), f.momentum.data());
+  }
   // Each body's nodal stress sums for the traction rule of contact (contact_impl.hpp).
   template <class K>
   void map_body_stress(const K& kernel);

@@ -410,8 +410,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
         }
         buffers.touched(t, span);
       }
-      transfer_.set_box(extent);  // the reduction must cover the moved points' reach
-      transfer_.reduce(f.mass.data(), f.momentum.data());
+      reduce_moved(extent, f);
       sum_points(work, dissipation, affine_ke, mdx);
       state_.clock.energy.strain_energy += work;
       state_.clock.energy.plastic_dissipation += dissipation;
@@ -421,8 +420,7 @@ bool ExplicitSolver<D>::stress_update_move_and_map(const K& kernel, double dt_st
       all.merge(extent);
     });
     if (contact_on()) first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
-    transfer_.set_box(all);  // the next step's box
-    if (contact_on()) body_box_ = transfer_.box();
+    set_next_box(all);
     return phase_ok(first_bad, "material point became unstable or left the grid");
   });
 }
@@ -512,8 +510,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
         }
         buffers.touched(t, span);
       }
-      transfer_.set_box(extent);  // the reduction must cover the moved points' reach
-      transfer_.reduce(f.mass.data(), f.momentum.data());
+      reduce_moved(extent, f);
       sum_points(mdx);  // (lost, with affine_ke, is summed after the loop)
       state_.clock.energy.gravity_work += gravity_now_.dot(mdx);
       lost -= affine_ke;
@@ -526,8 +523,7 @@ bool ExplicitSolver<D>::velocity_move_and_map(const K& kernel) {
       rigid_velocity();
       first_bad = std::min(first_bad, move_and_map_rigid(kernel, all));
     }
-    transfer_.set_box(all);  // the next step's box
-    if (contact_on()) body_box_ = transfer_.box();
+    set_next_box(all);
     return phase_ok(first_bad, "material point became unstable or left the grid");
   });
 }

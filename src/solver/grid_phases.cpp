@@ -102,7 +102,7 @@ WallEnergy grid_update(const GridStep<D>& s, GridFields<D>& f) {
       f.acceleration[i] = a;
       f.velocity_move[i] = f.velocity[i] + half_dt * a;
     });
-  const WallEnergy walls = s.walls.constrain_end_of_step(f, dt, s.box);
+  const WallEnergy walls = s.walls.constrain_end_of_step(f, dt, s.box, s.exchange);
   if (s.form_velocity_next)  // v_i^{k+1} for the PIC share of the particle update, or APIC's
     for_box(s.grid, s.box, s.threads, [&](std::size_t i) {
       const double m = f.mass[i];
@@ -123,7 +123,8 @@ GridStep<D> ExplicitSolver<D>::grid_step() const {
           settings_.dt,
           local_damping_,
           transfer_rule_.forms_velocity_next(),
-          contact_on() ? &bodies_ : nullptr};
+          contact_on() ? &bodies_ : nullptr,
+          transfer_.exchange()};
 }
 
 template <int D>

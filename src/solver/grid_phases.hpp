@@ -10,6 +10,7 @@
 #include "core/grid.hpp"
 #include "solver/boundary.hpp"
 #include "solver/grid_fields.hpp"
+#include "transfer/box_exchange.hpp"
 #include "transfer/node_box.hpp"
 
 namespace skred {
@@ -28,6 +29,8 @@ struct GridStep {
   // With contact, every body's fields: a node where more than one has mass is an interface
   // node, which the local damping leaves to the contact phase. Null without contact.
   const std::vector<BodyFields<D>>* bodies = nullptr;
+  // Split among processes, their boxes (the walls' work counts each node once); else null.
+  const BoxExchange<D>* exchange = nullptr;
 };
 
 // Eq. 2.23. Reads m_i, p_i; writes v_i = p_i / m_i under the velocity conditions.

@@ -12,6 +12,7 @@
 #include "core/grid.hpp"
 #include "parallel/processes.hpp"
 #include "shape/separable.hpp"
+#include "transfer/box_exchange.hpp"
 #include "transfer/node_box.hpp"
 #include "transfer/point_weights.hpp"
 #include "transfer/scatter.hpp"
@@ -31,29 +32,21 @@ class Transfer {
   const NodeStrides<D>& strides() const { return strides_; }
   int threads() const { return threads_; }
 
-  // The processes the points are split among (parallel/processes.hpp): the box and every grid
-  // sum are theirs together, so set_box and reduce are collective when they are several.
+  // The processes the points are split among (parallel/processes.hpp): set_box and reduce are
+  // collective when they are several.
   void set_processes(const Processes& p) { processes_ = p; }
   const Processes& processes() const { return processes_; }
 
   // The box of nodes the current points can reach (set by every map from the points'
-  // extent, every process's); every grid phase runs over it.
+  // extent); every grid phase runs over it. Split among processes, each has its own points'
+  // box, and every process learns the others' (box_exchange.hpp; collective).
   const NodeBox<D>& box() const { return box_; }
-  void set_box(Extent<D> e) {
-    if (processes_.distributed()) {
-      double ends[2 * D];
-      for (int d = 0; d < D; ++d) {
-        ends[d] = e.lo[d];
-        ends[D + d] = -e.hi[d];
-      }
-      processes_.min(ends, 2 * D);
-      for (int d = 0; d < D; ++d) {
-        e.lo[d] = ends[d];
-        e.hi[d] = -ends[D + d];
-      }
-    }
+  void set_box(const Extent<D>& e) {
     box_ = reach_of(grid_, e);
+    if (processes_.distributed()) exchange_.set(grid_, box_, processes_);
   }
+  // The boxes of a distributed run, or null for one process alone.
+  const BoxExchange<D>* exchange() const { return processes_.distributed() ? &exchange_ : nullptr; }
   template <class Fn>
   void for_box(Fn&& fn, int last_lo = 0, int last_hi = INT_MAX) const {
     skred::for_box(grid_, box_, threads_, fn, last_lo, last_hi);
@@ -66,6 +59,15 @@ class Transfer {
     scatter_.reduce(grid_, box_, threads_, mass, vec);
     if (processes_.distributed()) sum_over_processes(mass, nullptr, vec);
   }
+  // The threads' parts only, over the reach of `e`: one body's fields in a contact step, whose
+  // sums over the processes wait for the step's box (every body's: sum_processes), so that each
+  // process has every body's fields over its whole box.
+  void reduce_threads(const Extent<D>& e, double* mass, Vec<D>* vec) {
+    scatter_.reduce(grid_, reach_of(grid_, e), threads_, mass, vec);
+  }
+  void sum_processes(double* mass, Vec<D>* vec) {
+    if (processes_.distributed()) sum_over_processes(mass, nullptr, vec);
+  }
   // a and b (per-node scalars, zero where no point of this process reached) <- their sums over
   // the processes, over the box (the cell sums of the volumetric averaging).
   void sum_scalars(double* a, double* b) {
@@ -75,37 +77,30 @@ class Transfer {
   PointWeights<D>& weights() { return weights_; }
 
  private:
-  // The box's nodes of a, b (scalars) and vec (each if not null), packed row by row, summed over
-  // the processes in one message and unpacked (the buffer grows to the largest box, once).
+  // a, b (scalars) and vec (each if not null) summed over the processes where their boxes
+  // overlap (box_exchange.hpp).
   void sum_over_processes(double* a, double* b, Vec<D>* vec) {
-    const long width = box_.hi[0] - box_.lo[0] + 1, rows = box_rows(box_);
-    if (rows <= 0 || width <= 0) return;  // (the box is every process's: all return)
-    const std::size_t per = (a ? 1 : 0) + (b ? 1 : 0) + (vec ? D : 0),
-                      n = static_cast<std::size_t>(rows * width) * per;
-    if (pack_.size() < n) pack_.resize(n);
-    std::size_t stride[D];
-    for (int d = 0; d < D; ++d) stride[d] = grid_.stride(d);
-    const auto each = [&](auto&& fn) {
-#pragma omp parallel for num_threads(threads_) schedule(static)
-      for (long r = 0; r < rows; ++r) {
-        const std::size_t row = box_row_start(box_, stride, r);
-        double* at = pack_.data() + static_cast<std::size_t>(r * width) * per;
-        for (long i = 0; i < width; ++i, at += per) fn(row + static_cast<std::size_t>(i), at);
-      }
-    };
-    each([&](std::size_t i, double* at) {
-      if (a) *at++ = a[i];
-      if (b) *at++ = b[i];
-      if (vec)
-        for (int d = 0; d < D; ++d) at[d] = vec[i][d];
-    });
-    processes_.sum(pack_.data(), n);
-    each([&](std::size_t i, const double* at) {
-      if (a) a[i] = *at++;
-      if (b) b[i] = *at++;
-      if (vec)
-        for (int d = 0; d < D; ++d) vec[i][d] = at[d];
-    });
+    const int per = (a ? 1 : 0) + (b ? 1 : 0) + (vec ? D : 0);
+    exchange_.sum(
+        per,
+        [&](std::size_t i, double* at) {
+          if (a) *at++ = a[i];
+          if (b) *at++ = b[i];
+          if (vec)
+            for (int d = 0; d < D; ++d) at[d] = vec[i][d];
+        },
+        [&](std::size_t i, const double* at) {
+          if (a) a[i] += *at++;
+          if (b) b[i] += *at++;
+          if (vec)
+            for (int d = 0; d < D; ++d) vec[i][d] += at[d];
+        },
+        [&](std::size_t i, const double* at) {
+          if (a) a[i] = *at++;
+          if (b) b[i] = *at++;
+          if (vec)
+            for (int d = 0; d < D; ++d) vec[i][d] = at[d];
+        });
   }
 
   GridGeometry<D> grid_;
@@ -115,7 +110,7 @@ class Transfer {
   ScatterBuffers<D> scatter_;
   PointWeights<D> weights_;
   Processes processes_;
-  std::vector<double> pack_;  // sum_over_processes
+  BoxExchange<D> exchange_;
 };
 
 }  // namespace skred

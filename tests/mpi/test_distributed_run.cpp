@@ -257,8 +257,8 @@ TEST(DistributedRun, SlideWithSplittingEqualsOneProcess) {
 // The cap binds: its points are the run's, not each process's (where it binds, which points split
 // depends on the split).
 // Split points land unevenly among the processes: once the most one holds pass rebalance_above
-// times the mean, the shares are evened out (the points handed on in their order), and the run
-// still equals one process's.
+// times the mean, the points are cut into slabs again at once (as every sort_every steps), and the
+// run still equals one process's; `rebalances` counts the repartitions that moved points.
 TEST(DistributedRun, SplitSharesAreEvenedOut) {
   std::string text = kSlope;
   const std::string shape = "shape = \"polygon\"";
@@ -271,7 +271,7 @@ TEST(DistributedRun, SplitSharesAreEvenedOut) {
   const std::string summary = test::file_text(fs::current_path() / "mpi_run_evened/all/summary.json");
   const auto at = summary.find("\"rebalances\": ");
   ASSERT_NE(at, std::string::npos) << summary;
-  EXPECT_GT(std::stol(summary.substr(at + 15)), 0) << "the shares were never evened out";
+  EXPECT_GT(std::stol(summary.substr(at + 15)), 0) << "no point moved between the processes";
   const auto im = summary.find("\"imbalance\": ");
   ASSERT_NE(im, std::string::npos);
   EXPECT_LE(std::stod(summary.substr(im + 13)), 1.01) << summary;

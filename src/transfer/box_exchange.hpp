@@ -1,0 +1,165 @@
+// The grid's blocks of a distributed run (issue 55): each process works on the box of nodes its
+// own points reach (node_box.hpp), and a grid sum is completed only where boxes overlap, between
+// the processes whose boxes meet, instead of over the whole grid in every process. The points
+// are kept in slabs of the grid (point_shares.hpp, repartition_in_slabs), so the overlaps are the
+// layers where neighbouring slabs meet: ghost layers as wide as the kernel's reach.
+//
+// A node's sum is formed once, by its owner (the lowest rank whose box holds it), from its own
+// part and the others' in rank order, and sent back to the other holders (PetscSF's reduce and
+// broadcast, over MPI_Alltoallv): every holder then has the same bits. Node totals (the walls'
+// and contact's work) count each node once, in the process that `counts` it.
+#pragma once
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "parallel/processes.hpp"
+#include "transfer/node_box.hpp"
+
+namespace skred {
+
+template <int D>
+class BoxExchange {
+ public:
+  // Every process's box (collective: one allgather).
+  void set(const GridGeometry<D>& g, const NodeBox<D>& mine, const Processes& procs) {
+    procs_ = procs;
+    for (int d = 0; d < D; ++d) nodes_[d] = g.nodes(d);
+    const std::size_t k = static_cast<std::size_t>(procs.size());
+    double ends[2 * D];
+    for (int d = 0; d < D; ++d) ends[d] = mine.lo[d], ends[D + d] = mine.hi[d];
+    all_.resize(2 * D * k);
+    procs.gather(ends, 2 * D, all_.data(), all_.size());
+    boxes_.resize(k);
+
+    for (std::size_t q = 0; q < k; ++q)
+      for (int d = 0; d < D; ++d) {
+        boxes_[q].lo[d] = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(d)]);
+        boxes_[q].hi[d] = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(D + d)]);
+      }
+  }
+  const Processes& processes() const { return procs_; }
+  const std::vector<NodeBox<D>>& boxes() const { return boxes_; }
+
+  // Whether this process counts node ij in the grid's totals: it is the lowest rank whose box,
+  // less two layers on the sides that are not the grid's ends, holds it. Every node a point
+  // reaches is so held by the point's process (reach_of leaves three layers beyond any stencil),
+  // and there the neighbours a node phase reads (the mass gradient, two nodes around) are in the
+  // box and summed.
+  bool counts(std::size_t i) const {
+    const auto ij = unflatten(i);
+    for (int q = 0; q <= procs_.rank(); ++q)
+      if (inside(interior(boxes_[static_cast<std::size_t>(q)]), ij)) return q == procs_.rank();
+    return false;
+  }
+
+  // The sum over the processes of per-node fields, `per` doubles a node: pack(i, at) writes
+  // node i's part, add(i, at) adds another's to it, set(i, at) replaces it with the sum.
+  // Collective: two MPI_Alltoallv.
+  template <class Pack, class Add, class Set>
+  void sum(int per, Pack&& pack, Add&& add, Set&& set) {
+    const int r = procs_.rank(), k = procs_.size();
+    const auto mine = boxes_[static_cast<std::size_t>(r)];
+    // Phase 1: each part goes to the node's owner, which adds them in rank order.
+    exchange(
+        per, [&](int q, std::size_t i) { return q < r && owner(i) == q; },
+        [&](int q, std::size_t i) { return q > r && owner(i) == r; }, pack);
+    for (int q = r + 1, at = 0; q < k; ++q)
+      walk(mine, boxes_[static_cast<std::size_t>(q)], [&](std::size_t i) {
+        if (owner(i) == r) add(i, recv_.data() + static_cast<std::size_t>(at++) * per);
+      });
+    // Phase 2: the owner sends the sums back to the other holders.
+    exchange(
+        per, [&](int q, std::size_t i) { return q > r && owner(i) == r; },
+        [&](int q, std::size_t i) { return q < r && owner(i) == q; }, pack);
+    for (int q = 0, at = 0; q < r; ++q)
+      walk(mine, boxes_[static_cast<std::size_t>(q)], [&](std::size_t i) {
+        if (owner(i) == q) set(i, recv_.data() + static_cast<std::size_t>(at++) * per);
+      });
+  }
+
+ private:
+  static bool inside(const NodeBox<D>& b, const std::array<int, D>& ij) {
+    for (int d = 0; d < D; ++d)
+      if (ij[d] < b.lo[d] || ij[d] > b.hi[d]) return false;
+    return true;
+  }
+  NodeBox<D> interior(NodeBox<D> b) const {
+    for (int d = 0; d < D; ++d) {
+      if (b.lo[d] > 0) b.lo[d] += 2;
+      if (b.hi[d] < nodes_[d] - 1) b.hi[d] -= 2;
+    }
+    return b;
+  }
+  std::array<int, D> unflatten(std::size_t i) const {
+    std::array<int, D> ij{};
+    for (int d = 0; d < D; ++d) {
+      ij[d] = static_cast<int>(i % static_cast<std::size_t>(nodes_[d]));
+      i /= static_cast<std::size_t>(nodes_[d]);
+    }
+    return ij;
+  }
+  // The lowest rank whose box holds node i.
+  int owner(std::size_t i) const {
+    const auto ij = unflatten(i);
+    for (std::size_t q = 0; q < boxes_.size(); ++q)
+      if (inside(boxes_[q], ij)) return static_cast<int>(q);
+    return -1;
+  }
+  // fn(i) for the nodes of a and b both, in one order that both processes follow.
+  template <class Fn>
+  void walk(const NodeBox<D>& a, const NodeBox<D>& b, Fn&& fn) const {
+    NodeBox<D> c;
+    for (int d = 0; d < D; ++d) c.lo[d] = std::max(a.lo[d], b.lo[d]), c.hi[d] = std::min(a.hi[d], b.hi[d]);
+    if (c.empty()) return;
+    std::size_t stride[D];
+    stride[0] = 1;
+    for (int d = 1; d < D; ++d) stride[d] = stride[d - 1] * static_cast<std::size_t>(nodes_[d - 1]);
+    const long rows = box_rows(c), width = c.hi[0] - c.lo[0] + 1;
+    for (long row = 0; row < rows; ++row) {
+      const std::size_t first = box_row_start(c, stride, row);
+      for (long j = 0; j < width; ++j) fn(first + static_cast<std::size_t>(j));
+    }
+  }
+  // Sends each process q the packed nodes of this box and q's where sends(q, i), and receives
+  // into recv_ those where takes(q, i), in rank order.
+  template <class Sends, class Takes, class Pack>
+  void exchange(int per, Sends&& sends, Takes&& takes, Pack&& pack) {
+    const int r = procs_.rank(), k = procs_.size();
+    const auto mine = boxes_[static_cast<std::size_t>(r)];
+    send_bytes_.assign(static_cast<std::size_t>(k), 0);
+    recv_bytes_.assign(static_cast<std::size_t>(k), 0);
+    send_.clear();
+    long received = 0;
+    for (int q = 0; q < k; ++q) {
+      if (q == r) continue;
+      const auto& other = boxes_[static_cast<std::size_t>(q)];
+      long sent = 0, taken = 0;
+      walk(mine, other, [&](std::size_t i) {
+        if (sends(q, i)) {
+          send_.resize(send_.size() + static_cast<std::size_t>(per));
+          pack(i, send_.data() + send_.size() - static_cast<std::size_t>(per));
+          ++sent;
+        } else if (takes(q, i)) {
+          ++taken;
+        }
+      });
+      send_bytes_[static_cast<std::size_t>(q)] = sent * per * static_cast<long>(sizeof(double));
+      recv_bytes_[static_cast<std::size_t>(q)] = taken * per * static_cast<long>(sizeof(double));
+      received += taken * per;
+    }
+    recv_.resize(static_cast<std::size_t>(std::max(1L, received)));
+    if (send_.empty()) send_.resize(1);
+    procs_.exchange(send_.data(), send_bytes_, recv_.data(), recv_bytes_);
+  }
+
+  Processes procs_;
+  std::array<int, D> nodes_{};
+  std::vector<NodeBox<D>> boxes_;
+  std::vector<double> all_, send_, recv_;
+  std::vector<long> send_bytes_, recv_bytes_;
+};
+
+}  // namespace skred
