@@ -209,6 +209,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
   if (procs.distributed() && !reset_peak_rss()) setup_peak = 0.0;
   procs.max(&setup_peak, 1);
+  // The slabs before the first map, so that each process touches only its own block of the grid.
+  repartition_in_slabs(particles, scenario_grid(s), procs);
   Integrators<D> integrators(s, particles, opt.threads, procs);
   Integrator<D>* solver = &integrators.use(s.stages.front());
 
