@@ -293,10 +293,11 @@ class ExplicitSolver {
       transfer_.reduce_threads(extent, f.mass.data(), f.momentum.data());
     }
   }
-  // The next step's box, of every moved point (`all`).
+  // The next step's box, of every moved point (`all`; without contact reduce_moved set it, the
+  // one continuum's extent being `all`).
   void set_next_box(const Extent<D>& all) {
-    transfer_.set_box(all);
     if (!contact_on()) return;
+    transfer_.set_box(all);
     body_box_ = transfer_.box();
     for (auto& f : bodies_) transfer_.sum_processes(f.mass.data(), f.momentum.data());
   }
