@@ -60,21 +60,35 @@ void reserve_huge(std::vector<T, A>& v, std::size_t n) {
   advise_huge_pages(v.data(), v.capacity() * sizeof(T));
 }
 
-// Allocator for the grid arrays: memory comes zeroed from calloc (for large arrays fresh
-// pages from the kernel) and resize() does not write it, so pages of nodes no point ever
-// reaches are never touched and cost no resident memory.
+// Allocator for the grid arrays: memory comes zeroed and untouched, and resize() does not write
+// it, so pages of nodes no point ever reaches are never touched and cost no resident memory. A
+// large array is mapped from the kernel directly (fresh zero pages): calloc would hand out a free
+// chunk of the heap when it has one, and zero it by writing every page (after a distributed
+// run's set-up has freed the others' points, each process's whole grid would then be resident).
 template <class T>
 struct ZeroPageAllocator {
   using value_type = T;
+  static constexpr std::size_t kMappedBytes = std::size_t{1} << 20;  // from here on: mmap
   ZeroPageAllocator() = default;
   template <class U>
   ZeroPageAllocator(const ZeroPageAllocator<U>&) noexcept {}
   T* allocate(std::size_t n) {
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes >= kMappedBytes) {
+      void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (p == MAP_FAILED) throw std::bad_alloc();
+      return static_cast<T*>(p);
+    }
     void* p = std::calloc(n, sizeof(T));
     if (!p) throw std::bad_alloc();
     return static_cast<T*>(p);
   }
-  void deallocate(T* p, std::size_t) noexcept { std::free(p); }
+  void deallocate(T* p, std::size_t n) noexcept {
+    if (n * sizeof(T) >= kMappedBytes)
+      munmap(p, n * sizeof(T));
+    else
+      std::free(p);
+  }
   template <class U>
   void construct(U* p) noexcept {
     ::new (static_cast<void*>(p)) U;

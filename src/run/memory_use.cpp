@@ -2,6 +2,9 @@
 
 #include <fstream>
 #include <string>
+#if defined(__GLIBC__)  // (defined by the headers above)
+#include <malloc.h>
+#endif
 
 namespace skred {
 
@@ -32,6 +35,12 @@ bool reset_peak_rss() {
   f << "5";
   f.flush();
   return static_cast<bool>(f);
+}
+
+void release_free_memory() {
+#if defined(__GLIBC__)
+  malloc_trim(0);
+#endif
 }
 
 }  // namespace skred

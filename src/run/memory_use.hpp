@@ -12,5 +12,9 @@ double current_rss_bytes();
 // Starts the peak over from the resident set now (/proc/self/clear_refs, "5"); false if the
 // kernel does not allow it. A distributed run's set-up peaks once per process (in_turns).
 bool reset_peak_rss();
+// Gives the allocator's free pages back to the kernel (glibc's malloc_trim): after a process of a
+// distributed run has built all the points and kept its share, glibc keeps the others' points'
+// pages for reuse, and the process would hold the whole set-up's memory for the rest of the run.
+void release_free_memory();
 
 }  // namespace skred

@@ -4,6 +4,7 @@
 // advance the same points (core/particles.hpp); a run may change integrator between stages,
 // handing the clock over with clock() and restore().
 #pragma once
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,9 +74,9 @@ class Integrator {
   int threads() const { return state().threads; }
   const std::vector<Material>& materials() const { return state().materials; }
   // The nodal fields of the last smoothed_stress() call.
-  const std::vector<double>& node_mass() const { return state().smoothing.mass; }
-  const std::vector<Vec<D>>& node_velocity() const { return state().smoothing.velocity; }
-  const std::vector<Sym3>& node_stress() const { return state().smoothing.stress; }
+  std::span<const double> node_mass() const { return state().smoothing.mass; }
+  std::span<const Vec<D>> node_velocity() const { return state().smoothing.velocity; }
+  std::span<const Sym3> node_stress() const { return state().smoothing.stress; }
 };
 
 }  // namespace skred

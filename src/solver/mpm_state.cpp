@@ -9,9 +9,57 @@
 #include <utility>
 
 #include "shape/separable.hpp"
+#include "transfer/box_exchange.hpp"
 #include "transfer/node_box.hpp"
 
 namespace skred {
+
+namespace {
+
+// a <- n entries `z` (zero): a mapped array is mapped afresh, so that no page is touched
+// (core/huge_pages.hpp), a small one written.
+template <class T>
+void zero(GridArray<T>& a, std::size_t n, const T& z) {
+  if (a.size() != n || n * sizeof(T) >= ZeroPageAllocator<T>::kMappedBytes) {
+    GridArray<T>().swap(a);
+    a.resize(n);
+  } else {
+    std::fill(a.begin(), a.end(), z);
+  }
+}
+
+// The smoothing's sums over the processes (Thesis eq. 4.18's sums over every point): each process
+// over the box its points reach (transfer/box_exchange.hpp), and the first one, which writes the
+// grid's file, over the whole grid.
+template <int D>
+void sum_smoothing_over_processes(const GridGeometry<D>& g, const Particles<D>& P, const Processes& procs,
+                                  NodalSmoothing<D>& s) {
+  static_assert(sizeof(Sym3) == 6 * sizeof(double) && sizeof(Vec<D>) == D * sizeof(double));
+  Extent<D> e;
+  for (std::size_t p = 0; p < P.size(); ++p) e.add(P.x[p]);
+  BoxExchange<D> boxes;
+  boxes.set(g, reach_of(g, e), procs);
+  constexpr int per = 1 + 6 + D;
+  const auto pack = [&](std::size_t i, double* at) {
+    at[0] = s.mass[i];
+    for (int c = 0; c < 6; ++c) at[1 + c] = s.stress[i].data()[c];
+    for (int d = 0; d < D; ++d) at[7 + d] = s.velocity[i][d];
+  };
+  const auto set = [&](std::size_t i, const double* at) {
+    s.mass[i] = at[0];
+    for (int c = 0; c < 6; ++c) s.stress[i].data()[c] = at[1 + c];
+    for (int d = 0; d < D; ++d) s.velocity[i][d] = at[7 + d];
+  };
+  const auto add = [&](std::size_t i, const double* at) {
+    s.mass[i] += at[0];
+    for (int c = 0; c < 6; ++c) s.stress[i].data()[c] += at[1 + c];
+    for (int d = 0; d < D; ++d) s.velocity[i][d] += at[7 + d];
+  };
+  boxes.sum(per, pack, add, set);
+  boxes.gather_to_first(per, pack, set);
+}
+
+}  // namespace
 
 template <int D>
 MpmState<D>::MpmState(Particles<D>& points_, GridGeometry<D> grid_, Interpolation interpolation_,
@@ -94,9 +142,9 @@ void smoothed_stress(MpmState<D>& state, std::vector<Sym3>& out) {
     NodalSmoothing<D>& s = state.smoothing;
     const long n = static_cast<long>(P.size());
     const std::size_t nodes = g.node_count();
-    s.stress.assign(nodes, Sym3::Zero());
-    s.velocity.assign(nodes, Vec<D>::Zero());
-    s.mass.assign(nodes, 0.0);
+    zero(s.mass, nodes, 0.0);
+    zero(s.velocity, nodes, Vec<D>::Zero().eval());
+    zero(s.stress, nodes, Sym3::Zero().eval());
     for (long p = 0; p < n; ++p) {  // serial scatter: run only when results are written
       typename K::Shape sh;
       if (!kernel.shape(g, P.x[p], P.half0[p], P.F[p], sh)) continue;
@@ -107,12 +155,8 @@ void smoothed_stress(MpmState<D>& state, std::vector<Sym3>& out) {
         s.velocity[i] += (w * m) * P.v[p];
       });
     }
-    if (const Processes& procs = state.processes; procs.distributed() && nodes > 0) {  // all points' sums
-      static_assert(sizeof(Sym3) == 6 * sizeof(double) && sizeof(Vec<D>) == D * sizeof(double));
-      procs.sum(s.mass.data(), nodes);
-      procs.sum(s.stress[0].data(), 6 * nodes);
-      procs.sum(s.velocity[0].data(), D * nodes);
-    }
+    if (const Processes& procs = state.processes; procs.distributed() && nodes > 0)
+      sum_smoothing_over_processes(g, P, procs, s);  // all points' sums, over each box
     for (std::size_t i = 0; i < nodes; ++i)
       if (s.mass[i] > 0.0) {
         s.stress[i] /= s.mass[i];

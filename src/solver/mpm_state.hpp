@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/grid.hpp"
+#include "core/huge_pages.hpp"
 #include "core/particles.hpp"
 #include "material/material.hpp"
 #include "parallel/processes.hpp"
@@ -74,12 +75,14 @@ struct StepStatus {
 };
 
 // Nodal fields of the last grid smoothing (Thesis eq. 4.18), flat-indexed like the grid, for
-// the grid output file: m_i, v_i = sum N_ip m_p v_p / m_i and sigma_i.
+// the grid output file: m_i, v_i = sum N_ip m_p v_p / m_i and sigma_i. Zero pages where no point
+// reaches (core/huge_pages.hpp); in a distributed run each process forms them over its own box,
+// and the first process, which writes the grid's file, has them on the whole grid.
 template <int D>
 struct NodalSmoothing {
-  std::vector<double> mass;
-  std::vector<Vec<D>> velocity;
-  std::vector<Sym3> stress;
+  GridArray<double> mass;
+  GridArray<Vec<D>> velocity;
+  GridArray<Sym3> stress;
 };
 
 template <int D>

@@ -80,6 +80,48 @@ class BoxExchange {
       });
   }
 
+  // The first process gets every node's value where another process owns it (for a file it
+  // writes of the whole grid): pack(i, at) writes node i's, set(i, at) takes it. Collective: one
+  // MPI_Alltoallv, of each process's owned nodes only.
+  template <class Pack, class Set>
+  void gather_to_first(int per, Pack&& pack, Set&& set) {
+    const int r = procs_.rank(), k = procs_.size();
+    const auto mine = boxes_[static_cast<std::size_t>(r)];
+    send_bytes_.assign(static_cast<std::size_t>(k), 0);
+    recv_bytes_.assign(static_cast<std::size_t>(k), 0);
+    send_.clear();
+    if (r > 0) {
+      walk(mine, mine, [&](std::size_t i) {
+        if (owner(i) != r) return;
+        send_.resize(send_.size() + static_cast<std::size_t>(per));
+        pack(i, send_.data() + send_.size() - static_cast<std::size_t>(per));
+      });
+      send_bytes_[0] = static_cast<long>(send_.size() * sizeof(double));
+    }
+    long received = 0;
+    if (r == 0)
+      for (int q = 1; q < k; ++q) {
+        long owned = 0;
+        const auto& box = boxes_[static_cast<std::size_t>(q)];
+        walk(box, box, [&](std::size_t i) { owned += owner(i) == q ? 1 : 0; });
+        recv_bytes_[static_cast<std::size_t>(q)] = owned * per * static_cast<long>(sizeof(double));
+        received += owned * per;
+      }
+    recv_.resize(static_cast<std::size_t>(std::max(1L, received)));
+    if (send_.empty()) send_.resize(1);
+    procs_.exchange(send_.data(), send_bytes_, recv_.data(), recv_bytes_);
+    if (r > 0) return;
+    std::size_t at = 0;
+    for (int q = 1; q < k; ++q) {
+      const auto& box = boxes_[static_cast<std::size_t>(q)];
+      walk(box, box, [&](std::size_t i) {
+        if (owner(i) != q) return;
+        set(i, recv_.data() + at);
+        at += static_cast<std::size_t>(per);
+      });
+    }
+  }
+
  private:
   static bool inside(const NodeBox<D>& b, const std::array<int, D>& ij) {
     for (int d = 0; d < D; ++d)

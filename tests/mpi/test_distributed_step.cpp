@@ -43,6 +43,9 @@ struct Outcome {
                                  // wall, contact and damping work, kinetic energy, mass, momentum
   std::vector<double> x;         // positions, D per point
   std::vector<double> smoothed;  // the grid-smoothed stresses, 6 per point (Post eq. 57-58)
+  // The nodal fields of that smoothing, as the grid's file has them (the first process's):
+  // masses, then stresses, 6 per node, then velocities, D per node (Thesis eq. 4.18)
+  std::vector<double> node_mass, node_stress, node_velocity;
   long points = 0;
   bool ok = true;
 };
@@ -150,6 +153,11 @@ Outcome step(const ScenarioOf<D>& s, const Processes& procs, long steps, int thr
     for (int k = 0; k < 6; ++k) own_sm[6 * p + static_cast<std::size_t>(k)] = sm[p][k];
   o.smoothed.assign(static_cast<std::size_t>(6 * o.points), 0.0);
   procs.gather(own_sm.data(), own_sm.size(), o.smoothed.data(), o.smoothed.size());
+  const NodalSmoothing<D>& nodal = solver.state().smoothing;
+  o.node_mass.assign(nodal.mass.begin(), nodal.mass.end());
+  for (const Sym3& n : nodal.stress) o.node_stress.insert(o.node_stress.end(), n.data(), n.data() + 6);
+  for (const Vec<D>& v : nodal.velocity)
+    o.node_velocity.insert(o.node_velocity.end(), v.data(), v.data() + D);
   // The points in the order of their first positions (slabs hand them on among the processes).
   std::vector<double> own_ref(D * P.size()), ref(static_cast<std::size_t>(D * o.points));
   for (std::size_t p = 0; p < P.size(); ++p)
@@ -207,6 +215,26 @@ void expect_same(const ScenarioOf<D>& s, long steps, const char* what, bool bitw
   }
   // (+ 1e-9 Pa: the discs before they meet hold stresses of round-off, 3e-14 Pa)
   EXPECT_LE(off, 1e-12 * stress + 1e-9) << what << ": the smoothed stresses differ by up to " << off << " Pa";
+  if (world.rank() == 0) {  // the grid's file, written by the first process: every node's sums
+    ASSERT_EQ(all.node_mass.size(), one.node_mass.size()) << what;
+    const auto worst_of = [](const std::vector<double>& a, const std::vector<double>& b, double& size) {
+      double w = 0.0;
+      size = 0.0;
+      for (std::size_t i = 0; i < a.size(); ++i)
+        size = std::max(size, std::abs(b[i])), w = std::max(w, std::abs(a[i] - b[i]));
+      return w;
+    };
+    double m = 0.0, sg = 0.0, v = 0.0;
+    const double dm = worst_of(all.node_mass, one.node_mass, m),
+                 ds = worst_of(all.node_stress, one.node_stress, sg),
+                 dv = worst_of(all.node_velocity, one.node_velocity, v);
+    EXPECT_GT(m, 0.0) << what;
+    EXPECT_LE(dm, 1e-12 * m) << what << ": the grid file's node masses differ by up to " << dm << " kg";
+    EXPECT_LE(ds, 1e-12 * sg + 1e-9) << what << ": the grid file's node stresses differ by up to " << ds
+                                     << " Pa";
+    EXPECT_LE(dv, 1e-12 * v + 1e-15) << what << ": the grid file's node velocities differ by up to " << dv
+                                     << " m/s";
+  }
   // (a figure that moved: the comparison is not between two runs that stood still)
   EXPECT_GT(std::abs(one.figures[7]) + std::abs(one.figures[0]), 0.0) << what;
   if (bitwise && world.size() == 2) {  // (more processes: MPI adds their grids pairwise, threads in turn)
