@@ -3,6 +3,9 @@
 // reproduction of linear fields (Thesis eq. 2.46-2.47: partition of unity and its gradient).
 #include <gtest/gtest.h>
 
+#include <cstdlib>
+#include <cstring>
+
 #include "support.hpp"
 #include "transfer/transfers.hpp"
 
@@ -167,4 +170,28 @@ TEST(Transfers, ScatterBufferHoldsOnlyThePagesOfItsPointsLayers) {
   EXPECT_EQ(total, writes);
   EXPECT_EQ(momentum, Vec<3>(1.0, 2.0, 3.0) * writes);
   EXPECT_EQ(mass[0], 2.0);  // written twice, the second time into a released page
+}
+
+// A grid array is untouched zero pages however the heap stands: after a process of a distributed
+// run has freed the others' points, the heap holds large free chunks, and calloc would hand one
+// out zeroed by writing it (each process's whole grid resident). 16 MiB of heap in chunks under
+// the mmap threshold, freed, then a 8 MiB grid array: none of its pages resident, all read zero.
+// (A mapped 12 MiB array freed first raises glibc's threshold, as the set-up's arrays do.)
+TEST(Transfers, GridArrayTouchesNoPageWhereTheHeapHasFreeChunks) {
+  { std::vector<char> big(12 << 20, 1); }
+  std::vector<char*> chunks(256);
+  for (char*& c : chunks) {  // (64 KiB each: from the heap, not mapped)
+    c = static_cast<char*>(std::malloc(64 << 10));
+    std::memset(c, 1, 64 << 10);
+  }
+  for (std::size_t k = 1; k + 1 < chunks.size(); ++k) std::free(chunks[k]);  // (a free run in the middle)
+  GridArray<double> a(std::size_t{1} << 20);
+  EXPECT_EQ(resident_bytes(a.data(), a.size() * sizeof(double)), 0u);
+  double sum = 0.0;
+  for (double v : a) sum += std::abs(v);
+  EXPECT_EQ(sum, 0.0);
+  a[12345] = 1.0;  // a write makes its page resident
+  EXPECT_GT(resident_bytes(a.data(), a.size() * sizeof(double)), 0u);
+  std::free(chunks.front());
+  std::free(chunks.back());
 }

@@ -206,12 +206,13 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       });
   // Each process built all the points in its turn: that peak is the set-up's (summary.json's
   // processes.setup_peak_bytes), the run's memory is what it holds after (one process: both).
-  if (procs.distributed()) release_free_memory();  // (the others' points' pages go back)
-  double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
-  if (procs.distributed() && !reset_peak_rss()) setup_peak = 0.0;
-  procs.max(&setup_peak, 1);
   // The slabs before the first map, so that each process touches only its own block of the grid.
   repartition_in_slabs(particles, scenario_grid(s), procs);
+  double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
+  // (glibc keeps freed pages for reuse: the others' points' and the moved points' go back)
+  if (procs.distributed()) release_free_memory();
+  if (procs.distributed() && !reset_peak_rss()) setup_peak = 0.0;
+  procs.max(&setup_peak, 1);
   Integrators<D> integrators(s, particles, opt.threads, procs);
   Integrator<D>* solver = &integrators.use(s.stages.front());
 
