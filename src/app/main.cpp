@@ -438,8 +438,9 @@ static int command(int argc, char** argv) {
                  (r.peak_rss_bytes - r.idle_rss_bytes) / r.own_particles);
       if (bo.threads > 1) fmt::print("OpenMP wait: {}\n", skred::omp_wait_description());
       if (bo.processes.distributed())
-        fmt::print("exchanged per step by each process: {:.0f} collective calls, {:.2f} MB\n",
-                   r.calls_per_step, r.bytes_per_step / 1e6);
+        fmt::print(
+            "exchanged per step by each process: {:.0f} collective calls, {:.2f} MB (most {:.2f} MB)\n",
+            r.calls_per_step, r.bytes_per_step / 1e6, r.most_bytes_per_step / 1e6);
       double total = 0.0;
       for (const auto& [name, s] : r.phase_seconds) total += s;
       fmt::print("time per phase (all repeats):\n");

@@ -1,8 +1,9 @@
 // Each process's share of the points of a distributed run (processes.hpp). At the set-up every
 // process builds all the points and keeps a contiguous run of them in their order (keep_share:
 // points [n r / N, n (r + 1) / N) of process r of N), in turns (in_turns); the run then keeps them
-// in slabs of the grid (repartition_in_slabs), so that each process's points, and the box of
-// nodes they reach, lie together, and points move to a neighbour as they cross a slab's cut.
+// in blocks of the grid cut by recursive bisection (repartition_in_blocks), so that each process's
+// points, and the box of nodes they reach, lie together, and points move to a neighbour as they
+// cross a cut.
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -66,79 +67,139 @@ void move_points(Particles<D>& P, const Processes& procs, const std::vector<long
   });
 }
 
-// Repartitions the points in slabs of the grid (the grid's blocks, box_exchange.hpp): across the
-// axis along which the points spread furthest, process r holds the r-th of N equal runs of the
-// points taken in order along it (by sixteenths of a cell; within the one where a cut falls, by
-// rank). Points in another process's slab move there: those that crossed a cut since the last
-// call, or all of a share after a change of axis. Returns whether any moved. Every process calls
-// it; it costs one histogram's sum and two small gathers when no point moves.
+// Repartitions the points in blocks of the grid by recursive bisection (the grid's blocks,
+// box_exchange.hpp). The processes [0, N) are halved into [0, N/2) and [N/2, N), and the points
+// are cut across the axis along which they spread furthest: taken in order along it (by
+// sixteenths of a cell; within the one where the cut falls, by rank, then by their order here),
+// the first ones go to the lower half, as many as its processes' runs of the whole, so that
+// process r ends with points [n r / N, n (r + 1) / N) of the n, to one. Each half is cut again
+// across its own points' widest axis, until each holds one process. At 2 processes the blocks
+// are slabs. Points in another process's block move there: those that crossed a cut since the
+// last call, or many after an axis changed. Returns whether any moved. Every process calls it; it
+// costs log2 N histograms' sums and small gathers when no point moves.
 template <int D>
-bool repartition_in_slabs(Particles<D>& P, const GridGeometry<D>& g, const Processes& procs) {
+bool repartition_in_blocks(Particles<D>& P, const GridGeometry<D>& g, const Processes& procs) {
   if (!procs.distributed()) return false;
   const std::size_t n = P.size(), k = static_cast<std::size_t>(procs.size()),
                     r = static_cast<std::size_t>(procs.rank());
-  double ends[2 * D];
-  for (int d = 0; d < D; ++d) ends[d] = INFINITY, ends[D + d] = INFINITY;
-  for (std::size_t p = 0; p < n; ++p)
-    for (int d = 0; d < D; ++d)
-      ends[d] = std::min(ends[d], P.x[p][d]), ends[D + d] = std::min(ends[D + d], -P.x[p][d]);
-  procs.min(ends, 2 * D);
-  int axis = 0;
-  for (int d = 1; d < D; ++d)
-    if (-ends[D + d] - ends[d] > -ends[D + axis] - ends[axis]) axis = d;
   constexpr int kBinsPerCell = 16;  // the cuts fall within cells, so the shares are even
-  const int bins = g.cells[static_cast<std::size_t>(axis)] * kBinsPerCell;
-  const auto bin_of = [&](const Vec<D>& x) {
-    const double c = std::floor((x[axis] - g.origin[axis]) / g.h * kBinsPerCell);
-    return c < 0.0 ? 0 : c > bins - 1 ? bins - 1 : static_cast<int>(c);
+  struct Group {
+    int a, b;  // processes [a, b)
   };
-  // The points in one order over every process: by bin, then rank, then their order here. Process
-  // q takes the q-th of N equal runs of it, so only the bins a cut falls in need the lower ranks'
-  // counts (one gather of at most N - 1 per process).
-  std::vector<long> count(static_cast<std::size_t>(bins), 0);
-  for (std::size_t p = 0; p < n; ++p) ++count[static_cast<std::size_t>(bin_of(P.x[p]))];
-  std::vector<long> before(static_cast<std::size_t>(bins) + 1, 0);  // points in lower bins, all
-  {
-    std::vector<long> all_count = count;
-    procs.sum(all_count.data(), all_count.size());
-    for (std::size_t c = 0; c < all_count.size(); ++c) before[c + 1] = before[c] + all_count[c];
+  std::vector<Group> groups{{0, static_cast<int>(k)}};
+  std::vector<std::uint32_t> in(n, 0);  // each point's group
+  long all = static_cast<long>(n);
+  procs.sum(&all, 1);
+  const auto target = [&](int q) { return all * q / static_cast<long>(k); };  // points before q's run
+  for (bool split = true; split;) {
+    const std::size_t G = groups.size();
+    // The extent of each group's points, and the axis each group is cut across.
+    std::vector<double> ends(2 * D * G, INFINITY);  // per group: lo per axis, then -hi
+    for (std::size_t p = 0; p < n; ++p)
+      for (int d = 0; d < D; ++d) {
+        double* e = &ends[2 * D * in[p]];
+        e[d] = std::min(e[d], P.x[p][d]), e[D + d] = std::min(e[D + d], -P.x[p][d]);
+      }
+    procs.min(ends.data(), ends.size());
+    std::vector<int> axis(G, 0);
+    std::vector<long> base(G, 0);                  // each group's first bin along its axis
+    std::vector<std::size_t> first_bin(G + 1, 0);  // each group's histogram in one array
+    for (std::size_t j = 0; j < G; ++j) {
+      const double* e = &ends[2 * D * j];
+      for (int d = 1; d < D; ++d)
+        if (-e[D + d] - e[d] > -e[D + axis[j]] - e[axis[j]]) axis[j] = d;
+      long bins = 0;  // over the group's points' extent only
+      if (groups[j].b - groups[j].a > 1 && e[axis[j]] <= -e[D + axis[j]]) {
+        const auto bin = [&](double x) {
+          return static_cast<long>(std::floor((x - g.origin[axis[j]]) / g.h * kBinsPerCell));
+        };
+        base[j] = bin(e[axis[j]]);
+        bins = bin(-e[D + axis[j]]) - base[j] + 1;
+      }
+      first_bin[j + 1] = first_bin[j] + static_cast<std::size_t>(bins);
+    }
+    const auto bin_of = [&](std::size_t j, const Vec<D>& x) {
+      const long bins = static_cast<long>(first_bin[j + 1] - first_bin[j]);
+      const long c =
+          static_cast<long>(std::floor((x[axis[j]] - g.origin[axis[j]]) / g.h * kBinsPerCell)) - base[j];
+      return first_bin[j] + static_cast<std::size_t>(std::clamp(c, 0L, bins - 1));
+    };
+    std::vector<long> count(first_bin[G], 0);
+    for (std::size_t p = 0; p < n; ++p)
+      if (groups[in[p]].b - groups[in[p]].a > 1) ++count[bin_of(in[p], P.x[p])];
+    std::vector<long> before(first_bin[G] + 1, 0);  // per bin: the group's points in lower bins, all
+    {
+      std::vector<long> all_count = count;
+      procs.sum(all_count.data(), all_count.size());
+      for (std::size_t j = 0; j < G; ++j)
+        for (std::size_t c = first_bin[j]; c < first_bin[j + 1]; ++c)
+          before[c + 1] = before[c] + all_count[c];
+    }
+    // Each halved group's cut: `cut` points of it go to the lower half; the bin it falls in.
+    std::vector<long> cut(G, 0);
+    std::vector<double> mine_in(G, 0.0), all_in(G * k);  // this process's points in the cut bin
+    std::vector<std::size_t> cut_bin(G, SIZE_MAX);
+    for (std::size_t j = 0; j < G; ++j) {
+      if (groups[j].b - groups[j].a < 2 || first_bin[j] == first_bin[j + 1]) continue;  // (no points)
+      const int m = (groups[j].a + groups[j].b) / 2;
+      cut[j] = target(m) - target(groups[j].a);
+      const auto lo = before.begin() + static_cast<long>(first_bin[j]),
+                 hi = before.begin() + static_cast<long>(first_bin[j + 1]);
+      const auto c = static_cast<std::size_t>(std::upper_bound(lo, hi, before[first_bin[j]] + cut[j]) -
+                                              before.begin() - 1);
+      if (c < first_bin[j + 1] && before[c] < before[first_bin[j]] + cut[j]) {
+        cut_bin[j] = c;
+        mine_in[j] = static_cast<double>(count[c]);
+      }
+    }
+    procs.gather(mine_in.data(), G, all_in.data(), all_in.size());
+    std::vector<long> next(before.begin(),
+                           before.end() - 1);  // per bin: the order of this rank's next point in it
+    for (std::size_t j = 0; j < G; ++j) {
+      if (cut_bin[j] == SIZE_MAX) continue;
+      for (std::size_t q = 0; q < r; ++q) next[cut_bin[j]] += static_cast<long>(all_in[q * G + j]);
+    }
+    // The next level's groups: group j's lower half is halved[lower[j]], its upper the one after.
+    std::vector<Group> halved;
+    std::vector<std::uint32_t> lower(G);
+    for (std::size_t j = 0; j < G; ++j) {
+      lower[j] = static_cast<std::uint32_t>(halved.size());
+      const Group& h = groups[j];
+      if (h.b - h.a < 2) {
+        halved.push_back(h);
+        continue;
+      }
+      const int m = (h.a + h.b) / 2;
+      halved.push_back({h.a, m});
+      halved.push_back({m, h.b});
+    }
+    for (std::size_t p = 0; p < n; ++p) {
+      const std::uint32_t j = in[p];
+      if (groups[j].b - groups[j].a < 2) {
+        in[p] = lower[j];
+        continue;
+      }
+      const long at = next[bin_of(j, P.x[p])]++ - before[first_bin[j]];  // order within the group
+      in[p] = lower[j] + (at < cut[j] ? 0 : 1);
+    }
+    split = false;
+    for (const Group& h : halved) split = split || h.b - h.a > 1;
+    groups.swap(halved);
   }
-  const long total = before.back();
-  const auto target = [&](std::size_t q) { return total * static_cast<long>(q) / static_cast<long>(k); };
-  std::vector<int> cut_bins;  // the bins a cut falls in
-  for (std::size_t q = 1; q < k; ++q) {
-    const long t = target(q);
-    const auto c = std::upper_bound(before.begin(), before.end(), t) - before.begin() - 1;
-    if (c < bins && before[static_cast<std::size_t>(c)] < t && (cut_bins.empty() || cut_bins.back() != c))
-      cut_bins.push_back(static_cast<int>(c));
-  }
-  std::vector<double> mine_in(k - 1, 0.0), all_in((k - 1) * k);
-  for (std::size_t j = 0; j < cut_bins.size(); ++j)
-    mine_in[j] = static_cast<double>(count[static_cast<std::size_t>(cut_bins[j])]);
-  procs.gather(mine_in.data(), k - 1, all_in.data(), all_in.size());
-  std::vector<long> next(static_cast<std::size_t>(bins),
-                         0);  // per bin: the order of this rank's next point in it
-  for (std::size_t c = 0; c < next.size(); ++c) next[c] = before[c];
-  for (std::size_t j = 0; j < cut_bins.size(); ++j)
-    for (std::size_t s = 0; s < r; ++s)
-      next[static_cast<std::size_t>(cut_bins[j])] += static_cast<long>(all_in[s * (k - 1) + j]);
   std::vector<std::uint32_t> to(n);
   std::vector<long> give(k, 0);
   for (std::size_t p = 0; p < n; ++p) {
-    const long at = next[static_cast<std::size_t>(bin_of(P.x[p]))]++;
-    std::size_t q = 0;  // the run that holds order `at`
-    while (q + 1 < k && target(q + 1) <= at) ++q;
-    to[p] = static_cast<std::uint32_t>(q);
-    ++give[q];
+    to[p] = static_cast<std::uint32_t>(groups[in[p]].a);
+    ++give[to[p]];
   }
-  std::vector<double> gives(k), all(k * k);  // every process's gives
+  std::vector<double> gives(k), every(k * k);  // every process's gives
   for (std::size_t q = 0; q < k; ++q) gives[q] = static_cast<double>(give[q]);
-  procs.gather(gives.data(), k, all.data(), all.size());
+  procs.gather(gives.data(), k, every.data(), every.size());
   std::vector<long> take(k);
   long moving = 0;
   for (std::size_t q = 0; q < k; ++q) {
-    take[q] = static_cast<long>(all[q * k + r]);
-    for (std::size_t s = 0; s < k; ++s) moving += s == q ? 0 : static_cast<long>(all[q * k + s]);
+    take[q] = static_cast<long>(every[q * k + r]);
+    for (std::size_t s = 0; s < k; ++s) moving += s == q ? 0 : static_cast<long>(every[q * k + s]);
   }
   if (moving == 0) return false;
   std::vector<std::uint32_t> order(n);  // by destination, stable

@@ -1,6 +1,6 @@
 // The processes a run is distributed over (issue 55): MPI's world when skred was started by an
 // MPI launcher (`mpirun -np N`), else the one process alone. The explicit solver's points are
-// split among them in slabs of the grid (point_shares.hpp); each works on the box of nodes its
+// split among them in blocks of the grid (point_shares.hpp); each works on the box of nodes its
 // points reach, and every grid sum the points make (mass, momentum, forces, remapped momentum, the
 // filters' fields) is completed where the boxes overlap, after the per-thread scatter buffers
 // (Transfer::reduce, transfer/box_exchange.hpp), so every process has the same bits at a node it

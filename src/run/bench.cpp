@@ -26,7 +26,7 @@ namespace {
 template <int D>
 StepStatus sorted_step(Particles<D>& P, ExplicitSolver<D>& solver, long every) {
   if (solver.steps() % (every > 0 ? every : kSortEvery) == 0 &&
-      repartition_in_slabs(P, solver.grid(), solver.processes()))  // (split among processes)
+      repartition_in_blocks(P, solver.grid(), solver.processes()))  // (split among processes)
     solver.particles_changed();
   if (every > 0 && solver.steps() % every == 0 &&
       P.sort_by_cell(solver.grid(), solver.sort_by_nearest_node(), solver.threads()))
@@ -40,11 +40,16 @@ std::vector<double> sorted(std::vector<double> v) {
 }
 
 // Adds the phase times of the timed steps (the timer's `after` less `before`) to res.
-// The exchange per step since `before`, over `steps` steps.
-void count_exchange(BenchResult& res, const Exchanged& before, int steps) {
+// The exchange per step since `before`, over `steps` steps: the processes' mean and most
+// (collective; an end slab or block has fewer neighbours than one in the middle).
+void count_exchange(BenchResult& res, const Exchanged& before, int steps, const Processes& procs) {
   const Exchanged now = exchanged();
   res.calls_per_step = static_cast<double>(now.calls - before.calls) / std::max(steps, 1);
-  res.bytes_per_step = (now.bytes - before.bytes) / std::max(steps, 1);
+  double bytes = (now.bytes - before.bytes) / std::max(steps, 1), most = bytes;
+  procs.sum(&bytes, 1);
+  procs.max(&most, 1);
+  res.bytes_per_step = bytes / procs.size();
+  res.most_bytes_per_step = most;
 }
 
 void add_phases(BenchResult& res, const PhaseTimer& before, const PhaseTimer& after) {
@@ -127,7 +132,7 @@ BenchResult run_column(const BenchOptions& opt) {
     apply_initial_stress(s, P);
     const GridGeometry<D> grid = scenario_grid(s);
     keep_share(P, opt.processes);
-    repartition_in_slabs(P, grid, opt.processes);  // (the set-up's: not timed)
+    repartition_in_blocks(P, grid, opt.processes);  // (the set-up's: not timed)
     SolverSettings<D> st = solver_settings(s);
     st.processes = opt.processes;
     st.velocity_transfer = opt.velocity_transfer;
@@ -145,7 +150,7 @@ BenchResult run_column(const BenchOptions& opt) {
         break;
       }
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    count_exchange(res, sent, opt.steps);
+    count_exchange(res, sent, opt.steps, opt.processes);
     opt.processes.max(&sec, 1);  // the slowest process's
     res.own_particles = static_cast<long>(P.size());
     res.particles = opt.processes.sum_of(res.own_particles);
@@ -191,7 +196,7 @@ BenchResult run_bench(const BenchOptions& opt) {
         P.add(Vec<2>((i + 0.5) * q, (j + 0.5) * q), Vec<2>::Zero(), soil.density * vol, vol,
               Vec<2>(q / 2, q / 2), 0, 0);
     keep_share(P, opt.processes);
-    repartition_in_slabs(P, grid, opt.processes);
+    repartition_in_blocks(P, grid, opt.processes);
     SolverSettings<2> st;
     st.processes = opt.processes;
     st.interpolation = opt.interpolation;
@@ -211,7 +216,7 @@ BenchResult run_bench(const BenchOptions& opt) {
     const auto t0 = std::chrono::steady_clock::now();
     for (int s = 0; s < opt.steps; ++s) sorted_step(P, solver, opt.sort_every);
     double sec = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    count_exchange(res, sent, opt.steps);
+    count_exchange(res, sent, opt.steps, opt.processes);
     opt.processes.max(&sec, 1);  // the slowest process's
     res.own_particles = static_cast<long>(P.size());
     res.particles = opt.processes.sum_of(res.own_particles);

@@ -206,8 +206,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
       });
   // Each process built all the points in its turn: that peak is the set-up's (summary.json's
   // processes.setup_peak_bytes), the run's memory is what it holds after (one process: both).
-  // The slabs before the first map, so that each process touches only its own block of the grid.
-  repartition_in_slabs(particles, scenario_grid(s), procs);
+  // The blocks before the first map, so that each process touches only its own block of the grid.
+  repartition_in_blocks(particles, scenario_grid(s), procs);
   double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
   // (glibc keeps freed pages for reuse: the others' points' and the moved points' go back)
   if (procs.distributed()) release_free_memory();
@@ -390,9 +390,9 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     };
     while (unstable.ok && !stage_done()) {
       // Point order and point changes between steps (docs/method.md, "Point order").
-      // Split among processes, the points are kept in slabs of the grid (point_shares.hpp).
+      // Split among processes, the points are kept in blocks of the grid (point_shares.hpp).
       if (solver->steps() % (opt.sort_every > 0 ? opt.sort_every : kSortEvery) == 0 &&
-          repartition_in_slabs(particles, solver->grid(), procs)) {
+          repartition_in_blocks(particles, solver->grid(), procs)) {
         solver->particles_changed();
         ++rebalances;
       }
@@ -419,7 +419,7 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
         }
         if (split_points(particles, split) > 0) solver->particles_changed();
         if (procs.distributed() && share_imbalance(particles, procs) > split.rebalance_above) {
-          if (repartition_in_slabs(particles, solver->grid(), procs)) {  // (split points land unevenly)
+          if (repartition_in_blocks(particles, solver->grid(), procs)) {  // (split points land unevenly)
             solver->particles_changed();
             ++rebalances;
           }

@@ -71,7 +71,7 @@ struct SolverSettings {
   // phase couples them. Rigid bodies need it.
   ContactSettings<D> contact;
   // The processes the points are split among (parallel/processes.hpp; default: this one alone).
-  // Each holds its share of the points, in a slab of the grid (repartition_in_slabs), and works on
+  // Each holds its share of the points, in a block of the grid (repartition_in_blocks), and works on
   // the box of nodes they reach; the grid sums are completed where boxes overlap
   // (transfer/box_exchange.hpp) and the points' sums over every process.
   Processes processes;

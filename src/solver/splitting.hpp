@@ -39,7 +39,7 @@ struct SplitSettings {
   long max_points = 0;                    // no split once the run holds this many points (0: no cap)
   double min_volume = 0.0;                // no split into children of a smaller current volume
   std::vector<std::uint8_t> body_splits;  // per body id: 1 if its points split
-  // Across processes: the points are cut into slabs again (repartition_in_slabs) once the most
+  // Across processes: the points are cut into blocks again (repartition_in_blocks) once the most
   // points a process holds pass this multiple of the mean.
   double rebalance_above = 1.1;
 };

@@ -1,8 +1,8 @@
 // The grid's blocks of a distributed run (issue 55): each process works on the box of nodes its
 // own points reach (node_box.hpp), and a grid sum is completed only where boxes overlap, between
 // the processes whose boxes meet, instead of over the whole grid in every process. The points
-// are kept in slabs of the grid (point_shares.hpp, repartition_in_slabs), so the overlaps are the
-// layers where neighbouring slabs meet: ghost layers as wide as the kernel's reach.
+// are kept in blocks of the grid (point_shares.hpp, repartition_in_blocks), so the overlaps are the
+// layers where neighbouring blocks meet: ghost layers as wide as the kernel's reach.
 //
 // A node's sum is formed once, by its owner (the lowest rank whose box holds it), from its own
 // part and the others' in rank order, and sent back to the other holders (PetscSF's reduce and

@@ -257,7 +257,7 @@ TEST(DistributedRun, SlideWithSplittingEqualsOneProcess) {
 // The cap binds: its points are the run's, not each process's (where it binds, which points split
 // depends on the split).
 // Split points land unevenly among the processes: once the most one holds pass rebalance_above
-// times the mean, the points are cut into slabs again at once (as every sort_every steps), and the
+// times the mean, the points are cut into blocks again at once (as every sort_every steps), and the
 // run still equals one process's; `rebalances` counts the repartitions that moved points.
 TEST(DistributedRun, SplitSharesAreEvenedOut) {
   std::string text = kSlope;

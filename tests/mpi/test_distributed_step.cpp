@@ -51,14 +51,15 @@ struct Outcome {
 };
 
 // How the points are shared among the processes: contiguous runs of them (keep_share), runs cut one
-// point later (through a cell's points), or every k-th point and then slabs (repartition_in_slabs).
-enum class Shares { runs, odd, slabs };
+// point later (through a cell's points), or every k-th point and then blocks (repartition_in_blocks).
+enum class Shares { runs, odd, blocks };
 
-// The slabs of repartition_in_slabs from points dealt out one by one (the worst shares for the
-// boxes): the points are all still there, each process holds N/k of them (to one), and along the
-// axis of the cut each process's points lie beyond the lower ranks' but for one sixteenth of a cell.
+// The blocks of repartition_in_blocks from points dealt out one by one (the worst shares for the
+// boxes): the points are all still there, each process holds N/k of them (to one), and of any two
+// processes the higher one's points lie beyond the lower one's along the axis of the cut that
+// parted them, but for one sixteenth of a cell.
 template <int D>
-void deal_into_slabs(Particles<D>& P, const GridGeometry<D>& g, const Processes& procs) {
+void deal_into_blocks(Particles<D>& P, const GridGeometry<D>& g, const Processes& procs) {
   const std::size_t n = P.size(), k = static_cast<std::size_t>(procs.size()),
                     r = static_cast<std::size_t>(procs.rank());
   std::vector<std::uint8_t> keep(n, 0);
@@ -69,8 +70,8 @@ void deal_into_slabs(Particles<D>& P, const GridGeometry<D>& g, const Processes&
     for (int d = 0; d < D; ++d) sums[1 + d] += P.mass[p] * P.x[p][d];
   }
   P.erase(keep);
-  EXPECT_TRUE(repartition_in_slabs(P, g, procs));
-  EXPECT_FALSE(repartition_in_slabs(P, g, procs)) << "a second call moved points";
+  EXPECT_TRUE(repartition_in_blocks(P, g, procs));
+  EXPECT_FALSE(repartition_in_blocks(P, g, procs)) << "a second call moved points";
   long held = static_cast<long>(P.size());
   std::vector<double> all_held(k);
   const double mine = static_cast<double>(held);
@@ -99,13 +100,15 @@ void deal_into_slabs(Particles<D>& P, const GridGeometry<D>& g, const Processes&
     EXPECT_NEAR(after[1 + d], sums[1 + d], 1e-12 * sums[0] * reach) << "moment " << d;
   std::vector<double> all_ends(2 * D * k);
   procs.gather(ends, 2 * D, all_ends.data(), all_ends.size());
-  bool slabs = false;  // along some axis, every process's points beyond the lower ranks'
-  for (int d = 0; d < D && !slabs; ++d) {
-    slabs = true;
-    for (std::size_t q = 1; q < k; ++q)
-      slabs = slabs && all_ends[2 * D * q + d] >= all_ends[2 * D * (q - 1) + D + d] - g.h / 16;
-  }
-  EXPECT_TRUE(slabs) << "the shares are not slabs";
+  // Blocks: of any two processes, the higher one's points lie beyond the lower one's along some
+  // axis (the cut that parted them), but for one sixteenth of a cell.
+  for (std::size_t q = 0; q < k; ++q)
+    for (std::size_t t = q + 1; t < k; ++t) {
+      bool parted = false;
+      for (int d = 0; d < D; ++d)
+        parted = parted || all_ends[2 * D * t + d] >= all_ends[2 * D * q + D + d] - g.h / 16;
+      EXPECT_TRUE(parted) << "processes " << q << " and " << t << " overlap along every axis";
+    }
 }
 
 template <int D>
@@ -115,8 +118,8 @@ Outcome step(const ScenarioOf<D>& s, const Processes& procs, long steps, int thr
   apply_initial_stress(s, P);
   if (shares == Shares::runs || !procs.distributed()) {
     keep_share(P, procs);  // this process's share: a contiguous run of the points
-  } else if (shares == Shares::slabs) {
-    deal_into_slabs(P, scenario_grid(s), procs);
+  } else if (shares == Shares::blocks) {
+    deal_into_blocks(P, scenario_grid(s), procs);
   } else {  // the shares cut one point later: through a cell's points
     const std::size_t n = P.size(), r = static_cast<std::size_t>(procs.rank()),
                       k = static_cast<std::size_t>(procs.size());
@@ -158,7 +161,7 @@ Outcome step(const ScenarioOf<D>& s, const Processes& procs, long steps, int thr
   for (const Sym3& n : nodal.stress) o.node_stress.insert(o.node_stress.end(), n.data(), n.data() + 6);
   for (const Vec<D>& v : nodal.velocity)
     o.node_velocity.insert(o.node_velocity.end(), v.data(), v.data() + D);
-  // The points in the order of their first positions (slabs hand them on among the processes).
+  // The points in the order of their first positions (blocks hand them on among the processes).
   std::vector<double> own_ref(D * P.size()), ref(static_cast<std::size_t>(D * o.points));
   for (std::size_t p = 0; p < P.size(); ++p)
     for (int d = 0; d < D; ++d) own_ref[D * p + static_cast<std::size_t>(d)] = P.x_ref[p][d];
@@ -285,10 +288,11 @@ TEST(DistributedStep, SoilColumnCellAveragedThroughASharedCell) {
       example2("soil_column.toml", "volumetric_strain = \"point\"", "volumetric_strain = \"cell-average\""),
       300, "column, cell-average", false, Shares::odd);
 }
-// Points dealt out one by one, then kept in slabs: each process's box is its slab's, and the grid's
+// Points dealt out one by one, then kept in blocks (at 4 processes the column's halves are cut
+// again across its width): each process's box is its block's, and the grid's
 // sums are completed where the boxes meet (box_exchange.hpp).
-TEST(DistributedStep, SoilColumnInSlabs) {
-  expect_same<2>(example2("soil_column.toml"), 300, "soil column, slabs", false, Shares::slabs);
+TEST(DistributedStep, SoilColumnInBlocks) {
+  expect_same<2>(example2("soil_column.toml"), 300, "soil column, blocks", false, Shares::blocks);
 }
 TEST(DistributedStep, SoilColumnUnderEachTransfer) {
   for (const char* t : {"flip", "apic", "aflip"})
