@@ -6,8 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <mutex>
 #include <string>
+
+#include "parallel/petsc_start.hpp"
 
 namespace skred {
 
@@ -15,45 +16,9 @@ namespace {
 
 // PETSc's calls return an error code; a failing one becomes a LinearSolverError.
 void check(PetscErrorCode code, const char* call) {
-  if (code == 0) return;
-  const char* text = nullptr;
-  PetscErrorMessage(code, &text, nullptr);
-  throw LinearSolverError(fmt::format("PETSc: {} failed: {}", call, text ? text : "unknown error"));
+  if (code != 0) throw LinearSolverError(petsc_failure(code, call));
 }
 #define SKRED_PETSC(call) check((call), #call)
-
-// PETSc (and MPI under it) start once per process, the first time an implicit stage needs
-// them, and stop at exit; errors come back as codes instead of printed traces.
-void start_petsc() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    PetscBool started = PETSC_FALSE;
-    PetscInitialized(&started);
-    if (started) return;
-    // A process that mpirun did not start is an MPI singleton: OpenMPI's isolated singleton
-    // start, with no transport but to itself, takes 0.05 s instead of 0.4 s (measured
-    // 2026-12-02). The user's own settings win (setenv does not overwrite).
-    if (!std::getenv("OMPI_COMM_WORLD_SIZE") && !std::getenv("PMIX_RANK")) {
-      setenv("OMPI_MCA_ess_singleton_isolated", "1", 0);
-      setenv("OMPI_MCA_btl", "self", 0);
-      setenv("OMPI_MCA_pml", "ob1", 0);
-    }
-    // PETSc's own signal handlers would take SIGINT/SIGTERM from skred's checkpointing
-    // (run/checkpointing.hpp) and turn a crash into an MPI abort: off.
-    const char* given = std::getenv("PETSC_OPTIONS");
-    setenv("PETSC_OPTIONS", (std::string(given ? given : "") + " -no_signal_handler").c_str(), 1);
-    check(PetscInitializeNoArguments(), "PetscInitialize");
-    PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
-    // PETSc stops before MPI does (finish_processes) when skred started MPI, else at exit.
-    const auto stop = [] {
-      PetscBool stopped = PETSC_FALSE;
-      PetscFinalized(&stopped);
-      if (!stopped) PetscFinalize();
-    };
-    stop_before_finish(stop);
-    std::atexit(stop);
-  });
-}
 
 }  // namespace
 

@@ -3,7 +3,7 @@
 // pattern comes from the points' stencils (exact preallocation, dof_map.hpp); this class hands
 // it to PETSc, factorises it (direct: MUMPS' Cholesky where the matrix is symmetric, LU where
 // not) or sets up a Krylov solver with algebraic multigrid (iterative), and solves. PETSc stays
-// behind this header: nothing else in skred includes it.
+// behind this header (and parallel/star_forest.hpp's, for the exchanges between processes).
 //
 // Across processes (issue 55) every process knows the whole pattern, the right-hand side and the
 // solution; the matrix is PETSc's parallel one (MPIAIJ), its rows owned in contiguous runs of

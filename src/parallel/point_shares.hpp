@@ -16,6 +16,7 @@
 #include "core/grid.hpp"
 #include "core/particles.hpp"
 #include "parallel/processes.hpp"
+#include "parallel/star_forest.hpp"
 
 namespace skred {
 
@@ -37,32 +38,33 @@ double share_imbalance(const Particles<D>& P, const Processes& procs) {
   return all > 0 ? static_cast<double>(most) * procs.size() / static_cast<double>(all) : 1.0;
 }
 
-// Sends give[q] points to each process q (the points in runs by destination, in rank order) and
-// receives take[q] from each, in rank order: one MPI_Alltoallv per field. An optional field that
-// some process holds is held by all afterwards (its initial value where it was not).
+// Moves points between processes over a star forest (star_forest.hpp): the points here are the
+// roots, and the points this process takes are its leaves: from[2 q] points from process q, the
+// run of q's points that starts at from[2 q + 1], in rank order. One broadcast per field. An
+// optional field that some process holds is held by all afterwards (its initial value where it
+// was not).
 template <int D>
-void move_points(Particles<D>& P, const Processes& procs, const std::vector<long>& give,
-                 const std::vector<long>& take) {
+void move_points(Particles<D>& P, const Processes& procs, const std::vector<long>& from) {
   const std::size_t k = static_cast<std::size_t>(procs.size());
-  long mine = 0;
-  for (long t : take) mine += t;
+  std::vector<int> rank;
+  std::vector<long> index;
+  for (std::size_t q = 0; q < k; ++q)
+    for (long j = 0; j < from[2 * q]; ++j)
+      rank.push_back(static_cast<int>(q)), index.push_back(from[2 * q + 1] + j);
   const std::size_t held = P.size();
+  StarForest forest;
+  forest.connect(procs, static_cast<long>(held), rank, index);
   std::vector<double> present;  // per field: held here (1) or not
   P.for_each_field(
       [&](const auto& f, const auto& a) { present.push_back(f.optional && a.empty() ? 0.0 : 1.0); });
   procs.max(present.data(), present.size());
   std::size_t at = 0;
-  std::vector<long> give_bytes(k), take_bytes(k);
   P.for_each_field([&](const auto& f, auto& a) {
     if (present[at++] == 0.0) return;
     using T = typename std::decay_t<decltype(f)>::value_type;
     if (a.empty()) a.assign(held, f.initial());  // (an optional field another process holds)
-    for (std::size_t q = 0; q < k; ++q) {
-      give_bytes[q] = give[q] * static_cast<long>(sizeof(T));
-      take_bytes[q] = take[q] * static_cast<long>(sizeof(T));
-    }
-    std::decay_t<decltype(a)> b(static_cast<std::size_t>(mine));
-    procs.exchange(a.data(), give_bytes, b.data(), take_bytes);
+    std::decay_t<decltype(a)> b(rank.size());
+    forest.broadcast_bytes(sizeof(T), a.data(), b.data());  // (plain values: numbers, fixed-size Eigen)
     a.swap(b);
   });
 }
@@ -76,7 +78,7 @@ void move_points(Particles<D>& P, const Processes& procs, const std::vector<long
 // across its own points' widest axis, until each holds one process. At 2 processes the blocks
 // are slabs. Points in another process's block move there: those that crossed a cut since the
 // last call, or many after an axis changed. Returns whether any moved. Every process calls it; it
-// costs log2 N histograms' sums and small gathers when no point moves.
+// costs log2 N histograms' sums, small gathers and an all-to-all of two numbers when no point moves.
 template <int D>
 bool repartition_in_blocks(Particles<D>& P, const GridGeometry<D>& g, const Processes& procs) {
   if (!procs.distributed()) return false;
@@ -192,23 +194,19 @@ bool repartition_in_blocks(Particles<D>& P, const GridGeometry<D>& g, const Proc
     to[p] = static_cast<std::uint32_t>(groups[in[p]].a);
     ++give[to[p]];
   }
-  std::vector<double> gives(k), every(k * k);  // every process's gives
-  for (std::size_t q = 0; q < k; ++q) gives[q] = static_cast<double>(give[q]);
-  procs.gather(gives.data(), k, every.data(), every.size());
-  std::vector<long> take(k);
-  long moving = 0;
-  for (std::size_t q = 0; q < k; ++q) {
-    take[q] = static_cast<long>(every[q * k + r]);
-    for (std::size_t s = 0; s < k; ++s) moving += s == q ? 0 : static_cast<long>(every[q * k + s]);
-  }
-  if (moving == 0) return false;
-  std::vector<std::uint32_t> order(n);  // by destination, stable
-  std::vector<long> at(k + 1, 0);
+  std::vector<long> at(k + 1, 0);  // where each destination's run starts, in order by destination
   for (std::size_t q = 0; q < k; ++q) at[q + 1] = at[q] + give[q];
+  // Each process learns how many points every other gives it, and where that run starts in the
+  // giver's order.
+  std::vector<long> offer(2 * k), from(2 * k);
+  for (std::size_t q = 0; q < k; ++q) offer[2 * q] = give[q], offer[2 * q + 1] = at[q];
+  procs.all_to_all(offer.data(), 2, from.data());
+  if (procs.sum_of(static_cast<long>(n) - give[r]) == 0) return false;
+  std::vector<std::uint32_t> order(n);  // by destination, stable
   for (std::size_t p = 0; p < n; ++p)
     order[static_cast<std::size_t>(at[to[p]]++)] = static_cast<std::uint32_t>(p);
   P.reorder(order);
-  move_points(P, procs, give, take);
+  move_points(P, procs, from);
   return true;
 }
 

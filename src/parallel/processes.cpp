@@ -101,6 +101,12 @@ long Processes::max(long v) const {
 
 Exchanged exchanged() { return traffic; }
 
+void count_exchange(long calls, long messages, double bytes) {
+  traffic.calls += calls;
+  traffic.messages += messages;
+  traffic.bytes += bytes;
+}
+
 void Processes::barrier() const {
   if (!distributed()) return;
   ++traffic.calls;
@@ -137,6 +143,17 @@ void Processes::gather(const double* data, std::size_t n, double* all, std::size
   MPI_Allgatherv(data, mine, MPI_DOUBLE, all, counts.data(), starts.data(), MPI_DOUBLE, comm_of(comm_));
 }
 
+void Processes::all_to_all(const long* send, int per, long* recv) const {
+  if (!distributed()) {
+    std::copy_n(send, per, recv);
+    return;
+  }
+  ++traffic.calls;
+  traffic.messages += size_ - 1;
+  traffic.bytes += static_cast<double>(size_ - 1) * per * sizeof(long);
+  MPI_Alltoall(send, per, MPI_LONG, recv, per, MPI_LONG, comm_of(comm_));
+}
+
 void Processes::exchange(const void* send, const std::vector<long>& send_bytes, void* recv,
                          const std::vector<long>& recv_bytes) const {
   if (!distributed()) {
@@ -158,6 +175,7 @@ void Processes::exchange(const void* send, const std::vector<long>& send_bytes, 
     r_at += recv_bytes[q];
   }
   ++traffic.calls;
+  for (std::size_t q = 0; q < k; ++q) traffic.messages += q != static_cast<std::size_t>(rank_) && sc[q] > 0;
   traffic.bytes += static_cast<double>(s_at);
   MPI_Alltoallv(send, sc.data(), sd.data(), MPI_BYTE, recv, rc.data(), rd.data(), MPI_BYTE, comm_of(comm_));
 }

@@ -48,6 +48,9 @@ class Processes {
   // Concatenates each process's `n` doubles in rank order into `all` (size: the sum of the n's),
   // on every process.
   void gather(const double* data, std::size_t n, double* all, std::size_t all_n) const;
+  // Sends `per` longs to each process q (send[q per], ...) and receives as many from each into
+  // recv, in rank order (MPI_Alltoall).
+  void all_to_all(const long* send, int per, long* recv) const;
   // Sends send_bytes[q] bytes from `send` (the runs for q = 0, 1, ... in order) to each process q
   // and receives recv_bytes[q] from each into `recv`, in rank order (MPI_Alltoallv; each count
   // below 2^31).
@@ -59,14 +62,17 @@ class Processes {
   void* comm_ = nullptr;  // the MPI communicator (MPI_Comm), when distributed
 };
 
-// What this process has exchanged with the others so far: its collective calls, and the bytes it
-// gave to them (an allreduce of n doubles: 8 n; a gather: its own part). For the exchange's share
-// of a step (skred bench; docs/studies).
+// What this process has exchanged with the others so far: its calls that communicate, the
+// messages it sent to single processes in them (a star forest's or an all-to-all's to each
+// neighbour; an allreduce counts none), and the bytes it gave (an allreduce of n doubles: 8 n; a
+// gather: its own part). For the exchange's share of a step (skred bench; docs/studies).
 struct Exchanged {
-  long calls = 0;
+  long calls = 0, messages = 0;
   double bytes = 0.0;
 };
 Exchanged exchanged();
+// Adds to exchanged() (the exchanges that other classes make: star_forest.hpp).
+void count_exchange(long calls, long messages, double bytes);
 
 // MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
 // Returns the world's size.

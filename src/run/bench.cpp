@@ -45,6 +45,9 @@ std::vector<double> sorted(std::vector<double> v) {
 void count_exchange(BenchResult& res, const Exchanged& before, int steps, const Processes& procs) {
   const Exchanged now = exchanged();
   res.calls_per_step = static_cast<double>(now.calls - before.calls) / std::max(steps, 1);
+  double messages = static_cast<double>(now.messages - before.messages) / std::max(steps, 1);
+  procs.sum(&messages, 1);
+  res.messages_per_step = messages / procs.size();
   double bytes = (now.bytes - before.bytes) / std::max(steps, 1), most = bytes;
   procs.sum(&bytes, 1);
   procs.max(&most, 1);

@@ -54,9 +54,11 @@ struct BenchResult {
   double idle_rss_bytes = 0.0;  // resident before the bench built anything
   double runout = 0.0;          // column: front advance after the timed steps [m]
   long yielding = 0;            // column: points whose last stress update was plastic
-  // Distributed: the collective calls and the bytes a process gave to them, per timed step
-  // (parallel/processes.hpp, exchanged()): the processes' mean, and the most.
+  // Distributed: the calls that communicate, the messages to single processes in them and the
+  // bytes a process gave, per timed step (parallel/processes.hpp, exchanged()): the processes'
+  // mean, and the most.
   double calls_per_step = 0.0, bytes_per_step = 0.0;  // (bytes: the processes' mean)
+  double messages_per_step = 0.0;                     // (the processes' mean)
   double most_bytes_per_step = 0.0;                   // the most a process sent
   std::string status = "completed";
   // Seconds per phase of the time step over the timed steps of all repeats (in step order).

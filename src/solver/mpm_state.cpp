@@ -50,12 +50,7 @@ void sum_smoothing_over_processes(const GridGeometry<D>& g, const Particles<D>& 
     for (int c = 0; c < 6; ++c) s.stress[i].data()[c] = at[1 + c];
     for (int d = 0; d < D; ++d) s.velocity[i][d] = at[7 + d];
   };
-  const auto add = [&](std::size_t i, const double* at) {
-    s.mass[i] += at[0];
-    for (int c = 0; c < 6; ++c) s.stress[i].data()[c] += at[1 + c];
-    for (int d = 0; d < D; ++d) s.velocity[i][d] += at[7 + d];
-  };
-  boxes.sum(per, pack, add, set);
+  boxes.sum(per, pack, set);
   boxes.gather_to_first(per, pack, set);
 }
 

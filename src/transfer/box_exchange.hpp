@@ -4,10 +4,11 @@
 // are kept in blocks of the grid (point_shares.hpp, repartition_in_blocks), so the overlaps are the
 // layers where neighbouring blocks meet: ghost layers as wide as the kernel's reach.
 //
-// A node's sum is formed once, by its owner (the lowest rank whose box holds it), from its own
-// part and the others' in rank order, and sent back to the other holders (PetscSF's reduce and
-// broadcast, over MPI_Alltoallv): every holder then has the same bits. Node totals (the walls'
-// and contact's work) count each node once, in the process that `counts` it.
+// A node held by several processes is owned by the lowest rank whose box holds it. The shared
+// nodes form a PETSc star forest (parallel/star_forest.hpp): a root at the owner, a leaf at each
+// other holder. A sum reduces the leaves' parts into the owner's, which sends the sum back, so
+// every holder has the same bits. The forest is rebuilt only when a box changed. Node totals (the
+// walls' and contact's work) count each node once, in the process that `counts` it.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -16,6 +17,7 @@
 
 #include "core/grid.hpp"
 #include "parallel/processes.hpp"
+#include "parallel/star_forest.hpp"
 #include "transfer/node_box.hpp"
 
 namespace skred {
@@ -32,13 +34,17 @@ class BoxExchange {
     for (int d = 0; d < D; ++d) ends[d] = mine.lo[d], ends[D + d] = mine.hi[d];
     all_.resize(2 * D * k);
     procs.gather(ends, 2 * D, all_.data(), all_.size());
-    boxes_.resize(k);
 
+    bool same = forest_set_ && boxes_.size() == k;
+    boxes_.resize(k);
     for (std::size_t q = 0; q < k; ++q)
       for (int d = 0; d < D; ++d) {
-        boxes_[q].lo[d] = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(d)]);
-        boxes_[q].hi[d] = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(D + d)]);
+        const int lo = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(d)]);
+        const int hi = static_cast<int>(all_[2 * D * q + static_cast<std::size_t>(D + d)]);
+        same = same && boxes_[q].lo[d] == lo && boxes_[q].hi[d] == hi;
+        boxes_[q].lo[d] = lo, boxes_[q].hi[d] = hi;
       }
+    if (!same) set_forest();  // (every process sees the same boxes: all rebuild, or none)
   }
   const Processes& processes() const { return procs_; }
   const std::vector<NodeBox<D>>& boxes() const { return boxes_; }
@@ -56,28 +62,23 @@ class BoxExchange {
   }
 
   // The sum over the processes of per-node fields, `per` doubles a node: pack(i, at) writes
-  // node i's part, add(i, at) adds another's to it, set(i, at) replaces it with the sum.
-  // Collective: two MPI_Alltoallv.
-  template <class Pack, class Add, class Set>
-  void sum(int per, Pack&& pack, Add&& add, Set&& set) {
-    const int r = procs_.rank(), k = procs_.size();
-    const auto mine = boxes_[static_cast<std::size_t>(r)];
-    // Phase 1: each part goes to the node's owner, which adds them in rank order.
-    exchange(
-        per, [&](int q, std::size_t i) { return q < r && owner(i) == q; },
-        [&](int q, std::size_t i) { return q > r && owner(i) == r; }, pack);
-    for (int q = r + 1, at = 0; q < k; ++q)
-      walk(mine, boxes_[static_cast<std::size_t>(q)], [&](std::size_t i) {
-        if (owner(i) == r) add(i, recv_.data() + static_cast<std::size_t>(at++) * per);
-      });
-    // Phase 2: the owner sends the sums back to the other holders.
-    exchange(
-        per, [&](int q, std::size_t i) { return q > r && owner(i) == r; },
-        [&](int q, std::size_t i) { return q < r && owner(i) == q; }, pack);
-    for (int q = 0, at = 0; q < r; ++q)
-      walk(mine, boxes_[static_cast<std::size_t>(q)], [&](std::size_t i) {
-        if (owner(i) == q) set(i, recv_.data() + static_cast<std::size_t>(at++) * per);
-      });
+  // node i's part, set(i, at) replaces it with the sum. Collective: a reduction and a broadcast
+  // over the star forest.
+  template <class Pack, class Set>
+  void sum(int per, Pack&& pack, Set&& set) {
+    const std::size_t n = static_cast<std::size_t>(per);
+    root_data_.resize(roots_.size() * n);
+    leaf_data_.resize(leaves_.size() * n);
+    for (std::size_t k = 0; k < roots_.size(); ++k)
+      pack(static_cast<std::size_t>(roots_[k]), root_data_.data() + k * n);
+    for (std::size_t k = 0; k < leaves_.size(); ++k)
+      pack(static_cast<std::size_t>(leaves_[k]), leaf_data_.data() + k * n);
+    forest_.reduce(per, leaf_data_.data(), root_data_.data());
+    for (std::size_t k = 0; k < roots_.size(); ++k)
+      set(static_cast<std::size_t>(roots_[k]), root_data_.data() + k * n);
+    forest_.broadcast(per, root_data_.data(), leaf_data_.data());
+    for (std::size_t k = 0; k < leaves_.size(); ++k)
+      set(static_cast<std::size_t>(leaves_[k]), leaf_data_.data() + k * n);
   }
 
   // The first process gets every node's value where another process owns it (for a file it
@@ -165,36 +166,26 @@ class BoxExchange {
       for (long j = 0; j < width; ++j) fn(first + static_cast<std::size_t>(j));
     }
   }
-  // Sends each process q the packed nodes of this box and q's where sends(q, i), and receives
-  // into recv_ those where takes(q, i), in rank order.
-  template <class Sends, class Takes, class Pack>
-  void exchange(int per, Sends&& sends, Takes&& takes, Pack&& pack) {
-    const int r = procs_.rank(), k = procs_.size();
-    const auto mine = boxes_[static_cast<std::size_t>(r)];
-    send_bytes_.assign(static_cast<std::size_t>(k), 0);
-    recv_bytes_.assign(static_cast<std::size_t>(k), 0);
-    send_.clear();
-    long received = 0;
-    for (int q = 0; q < k; ++q) {
-      if (q == r) continue;
-      const auto& other = boxes_[static_cast<std::size_t>(q)];
-      long sent = 0, taken = 0;
-      walk(mine, other, [&](std::size_t i) {
-        if (sends(q, i)) {
-          send_.resize(send_.size() + static_cast<std::size_t>(per));
-          pack(i, send_.data() + send_.size() - static_cast<std::size_t>(per));
-          ++sent;
-        } else if (takes(q, i)) {
-          ++taken;
-        }
-      });
-      send_bytes_[static_cast<std::size_t>(q)] = sent * per * static_cast<long>(sizeof(double));
-      recv_bytes_[static_cast<std::size_t>(q)] = taken * per * static_cast<long>(sizeof(double));
-      received += taken * per;
+  // The star forest of the shared nodes: in this box, those it owns that another box holds
+  // (roots) and those another process owns (leaves).
+  void set_forest() {
+    const int r = procs_.rank();
+    const auto& mine = boxes_[static_cast<std::size_t>(r)];
+    roots_.clear();
+    leaves_.clear();
+    for (std::size_t q = 0; q < boxes_.size(); ++q) {
+      if (static_cast<int>(q) == r) continue;
+      walk(mine, boxes_[q],
+           [&](std::size_t i) { (owner(i) == r ? roots_ : leaves_).push_back(static_cast<long>(i)); });
     }
-    recv_.resize(static_cast<std::size_t>(std::max(1L, received)));
-    if (send_.empty()) send_.resize(1);
-    procs_.exchange(send_.data(), send_bytes_, recv_.data(), recv_bytes_);
+    for (auto* v : {&roots_, &leaves_}) {
+      std::sort(v->begin(), v->end());
+      v->erase(std::unique(v->begin(), v->end()), v->end());
+    }
+    long nodes = 1;
+    for (int d = 0; d < D; ++d) nodes *= nodes_[d];
+    forest_.match_nodes(procs_, nodes, roots_, leaves_);
+    forest_set_ = true;
   }
 
   Processes procs_;
@@ -202,6 +193,10 @@ class BoxExchange {
   std::vector<NodeBox<D>> boxes_;
   std::vector<double> all_, send_, recv_;
   std::vector<long> send_bytes_, recv_bytes_;
+  StarForest forest_;
+  bool forest_set_ = false;
+  std::vector<long> roots_, leaves_;  // global node numbers, ascending
+  std::vector<double> root_data_, leaf_data_;
 };
 
 }  // namespace skred

@@ -90,12 +90,6 @@ class Transfer {
             for (int d = 0; d < D; ++d) at[d] = vec[i][d];
         },
         [&](std::size_t i, const double* at) {
-          if (a) a[i] += *at++;
-          if (b) b[i] += *at++;
-          if (vec)
-            for (int d = 0; d < D; ++d) vec[i][d] += at[d];
-        },
-        [&](std::size_t i, const double* at) {
           if (a) a[i] = *at++;
           if (b) b[i] = *at++;
           if (vec)
