@@ -440,8 +440,9 @@ static int command(int argc, char** argv) {
       if (bo.processes.distributed())
         fmt::print(
             "exchanged per step by each process: {:.0f} calls, {:.1f} messages to single processes, "
-            "{:.2f} MB (most {:.2f} MB)\n",
-            r.calls_per_step, r.messages_per_step, r.bytes_per_step / 1e6, r.most_bytes_per_step / 1e6);
+            "{:.2f} MB (most {:.2f} MB); star forests set up: {:.2f}\n",
+            r.calls_per_step, r.messages_per_step, r.bytes_per_step / 1e6, r.most_bytes_per_step / 1e6,
+            r.forests_per_step);
       double total = 0.0;
       for (const auto& [name, s] : r.phase_seconds) total += s;
       fmt::print("time per phase (all repeats):\n");

@@ -101,7 +101,8 @@ long Processes::max(long v) const {
 
 Exchanged exchanged() { return traffic; }
 
-void count_exchange(long calls, long messages, double bytes) {
+void count_exchange(long calls, long messages, double bytes, long forests) {
+  traffic.forests += forests;
   traffic.calls += calls;
   traffic.messages += messages;
   traffic.bytes += bytes;

@@ -68,11 +68,12 @@ class Processes {
 // gather: its own part). For the exchange's share of a step (skred bench; docs/studies).
 struct Exchanged {
   long calls = 0, messages = 0;
+  long forests = 0;  // star forests set up (star_forest.hpp): each costs a few collective calls
   double bytes = 0.0;
 };
 Exchanged exchanged();
 // Adds to exchanged() (the exchanges that other classes make: star_forest.hpp).
-void count_exchange(long calls, long messages, double bytes);
+void count_exchange(long calls, long messages, double bytes, long forests = 0);
 
 // MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
 // Returns the world's size.

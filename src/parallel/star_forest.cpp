@@ -58,6 +58,7 @@ struct StarForest::Petsc {
   // After the graph is set: the counts of what goes to other processes.
   void set_up(const Processes& procs) {
     SKRED_PETSC(PetscSFSetUp(sf));
+    count_exchange(0, 0, 0.0, 1);
     const PetscMPIInt me = procs.rank();
     PetscInt n = 0;
     const PetscMPIInt* ranks = nullptr;

@@ -48,6 +48,7 @@ void count_exchange(BenchResult& res, const Exchanged& before, int steps, const 
   double messages = static_cast<double>(now.messages - before.messages) / std::max(steps, 1);
   procs.sum(&messages, 1);
   res.messages_per_step = messages / procs.size();
+  res.forests_per_step = static_cast<double>(now.forests - before.forests) / std::max(steps, 1);
   double bytes = (now.bytes - before.bytes) / std::max(steps, 1), most = bytes;
   procs.sum(&bytes, 1);
   procs.max(&most, 1);

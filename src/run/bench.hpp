@@ -59,6 +59,7 @@ struct BenchResult {
   // mean, and the most.
   double calls_per_step = 0.0, bytes_per_step = 0.0;  // (bytes: the processes' mean)
   double messages_per_step = 0.0;                     // (the processes' mean)
+  double forests_per_step = 0.0;                      // star forests set up
   double most_bytes_per_step = 0.0;                   // the most a process sent
   std::string status = "completed";
   // Seconds per phase of the time step over the timed steps of all repeats (in step order).
