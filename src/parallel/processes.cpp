@@ -7,9 +7,7 @@
 #include <mpi.h>
 
 #include <algorithm>
-#include <climits>
 #include <cstdlib>
-#include <stdexcept>
 #include <vector>
 
 namespace skred {
@@ -153,32 +151,6 @@ void Processes::all_to_all(const long* send, int per, long* recv) const {
   traffic.messages += size_ - 1;
   traffic.bytes += static_cast<double>(size_ - 1) * per * sizeof(long);
   MPI_Alltoall(send, per, MPI_LONG, recv, per, MPI_LONG, comm_of(comm_));
-}
-
-void Processes::exchange(const void* send, const std::vector<long>& send_bytes, void* recv,
-                         const std::vector<long>& recv_bytes) const {
-  if (!distributed()) {
-    if (!send_bytes.empty() && send != recv)
-      std::copy_n(static_cast<const char*>(send), send_bytes[0], static_cast<char*>(recv));
-    return;
-  }
-  const std::size_t k = static_cast<std::size_t>(size_);
-  std::vector<int> sc(k), sd(k), rc(k), rd(k);
-  long s_at = 0, r_at = 0;
-  for (std::size_t q = 0; q < k; ++q) {
-    if (send_bytes[q] > INT_MAX || recv_bytes[q] > INT_MAX || s_at > INT_MAX || r_at > INT_MAX)
-      throw std::length_error("a process's exchange of points is beyond MPI's 2 GB per call");
-    sc[q] = static_cast<int>(send_bytes[q]);
-    sd[q] = static_cast<int>(s_at);
-    rc[q] = static_cast<int>(recv_bytes[q]);
-    rd[q] = static_cast<int>(r_at);
-    s_at += send_bytes[q];
-    r_at += recv_bytes[q];
-  }
-  ++traffic.calls;
-  for (std::size_t q = 0; q < k; ++q) traffic.messages += q != static_cast<std::size_t>(rank_) && sc[q] > 0;
-  traffic.bytes += static_cast<double>(s_at);
-  MPI_Alltoallv(send, sc.data(), sd.data(), MPI_BYTE, recv, rc.data(), rd.data(), MPI_BYTE, comm_of(comm_));
 }
 
 }  // namespace skred

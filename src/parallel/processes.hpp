@@ -51,11 +51,6 @@ class Processes {
   // Sends `per` longs to each process q (send[q per], ...) and receives as many from each into
   // recv, in rank order (MPI_Alltoall).
   void all_to_all(const long* send, int per, long* recv) const;
-  // Sends send_bytes[q] bytes from `send` (the runs for q = 0, 1, ... in order) to each process q
-  // and receives recv_bytes[q] from each into `recv`, in rank order (MPI_Alltoallv; each count
-  // below 2^31).
-  void exchange(const void* send, const std::vector<long>& send_bytes, void* recv,
-                const std::vector<long>& recv_bytes) const;
 
  private:
   int rank_ = 0, size_ = 1, local_rank_ = 0, local_size_ = 1;

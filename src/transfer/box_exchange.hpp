@@ -82,43 +82,43 @@ class BoxExchange {
   }
 
   // The first process gets every node's value where another process owns it (for a file it
-  // writes of the whole grid): pack(i, at) writes node i's, set(i, at) takes it. Collective: one
-  // MPI_Alltoallv, of each process's owned nodes only.
+  // writes of the whole grid): pack(i, at) writes node i's, set(i, at) takes it. Collective: a
+  // broadcast over a star forest whose roots are each process's owned nodes and whose leaves are
+  // in the first process.
   template <class Pack, class Set>
   void gather_to_first(int per, Pack&& pack, Set&& set) {
     const int r = procs_.rank(), k = procs_.size();
-    const auto mine = boxes_[static_cast<std::size_t>(r)];
-    send_bytes_.assign(static_cast<std::size_t>(k), 0);
-    recv_bytes_.assign(static_cast<std::size_t>(k), 0);
-    send_.clear();
-    if (r > 0) {
+    const std::size_t n = static_cast<std::size_t>(per);
+    const auto& mine = boxes_[static_cast<std::size_t>(r)];
+    root_data_.clear();
+    if (r > 0)
       walk(mine, mine, [&](std::size_t i) {
         if (owner(i) != r) return;
-        send_.resize(send_.size() + static_cast<std::size_t>(per));
-        pack(i, send_.data() + send_.size() - static_cast<std::size_t>(per));
+        root_data_.resize(root_data_.size() + n);
+        pack(i, root_data_.data() + root_data_.size() - n);
       });
-      send_bytes_[0] = static_cast<long>(send_.size() * sizeof(double));
-    }
-    long received = 0;
+    std::vector<int> rank;
+    std::vector<long> index;
     if (r == 0)
       for (int q = 1; q < k; ++q) {
-        long owned = 0;
         const auto& box = boxes_[static_cast<std::size_t>(q)];
-        walk(box, box, [&](std::size_t i) { owned += owner(i) == q ? 1 : 0; });
-        recv_bytes_[static_cast<std::size_t>(q)] = owned * per * static_cast<long>(sizeof(double));
-        received += owned * per;
+        long j = 0;
+        walk(box, box, [&](std::size_t i) {
+          if (owner(i) == q) rank.push_back(q), index.push_back(j++);
+        });
       }
-    recv_.resize(static_cast<std::size_t>(std::max(1L, received)));
-    if (send_.empty()) send_.resize(1);
-    procs_.exchange(send_.data(), send_bytes_, recv_.data(), recv_bytes_);
+    StarForest to_first;
+    to_first.connect(procs_, static_cast<long>(root_data_.size() / n), rank, index);
+    leaf_data_.resize(rank.size() * n);
+    to_first.broadcast(per, root_data_.data(), leaf_data_.data());
     if (r > 0) return;
     std::size_t at = 0;
     for (int q = 1; q < k; ++q) {
       const auto& box = boxes_[static_cast<std::size_t>(q)];
       walk(box, box, [&](std::size_t i) {
         if (owner(i) != q) return;
-        set(i, recv_.data() + at);
-        at += static_cast<std::size_t>(per);
+        set(i, leaf_data_.data() + at);
+        at += n;
       });
     }
   }
@@ -191,8 +191,7 @@ class BoxExchange {
   Processes procs_;
   std::array<int, D> nodes_{};
   std::vector<NodeBox<D>> boxes_;
-  std::vector<double> all_, send_, recv_;
-  std::vector<long> send_bytes_, recv_bytes_;
+  std::vector<double> all_;
   StarForest forest_;
   bool forest_set_ = false;
   std::vector<long> roots_, leaves_;  // global node numbers, ascending
