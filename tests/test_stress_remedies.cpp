@@ -303,20 +303,9 @@ TEST(StressRemedies, CmpmFunctionsAreEquations22And23) {
 
 namespace {
 
-// R6 on Acosta's mesh (§3.1): cells of 0.2 m from r = 0.1 (the walls r = 0.5 and 1.5 on cell
-// lines), 2 x 2 points per cell, E = 1000 kPa, nu = 0.3, outer wall fixed, rollers above and
-// below, a pressure of 10 kPa on the inner wall in one load step; `solver` and `implicit` add
-// keys.
+// R6 on Acosta's mesh (tests/support.hpp).
 std::string cylinder(const std::string& solver, const std::string& implicit) {
-  return "[grid]\norigin = [0.1, 0.0]\nsize = [1.4, 0.8]\ncell_size = 0.2\ngeometry = \"axisymmetric\"\n"
-         "[[material]]\nname = \"m\"\nmodel = \"linear-elastic\"\ndensity = 1000.0\nyoung = 1e6\npoisson = "
-         "0.3\n"
-         "[[body]]\nname = \"cylinder\"\nmaterial = \"m\"\nshape = \"rectangle\"\nmin = [0.5, 0.0]\n"
-         "max = [1.5, 0.8]\n"
-         "[[pressure]]\nbody = \"cylinder\"\nside = \"x_min\"\nvalue = 1e4\nramp_time = 1.0\n"
-         "[boundary]\nx_max = \"fixed\"\ny_min = \"roller\"\ny_max = \"roller\"\n"
-         "[solver]\nend_time = 1.0\nintegrator = \"implicit\"\n" +
-         solver + "\n[implicit]\n" + implicit + "\n";
+  return test::acosta_cylinder_text(solver, implicit);
 }
 
 // RMS over the points of sigma_r and sigma_theta against eq. 34-35, relative to p.

@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "material/law.hpp"
 
@@ -25,10 +24,6 @@ ImplicitSolver<D>::ImplicitSolver(ImplicitModel<D> model, Particles<D>& particle
 template <int D>
 void ImplicitSolver<D>::set_stage(const ImplicitSettings& settings, double dt, double end_time) {
   settings_ = settings;
-  if (state_.processes.distributed() && !settings_.at_points())
-    throw std::invalid_argument(
-        "the implicit integrator runs across processes at the points only: not with Acosta's remedies "
-        "(issue 55)");
   dt_ = dt;
   end_time_ = end_time;
   // The tangent is symmetric unless a material's flow is non-associated (Mohr-Coulomb with

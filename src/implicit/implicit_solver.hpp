@@ -50,8 +50,8 @@ struct ImplicitModel {
   // The processes the points are split among (issue 55): the grid's sums over the points (m_i,
   // v_i, a_i, F_ext, F_int, the tangent) are every process's, so all of them hold the same
   // unknowns and iterate alike; the linear solves run on PETSc's parallel matrices. The
-  // cell-averaged volumetric strain's cells are every process's (cell_boxes.hpp). At the points
-  // only: Acosta's remedies are refused (the run says so).
+  // cell-averaged volumetric strain's cells are every process's (cell_boxes.hpp), and so are
+  // the cells' point counts of Acosta's W* and DM (mapped_stencils.hpp).
   Processes processes;
 };
 

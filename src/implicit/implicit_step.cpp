@@ -102,22 +102,24 @@ StepStatus ImplicitSolver<D>::map_step() {
   }
   held_components();
   if (!settings_.at_points()) {
-    const long wide =
-        agreed_point(mapped_.build(settings_.integration, settings_.stress_recovery, stencils_, g,
-                                   state_.points, volume_, inv_r_, grid_mass_, state_.threads));
+    const long wide = agreed_point(mapped_.build(settings_.integration, settings_.stress_recovery, stencils_,
+                                                 g, state_.points, volume_, inv_r_, grid_mass_,
+                                                 state_.threads, state_.processes));
     if (wide >= 0) return {false, wide, "its stencil spreads beyond the 4 nodes per axis around its cell"};
+    mapped_.trim(g, state_.threads, state_.processes);
     // Acosta's stiffness (eq. 19-20) couples the corners of a cell only: its pattern is the
-    // cells' (as narrow as linear MPM's), unless a node with mass lies in no mapped cell.
-    cell_pattern_ = settings_.iteration != ImplicitIteration::Newton && !mapped_.cell_corner.empty();
+    // cells' (as narrow as linear MPM's), unless a node with mass lies in no mapped cell (of any
+    // process: the pattern is their union).
+    cell_pattern_ = settings_.iteration != ImplicitIteration::Newton && mapped_.gauss_points;
     if (cell_pattern_) {
       mapped_cells(cell_blocks_);
       dofs_.build(cell_blocks_.data(), cell_blocks_.size() / MappedStencils<D>::KG, 2, 2, g, grid_mass_,
-                  grid_held_, state_.threads);
+                  grid_held_, state_.threads, state_.processes);
       cell_pattern_ = dofs_.every_node_coupled_to_itself();
     }
     if (!cell_pattern_)
       dofs_.build(mapped_.box.data(), n, mapped_.width, mapped_.width, g, grid_mass_, grid_held_,
-                  state_.threads);
+                  state_.threads, state_.processes);
   } else if (averaging()) {
     const long wide = agreed_point(
         cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads, state_.processes));

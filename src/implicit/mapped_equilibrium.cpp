@@ -57,7 +57,7 @@ void ImplicitSolver<D>::mapped_point_blocks(std::size_t p, const Mat6& WT, bool 
   const std::int64_t* box = &mapped_.box[p * static_cast<std::size_t>(mapped_.KS)];
   const auto active = [&](int j) { return dofs_.active(static_cast<std::size_t>(box[j])); };
   const double w = mapped_.weight[p];
-  if (acosta && !mapped_.cell_corner.empty()) {
+  if (acosta && mapped_.gauss_points) {
     const bool axi = axisymmetric();
     const double h = state_.grid.h;
     for (int e = 0; e < MS::KG; ++e) {
@@ -130,7 +130,7 @@ void ImplicitSolver<D>::assemble_mapped(double dt, bool elastic) {
   std::fill(values.begin(), values.end(), 0.0);
   double* v = values.data();
   const std::size_t n = state_.points.size();
-  if (elastic && !mapped_.cell_corner.empty()) {
+  if (elastic && mapped_.gauss_points) {
     assemble_by_cells(v);
     add_inertia_and_held(
         dt,

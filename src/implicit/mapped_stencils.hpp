@@ -18,6 +18,11 @@
 //
 // Every node a point touches lies in its box, the 4^D nodes from its cell's lower corner - 1:
 // the stiffness pattern (dof_map.hpp) is built from these boxes.
+//
+// Across processes (issue 55) each process builds its own points' stencils; cmp (W*, DM) counts
+// every process's points, CMPM's patches follow the grid's masses (every process's), and the
+// boxes are trimmed to the width the widest point of any process needs, so that all of them
+// build the same pattern.
 #pragma once
 #include <omp.h>
 
@@ -33,6 +38,7 @@
 #include "implicit/cell_functions.hpp"
 #include "implicit/point_stencils.hpp"
 #include "implicit/strain_matrix.hpp"
+#include "parallel/processes.hpp"
 #include "shape/gimp.hpp"
 #include "solver/implicit_settings.hpp"
 
@@ -48,6 +54,9 @@ struct MappedStencils {
   // kernel, 3 for DM-G, 4 with CMPM's cubic patches): box holds KS = S^D nodes per point and
   // every box index below counts in it.
   int width = kWidth, KS = KB;
+  // Whether the internal force and Acosta's stiffness are integrated at the cells' Gauss points
+  // (GM, DM, DM-G), whether or not this process holds points.
+  bool gauss_points = false;
   std::vector<std::int64_t> box;               // p KS + j: flat node index of box node j
   std::vector<double> weight;                  // V_p of the integration
   std::vector<std::int8_t> test_box;           // p KT + k: box index of test node k (-1: none)
@@ -84,13 +93,16 @@ struct MappedStencils {
   // Builds every point's stencils. `kernel` holds the run's kernel at the points (their
   // integration at the points and their recovery at the points), `volume` V_p (per radian when
   // axisymmetric, with inv_r = 1 / r_p, else empty), `mass` per grid node (> 0: an unknown).
-  // Returns a point whose stencil leaves its box, or -1.
+  // Returns a point whose stencil leaves its box, or -1; when no process has one, trim() must
+  // follow. Collective over `procs` (the cells' point counts).
   long build(ForceIntegration integration, StressRecovery recovery, const PointStencils<D>& kernel,
              const GridGeometry<D>& g, const Particles<D>& P, const std::vector<double>& volume,
-             const std::vector<double>& inv_r, const std::vector<double>& mass, int threads) {
+             const std::vector<double>& inv_r, const std::vector<double>& mass, int threads,
+             const Processes& procs) {
     const std::size_t n = P.size();
     const bool axi = !inv_r.empty();
-    count_points(g, P);
+    if (integration == ForceIntegration::ModifiedWeights || integration == ForceIntegration::DoubleMapping)
+      count_points(g, P, procs);
     width = kWidth;
     KS = KB;
     box.resize(n * KB);
@@ -100,12 +112,12 @@ struct MappedStencils {
     trial_box.assign(n * KB, -1);
     trial_N.resize(n * KB);
     trial_dN.resize(n * KB);
-    const bool mapped = integration == ForceIntegration::GaussMapping ||
-                        integration == ForceIntegration::DoubleMapping ||
-                        integration == ForceIntegration::DoubleMappingGimp;
-    cell_corner.assign(mapped ? n * KG : 0, -1);
-    cell_c.resize(mapped ? n * KG : 0);
-    cell_r.resize(mapped ? n * KG : 0);
+    gauss_points = integration == ForceIntegration::GaussMapping ||
+                   integration == ForceIntegration::DoubleMapping ||
+                   integration == ForceIntegration::DoubleMappingGimp;
+    cell_corner.assign(gauss_points ? n * KG : 0, -1);
+    cell_c.resize(gauss_points ? n * KG : 0);
+    cell_r.resize(gauss_points ? n * KG : 0);
     long bad = LONG_MAX;
 #pragma omp parallel for num_threads(threads) schedule(static) reduction(min : bad)
     for (std::size_t p = 0; p < n; ++p) {
@@ -119,17 +131,17 @@ struct MappedStencils {
         box[p * KB + j] = static_cast<std::int64_t>(f);
       }
       const double r_p = axi ? 1.0 / inv_r[p] : 1.0;
-      const double cmp = static_cast<double>(count_[cell_key(g, c)]);
       const double cell_volume = std::pow(g.h, D);
       bool ok = true;
       switch (integration) {
         case ForceIntegration::Points:
         case ForceIntegration::ModifiedWeights:
-          weight[p] = integration == ForceIntegration::Points ? volume[p] : cell_volume / cmp * r_p;
+          weight[p] = integration == ForceIntegration::Points ? volume[p] : cell_volume / cmp(g, c) * r_p;
           ok = kernel_test(p, kernel, g, axi ? inv_r[p] : 0.0);
           break;
         default:
-          weight[p] = integration == ForceIntegration::DoubleMapping ? cell_volume / cmp : volume[p] / r_p;
+          weight[p] =
+              integration == ForceIntegration::DoubleMapping ? cell_volume / cmp(g, c) : volume[p] / r_p;
           map_to_gauss_points(p, integration, c, g, P, axi);
       }
       if (recovery == StressRecovery::Points)
@@ -138,8 +150,90 @@ struct MappedStencils {
         cmpm_trial(p, c, g, P.x[p], mass);
       if (!ok) bad = std::min(bad, static_cast<long>(p));
     }
-    if (bad == LONG_MAX) trim(g, threads);
     return bad == LONG_MAX ? -1 : bad;
+  }
+
+  // Trims every point's box of 4^D nodes to the S^D around the nodes it uses, S the widest any
+  // point of any process needs: the stiffness pattern couples no more nodes than the stencils do.
+  // Collective over `procs`.
+  void trim(const GridGeometry<D>& g, int threads, const Processes& procs) {
+    const std::size_t n = weight.size();
+    const bool mapped = !cell_corner.empty();
+    const auto offsets = [](int j) {
+      std::array<int, D> o{};
+      for (int d = 0; d < D; ++d, j /= kWidth) o[static_cast<std::size_t>(d)] = j % kWidth;
+      return o;
+    };
+    // The used range of each point per axis, from its test, trial and mapped cells' nodes.
+    const auto each_used = [&](std::size_t p, auto&& f) {
+      for (int k = 0; k < KT && test_box[p * KT + static_cast<std::size_t>(k)] >= 0; ++k)
+        f(test_box[p * KT + static_cast<std::size_t>(k)]);
+      for (int k = 0; k < KB && trial_box[p * KB + static_cast<std::size_t>(k)] >= 0; ++k)
+        f(trial_box[p * KB + static_cast<std::size_t>(k)]);
+      if (mapped)
+        for (int e = 0; e < KG && cell_corner[p * KG + static_cast<std::size_t>(e)] >= 0; ++e) {
+          const int c0 = cell_corner[p * KG + static_cast<std::size_t>(e)];
+          f(c0);
+          int far = c0;
+          for (int d = 0, step = 1; d < D; ++d, step *= kWidth) far += step;
+          f(far);
+        }
+    };
+    std::vector<std::array<int, D>> low(n);
+    int S = 2;
+#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : S)
+    for (std::size_t p = 0; p < n; ++p) {
+      std::array<int, D> lo, hi{};
+      lo.fill(kWidth);
+      each_used(p, [&](int j) {
+        const auto o = offsets(j);
+        for (int d = 0; d < D; ++d) {
+          lo[static_cast<std::size_t>(d)] =
+              std::min(lo[static_cast<std::size_t>(d)], o[static_cast<std::size_t>(d)]);
+          hi[static_cast<std::size_t>(d)] =
+              std::max(hi[static_cast<std::size_t>(d)], o[static_cast<std::size_t>(d)]);
+        }
+      });
+      for (int d = 0; d < D; ++d)
+        S = std::max(S, hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1);
+      low[p] = lo;
+    }
+    S = static_cast<int>(procs.max(static_cast<long>(S)));
+    width = S;
+    KS = 1;
+    for (int d = 0; d < D; ++d) KS *= S;
+    std::vector<std::int64_t> trimmed(n * static_cast<std::size_t>(KS));
+#pragma omp parallel for num_threads(threads) schedule(static)
+    for (std::size_t p = 0; p < n; ++p) {
+      std::array<int, D> shift{};
+      for (int d = 0; d < D; ++d)
+        shift[static_cast<std::size_t>(d)] = std::min(low[p][static_cast<std::size_t>(d)], kWidth - S);
+      const auto remap = [&](int j) {
+        const auto o = offsets(j);
+        int r = 0;
+        for (int d = D - 1; d >= 0; --d)
+          r = r * S + o[static_cast<std::size_t>(d)] - shift[static_cast<std::size_t>(d)];
+        return static_cast<std::int8_t>(r);
+      };
+      for (int k = 0; k < KT && test_box[p * KT + static_cast<std::size_t>(k)] >= 0; ++k)
+        test_box[p * KT + static_cast<std::size_t>(k)] =
+            remap(test_box[p * KT + static_cast<std::size_t>(k)]);
+      for (int k = 0; k < KB && trial_box[p * KB + static_cast<std::size_t>(k)] >= 0; ++k)
+        trial_box[p * KB + static_cast<std::size_t>(k)] =
+            remap(trial_box[p * KB + static_cast<std::size_t>(k)]);
+      if (mapped)
+        for (int e = 0; e < KG && cell_corner[p * KG + static_cast<std::size_t>(e)] >= 0; ++e)
+          cell_corner[p * KG + static_cast<std::size_t>(e)] =
+              remap(cell_corner[p * KG + static_cast<std::size_t>(e)]);
+      for (int j = 0; j < KS; ++j) {
+        std::size_t f = static_cast<std::size_t>(box[p * KB]);
+        for (int d = 0, r = j; d < D; ++d, r /= S)
+          f += static_cast<std::size_t>(shift[static_cast<std::size_t>(d)] + r % S) * g.stride(d);
+        trimmed[p * static_cast<std::size_t>(KS) + static_cast<std::size_t>(j)] =
+            static_cast<std::int64_t>(f);
+      }
+    }
+    box.swap(trimmed);
   }
 
  private:
@@ -158,10 +252,14 @@ struct MappedStencils {
     for (int d = 0; d < D; ++d) k += static_cast<std::size_t>(c[static_cast<std::size_t>(d)]) * g.stride(d);
     return k;
   }
-  // cmp: the points each cell holds (keyed by its lower corner).
-  void count_points(const GridGeometry<D>& g, const Particles<D>& P) {
+  // cmp: the points each cell holds (keyed by its lower corner), every process's.
+  void count_points(const GridGeometry<D>& g, const Particles<D>& P, const Processes& procs) {
     count_.assign(g.node_count(), 0);
     for (std::size_t p = 0; p < P.size(); ++p) ++count_[cell_key(g, cell_of(g, P.x[p]))];
+    procs.sum(count_.data(), count_.size());
+  }
+  double cmp(const GridGeometry<D>& g, const std::array<int, D>& c) const {
+    return static_cast<double>(count_[cell_key(g, c)]);
   }
   // Box index of flat node f of a box whose first node is base, -1 outside it.
   static int index_in_box(const GridGeometry<D>& g, std::int64_t base, std::int64_t f) {
@@ -369,88 +467,7 @@ struct MappedStencils {
     }
   }
 
-  // Trims every point's box of 4^D nodes to the S^D around the nodes it uses, S the widest any
-  // point needs: the stiffness pattern couples no more nodes than the stencils do.
-  void trim(const GridGeometry<D>& g, int threads) {
-    const std::size_t n = weight.size();
-    const bool mapped = !cell_corner.empty();
-    const auto offsets = [](int j) {
-      std::array<int, D> o{};
-      for (int d = 0; d < D; ++d, j /= kWidth) o[static_cast<std::size_t>(d)] = j % kWidth;
-      return o;
-    };
-    // The used range of each point per axis, from its test, trial and mapped cells' nodes.
-    const auto each_used = [&](std::size_t p, auto&& f) {
-      for (int k = 0; k < KT && test_box[p * KT + static_cast<std::size_t>(k)] >= 0; ++k)
-        f(test_box[p * KT + static_cast<std::size_t>(k)]);
-      for (int k = 0; k < KB && trial_box[p * KB + static_cast<std::size_t>(k)] >= 0; ++k)
-        f(trial_box[p * KB + static_cast<std::size_t>(k)]);
-      if (mapped)
-        for (int e = 0; e < KG && cell_corner[p * KG + static_cast<std::size_t>(e)] >= 0; ++e) {
-          const int c0 = cell_corner[p * KG + static_cast<std::size_t>(e)];
-          f(c0);
-          int far = c0;
-          for (int d = 0, step = 1; d < D; ++d, step *= kWidth) far += step;
-          f(far);
-        }
-    };
-    std::vector<std::array<int, D>> low(n);
-    int S = 2;
-#pragma omp parallel for num_threads(threads) schedule(static) reduction(max : S)
-    for (std::size_t p = 0; p < n; ++p) {
-      std::array<int, D> lo, hi{};
-      lo.fill(kWidth);
-      each_used(p, [&](int j) {
-        const auto o = offsets(j);
-        for (int d = 0; d < D; ++d) {
-          lo[static_cast<std::size_t>(d)] =
-              std::min(lo[static_cast<std::size_t>(d)], o[static_cast<std::size_t>(d)]);
-          hi[static_cast<std::size_t>(d)] =
-              std::max(hi[static_cast<std::size_t>(d)], o[static_cast<std::size_t>(d)]);
-        }
-      });
-      for (int d = 0; d < D; ++d)
-        S = std::max(S, hi[static_cast<std::size_t>(d)] - lo[static_cast<std::size_t>(d)] + 1);
-      low[p] = lo;
-    }
-    width = S;
-    KS = 1;
-    for (int d = 0; d < D; ++d) KS *= S;
-    std::vector<std::int64_t> trimmed(n * static_cast<std::size_t>(KS));
-#pragma omp parallel for num_threads(threads) schedule(static)
-    for (std::size_t p = 0; p < n; ++p) {
-      std::array<int, D> shift{};
-      for (int d = 0; d < D; ++d)
-        shift[static_cast<std::size_t>(d)] = std::min(low[p][static_cast<std::size_t>(d)], kWidth - S);
-      const auto remap = [&](int j) {
-        const auto o = offsets(j);
-        int r = 0;
-        for (int d = D - 1; d >= 0; --d)
-          r = r * S + o[static_cast<std::size_t>(d)] - shift[static_cast<std::size_t>(d)];
-        return static_cast<std::int8_t>(r);
-      };
-      for (int k = 0; k < KT && test_box[p * KT + static_cast<std::size_t>(k)] >= 0; ++k)
-        test_box[p * KT + static_cast<std::size_t>(k)] =
-            remap(test_box[p * KT + static_cast<std::size_t>(k)]);
-      for (int k = 0; k < KB && trial_box[p * KB + static_cast<std::size_t>(k)] >= 0; ++k)
-        trial_box[p * KB + static_cast<std::size_t>(k)] =
-            remap(trial_box[p * KB + static_cast<std::size_t>(k)]);
-      if (mapped)
-        for (int e = 0; e < KG && cell_corner[p * KG + static_cast<std::size_t>(e)] >= 0; ++e)
-          cell_corner[p * KG + static_cast<std::size_t>(e)] =
-              remap(cell_corner[p * KG + static_cast<std::size_t>(e)]);
-      for (int j = 0; j < KS; ++j) {
-        std::size_t f = static_cast<std::size_t>(box[p * KB]);
-        for (int d = 0, r = j; d < D; ++d, r /= S)
-          f += static_cast<std::size_t>(shift[static_cast<std::size_t>(d)] + r % S) * g.stride(d);
-        trimmed[p * static_cast<std::size_t>(KS) + static_cast<std::size_t>(j)] =
-            static_cast<std::int64_t>(f);
-      }
-    }
-    box.swap(trimmed);
-  }
-
-  std::vector<int> count_;  // per cell (keyed by its lower corner): the points it holds
+  std::vector<long> count_;  // per cell (keyed by its lower corner): the points it holds (W*, DM)
 };
 
 }  // namespace skred

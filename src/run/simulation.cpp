@@ -182,7 +182,6 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   const double idle_bytes = current_rss_bytes();  // before the points and the grid exist
   const Processes& procs = opt.processes;
   const bool first = procs.rank() == 0;  // writes the run's files and reports
-  if (procs.distributed()) refuse_implicit_across_processes(s);
   const bool report_setup = first && opt.progress && estimate_size(s).points >= kSetupReportPoints;
   const auto setup = [&](const std::string& what) {
     if (!report_setup) return;

@@ -66,10 +66,6 @@ template <int D>
 ImplicitModel<D> implicit_model(const ScenarioOf<D>& s);
 template <int D>
 double stage_time_step(const ScenarioOf<D>& s, const Stage& st);
-// Across processes the implicit integrator works at the points (issue 55): a stage with
-// Acosta's remedies is refused (ScenarioError, naming the key), before anything runs.
-template <int D>
-void refuse_implicit_across_processes(const ScenarioOf<D>& s);
 
 // The background grid of a scenario (origin, cell size, cells per axis).
 template <int D>

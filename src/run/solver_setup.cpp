@@ -1,6 +1,5 @@
 // The scenario's choices as the integrators take them: the explicit solver's settings, the
 // implicit integrator's model, the grid and each stage's time or load step.
-#include <fmt/core.h>
 
 #include <algorithm>
 
@@ -89,25 +88,10 @@ GridGeometry<D> scenario_grid(const ScenarioOf<D>& s) {
   return grid;
 }
 
-template <int D>
-void refuse_implicit_across_processes(const ScenarioOf<D>& s) {
-  for (const Stage& st : s.stages) {
-    if (st.integrator != IntegratorKind::Implicit) continue;
-    if (!st.implicit.at_points())
-      throw ScenarioError(fmt::format(
-          "{}: stage \"{}\": Acosta's remedies ([implicit] integration = \"{}\", stress_recovery = \"{}\") "
-          "do not run across processes yet (issue 55): integrate at the points (\"points\", \"points\") or "
-          "run it in one process, without mpirun",
-          s.source, st.name, to_string(st.implicit.integration), to_string(st.implicit.stress_recovery)));
-  }
-}
-
 template SolverSettings<2> solver_settings<2>(const Scenario&);
 template SolverSettings<3> solver_settings<3>(const Scenario3&);
 template ImplicitModel<2> implicit_model<2>(const Scenario&);
 template ImplicitModel<3> implicit_model<3>(const Scenario3&);
-template void refuse_implicit_across_processes<2>(const Scenario&);
-template void refuse_implicit_across_processes<3>(const Scenario3&);
 template double stage_time_step<2>(const Scenario&, const Stage&);
 template double stage_time_step<3>(const Scenario3&, const Stage&);
 template GridGeometry<2> scenario_grid<2>(const Scenario&);
