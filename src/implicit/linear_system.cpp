@@ -56,20 +56,28 @@ void LinearSystem::configure(LinearSolverKind kind, const std::string& petsc_opt
   symmetric_ = symmetric;
   block_ = block;
   petsc_ = std::make_unique<Petsc>();
+  if (!options_.empty()) SKRED_PETSC(PetscOptionsInsertString(nullptr, options_.c_str()));
+  new_solver();
+}
+
+// A fresh KSP with its preconditioner, for each new pattern. (KSPReset keeps some of a
+// multigrid's set-up: a run resumed from a checkpoint, whose solver is fresh, then differs from
+// the run it continues in the last digits.)
+void LinearSystem::new_solver() {
   Petsc& p = *petsc_;
+  if (p.ksp) SKRED_PETSC(KSPDestroy(&p.ksp));
   SKRED_PETSC(KSPCreate(processes_.distributed() ? PETSC_COMM_WORLD : PETSC_COMM_SELF, &p.ksp));
   PC pc = nullptr;
   SKRED_PETSC(KSPGetPC(p.ksp, &pc));
-  if (kind == LinearSolverKind::Direct) {
+  if (kind_ == LinearSolverKind::Direct) {
     SKRED_PETSC(KSPSetType(p.ksp, KSPPREONLY));
-    SKRED_PETSC(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU));
+    SKRED_PETSC(PCSetType(pc, symmetric_ ? PCCHOLESKY : PCLU));
     SKRED_PETSC(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS));
   } else {
-    SKRED_PETSC(KSPSetType(p.ksp, symmetric ? KSPCG : KSPGMRES));
+    SKRED_PETSC(KSPSetType(p.ksp, symmetric_ ? KSPCG : KSPGMRES));
     SKRED_PETSC(PCSetType(pc, PCGAMG));
     SKRED_PETSC(KSPSetTolerances(p.ksp, 1e-10, 1e-300, PETSC_DEFAULT, 5000));
   }
-  if (!options_.empty()) SKRED_PETSC(PetscOptionsInsertString(nullptr, options_.c_str()));
   SKRED_PETSC(KSPSetFromOptions(p.ksp));
 }
 
@@ -86,8 +94,8 @@ void LinearSystem::set_pattern(const SparsePattern& pattern) {
   }
   p.rows.assign(pattern_.row_start.begin(), pattern_.row_start.end());
   p.columns.assign(pattern_.column.begin(), pattern_.column.end());
-  if (p.matrix) {  // a new size: the solver forgets the old operator and its factor
-    SKRED_PETSC(KSPReset(p.ksp));
+  if (p.matrix) {  // a new size: a new solver, without the old operator and its factor
+    new_solver();
     SKRED_PETSC(MatDestroy(&p.matrix));
   }
   const PetscInt n = pattern_.size();
@@ -183,7 +191,7 @@ void LinearSystem::set_parallel_pattern() {
   p.all_columns.assign(pattern_.column.begin(), pattern_.column.end());
   p.columns.assign(p.all_columns.begin() + r0, p.all_columns.begin() + r0 + p.rows.back());
   if (p.matrix) {
-    SKRED_PETSC(KSPReset(p.ksp));
+    new_solver();
     SKRED_PETSC(MatDestroy(&p.matrix));
   }
   p.destroy_vectors();

@@ -91,6 +91,7 @@ class LinearSystem {
   Processes processes_;
   int first_row_ = 0, end_row_ = 0;
   std::vector<std::uint8_t> contributing_;
+  void new_solver();                                                         // KSP and PC afresh
   void set_parallel_pattern();                                               // set_pattern across processes
   void add_parallel_values();                                                // factorise across processes
   int parallel_solve(const std::vector<double>& b, std::vector<double>& x);  // PETSc's error code
