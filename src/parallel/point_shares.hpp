@@ -1,15 +1,15 @@
-// Each process's share of the points of a distributed run (processes.hpp). At the set-up every
-// process builds all the points and keeps a contiguous run of them in their order (keep_share:
-// points [n r / N, n (r + 1) / N) of process r of N), in turns (in_turns); the run then keeps them
-// in blocks of the grid cut by recursive bisection (repartition_in_blocks), so that each process's
-// points, and the box of nodes they reach, lie together, and points move to a neighbour as they
-// cross a cut.
+// Each process's share of the points of a distributed run (processes.hpp). A run's set-up builds
+// each process's cell columns only (run/point_setup.hpp); a resume on another count, the bench and
+// the tests keep a contiguous run of all the points in their order (keep_share: points
+// [n r / N, n (r + 1) / N) of process r of N). The run then keeps them in blocks of the grid cut
+// by recursive bisection (repartition_in_blocks), so that each process's points, and the box of
+// nodes they reach, lie together, and points move to a neighbour as they cross a cut.
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <exception>
+
 #include <type_traits>
 #include <vector>
 
@@ -208,26 +208,6 @@ bool repartition_in_blocks(Particles<D>& P, const GridGeometry<D>& g, const Proc
   P.reorder(order);
   move_points(P, procs, from);
   return true;
-}
-
-// Runs make() (which builds all the points and keeps this process's share) in every process, the
-// processes of one machine in turn, so that its memory holds one whole set of points at a time
-// and not one per process. When make() throws in one, every process throws: that one its error,
-// the others `others` (the set-up is the same in each, so they would meet the same error).
-template <class Make, class Others>
-void in_turns(const Processes& procs, Make&& make, Others&& others) {
-  std::exception_ptr failed;
-  bool any_failed = false;
-  for (int turn = 0; turn < procs.local_size() && !any_failed; ++turn) {
-    if (turn == procs.local_rank()) try {
-        make();
-      } catch (...) {
-        failed = std::current_exception();
-      }
-    any_failed = procs.any(failed != nullptr);  // (also the barrier between the turns)
-  }
-  if (failed) std::rethrow_exception(failed);
-  if (any_failed) others();
 }
 
 }  // namespace skred

@@ -187,13 +187,16 @@ void Checkpointing<D>::load_pieces(const fs::path& manifest, Particles<D>& P, So
     piece(procs_.rank(), P);
     return;
   }
-  P = Particles<D>();  // another count: all the points, in the order of the pieces, then the share
+  // Another count: this process's share of each piece in turn (points [m q / N, m (q + 1) / N) of
+  // a piece of m, process q of N), so that it holds its share and one piece at most; the run's
+  // first step cuts the blocks.
+  P = Particles<D>();
   for (long r = 0; r < n; ++r) {
     Particles<D> part;
     piece(r, part);
+    keep_share(part, procs_);
     P.append(part);
   }
-  keep_share(P, procs_);
 }
 
 template <int D>

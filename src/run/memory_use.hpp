@@ -10,11 +10,11 @@ double peak_rss_bytes();
 // Resident set size of this process now in bytes (VmRSS), 0 if unknown.
 double current_rss_bytes();
 // Starts the peak over from the resident set now (/proc/self/clear_refs, "5"); false if the
-// kernel does not allow it. A distributed run's set-up peaks once per process (in_turns).
+// kernel does not allow it. A distributed run's set-up peaks before its points are cut in blocks.
 bool reset_peak_rss();
 // Gives the allocator's free pages back to the kernel (glibc's malloc_trim): after a process of a
-// distributed run has built all the points and kept its share, glibc keeps the others' points'
-// pages for reuse, and the process would hold the whole set-up's memory for the rest of the run.
+// distributed run has dropped points (its set-up's margins, points moved to other blocks), glibc
+// keeps their pages for reuse, and the process would hold them for the rest of the run.
 void release_free_memory();
 
 }  // namespace skred

@@ -26,6 +26,7 @@
 #include "run/frame_files.hpp"
 #include "run/map_files.hpp"
 #include "run/memory_use.hpp"
+#include "run/point_setup.hpp"
 #include "run/run_summary.hpp"
 #include "run/slide_measures.hpp"
 #include "run/slope_stability.hpp"
@@ -190,22 +191,11 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
     std::fflush(stderr);
   };
   setup(fmt::format("filling the bodies with about {:.3g} points", estimate_size(s).points));
-  Particles<D> particles;
-  in_turns(
-      procs,
-      [&] {
-        particles = build_particles(s);
-        if (s.initial_stress.rule != K0Rule::None) setup("the initial stress");
-        apply_initial_stress(s, particles);  // Thesis eq. 5.6-5.7 (no-op without [initial_stress])
-        keep_share(particles, procs);        // (each process builds all the points)
-      },
-      [&] {
-        build_particles(s);  // (another process failed here: this one meets the same error)
-        throw std::runtime_error("another process could not build the points");
-      });
-  // Each process built all the points in its turn: that peak is the set-up's (summary.json's
-  // processes.setup_peak_bytes), the run's memory is what it holds after (one process: both).
-  // The blocks before the first map, so that each process touches only its own block of the grid.
+  // Thesis eq. 5.6-5.7 (initial stress); across processes each builds about its share.
+  Particles<D> particles = build_points(s, procs, setup);
+  // That peak is the set-up's (summary.json's processes.setup_peak_bytes), the run's memory is
+  // what it holds after (one process: both). The blocks before the first map, so that each
+  // process touches only its own block of the grid.
   repartition_in_blocks(particles, scenario_grid(s), procs);
   double setup_peak = procs.distributed() ? peak_rss_bytes() : 0.0;
   // (glibc keeps freed pages for reuse: the others' points' and the moved points' go back)

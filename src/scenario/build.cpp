@@ -12,7 +12,7 @@ namespace {
 // lattice_centre c, x = c + R (q - c) (Acosta §6, fig. 19), that lie inside the shape, the grid and
 // no later body, lattice rows in order (i fastest). Stops early when f returns false.
 template <class Claimed, class F>
-void for_each_turned_point(const Scenario& s, const Body& body, const ShapeBox<2>& box,
+void for_each_turned_point(const Scenario& s, const Body& body, const ShapeBox<2>& box, CellColumns columns,
                            Claimed&& claimed_later, F&& f) {
   const double sub = s.cell_size / body.particles_per_cell, a = body.lattice_rotation;
   const double cs = std::cos(a), sn = std::sin(a);
@@ -40,15 +40,16 @@ void for_each_turned_point(const Scenario& s, const Body& body, const ShapeBox<2
                      s.origin[1] + (static_cast<double>(j) + 0.5) * sub);
       const Vec<2> x = turn(q, 1.0);
       if ((x - s.origin).minCoeff() < 0.0 || (x - top).maxCoeff() >= 0.0) continue;  // off the grid
+      if (!columns.holds(column_of(s, x))) continue;
       if (shape_contains(body.shape, x) && !claimed_later(x) && !f(x)) return;
     }
 }
 
-// Calls f(point) for every sub-cell centre of the body's bounding-box cells that lies inside
-// the shape, cells in row-major order (x fastest, then y, then z), then the sub-cells of a
-// cell in the same order. Stops early when f returns false.
+// Calls f(point) for every sub-cell centre of the body's bounding-box cells (in `columns`) that
+// lies inside the shape, cells in row-major order (x fastest, then y, then z), then the
+// sub-cells of a cell in the same order. Stops early when f returns false.
 template <int D, class F>
-void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
+void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f, CellColumns columns = {}) {
   // With body_overlap = "later-wins" a point a later body claims is that body's only.
   std::size_t later = s.bodies.size();
   if (s.later_body_wins && &body >= s.bodies.data() && &body < s.bodies.data() + s.bodies.size())
@@ -75,7 +76,9 @@ void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
     hi[d] = static_cast<int>(std::min(b, cells - 1.0));
   }
   if constexpr (D == 2)
-    if (body.lattice_rotation != 0.0) return for_each_turned_point(s, body, box, claimed_later, f);
+    if (body.lattice_rotation != 0.0) return for_each_turned_point(s, body, box, columns, claimed_later, f);
+  lo[0] = std::max(lo[0], columns.first);
+  hi[0] = std::min(hi[0], columns.end - 1);
   // Cell index c and sub-cell index q per axis, the lowest axis fastest in both.
   const int k_lo = D == 3 ? lo[D - 1] : 0, k_hi = D == 3 ? hi[D - 1] : 0;
   const int nz = D == 3 ? n : 1;
@@ -96,9 +99,25 @@ void for_each_point(const ScenarioOf<D>& s, const BodyOf<D>& body, F&& f) {
 }  // namespace
 
 template <int D>
-std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
+std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b, CellColumns columns) {
   std::size_t n = 0;
-  for_each_point(s, b, [&](const Vec<D>&) { return ++n, true; });
+  for_each_point(
+      s, b, [&](const Vec<D>&) { return ++n, true; }, columns);
+  return n;
+}
+
+template <int D>
+std::vector<long> points_per_column(const ScenarioOf<D>& s, CellColumns columns) {
+  std::vector<long> n(static_cast<std::size_t>(std::max(0, s.cells[0])), 0);
+  for (const BodyOf<D>& b : s.bodies)
+    if (b.dilated_from < 0)
+      for_each_point(
+          s, b,
+          [&](const Vec<D>& x) {
+            ++n[static_cast<std::size_t>(std::clamp(column_of(s, x), 0, s.cells[0] - 1))];
+            return true;
+          },
+          columns);
   return n;
 }
 
@@ -110,7 +129,7 @@ bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b) {
 }
 
 template <int D>
-Particles<D> build_particles(const ScenarioOf<D>& s) {
+Particles<D> build_particles(const ScenarioOf<D>& s, CellColumns columns) {
   if (s.bodies.size() > static_cast<std::size_t>(kMaxIds) ||
       s.materials.size() > static_cast<std::size_t>(kMaxIds))
     throw ScenarioError(
@@ -118,8 +137,8 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
   std::vector<std::size_t> counts;
   std::size_t total = 0;
   for (std::size_t i = 0; i < s.bodies.size(); ++i) {
-    counts.push_back(s.bodies[i].dilated_from >= 0 ? 0 : count_points(s, s.bodies[i]));
-    if (counts.back() == 0 && s.bodies[i].dilated_from < 0)
+    counts.push_back(s.bodies[i].dilated_from >= 0 ? 0 : count_points(s, s.bodies[i], columns));
+    if (s.bodies[i].dilated_from < 0 && (columns.whole() ? counts.back() == 0 : !has_points(s, s.bodies[i])))
       throw ScenarioError(
           fmt::format("{}: key 'body[{}].shape': body '{}' contains no material point on this grid "
                       "(cell size {} m, {} points per cell); enlarge the shape or refine the grid",
@@ -136,28 +155,33 @@ Particles<D> build_particles(const ScenarioOf<D>& s) {
     double volume = sub;
     for (int d = 1; d < D; ++d) volume *= sub;
     const Vec<D> half = Vec<D>::Constant(0.5 * sub);
-    for_each_point(s, b, [&](const Vec<D>& x) {
-      Vec<D> v = b.velocity;
-      const SineVelocityOf<D>& sv = b.velocity_sine;
-      if (sv.wavelength > 0.0)
-        v += sv.amplitude * std::sin(2.0 * M_PI * (x[sv.axis] - sv.origin) / sv.wavelength);
-      // Axisymmetric (2D): per radian, the sub-cell's area times its radius r_p = x_p.
-      double vol = volume;
-      if constexpr (D == 2)
-        if (s.geometry == Geometry::Axisymmetric) vol *= x[0];
-      p.add(x, v, mat.density * vol, vol, half, b.material, static_cast<int>(i));
-      return true;
-    });
+    for_each_point(
+        s, b,
+        [&](const Vec<D>& x) {
+          Vec<D> v = b.velocity;
+          const SineVelocityOf<D>& sv = b.velocity_sine;
+          if (sv.wavelength > 0.0)
+            v += sv.amplitude * std::sin(2.0 * M_PI * (x[sv.axis] - sv.origin) / sv.wavelength);
+          // Axisymmetric (2D): per radian, the sub-cell's area times its radius r_p = x_p.
+          double vol = volume;
+          if constexpr (D == 2)
+            if (s.geometry == Geometry::Axisymmetric) vol *= x[0];
+          p.add(x, v, mat.density * vol, vol, half, b.material, static_cast<int>(i));
+          return true;
+        },
+        columns);
   }
   if (output_fields::wants_elastic_split(s.output_fields)) p.track_elastic_F();  // Post eq. 67-77
   return p;
 }
 
-template std::size_t count_points<2>(const Scenario&, const Body&);
-template std::size_t count_points<3>(const Scenario3&, const Body3&);
+template std::size_t count_points<2>(const Scenario&, const Body&, CellColumns);
+template std::size_t count_points<3>(const Scenario3&, const Body3&, CellColumns);
+template std::vector<long> points_per_column<2>(const Scenario&, CellColumns);
+template std::vector<long> points_per_column<3>(const Scenario3&, CellColumns);
 template bool has_points<2>(const Scenario&, const Body&);
 template bool has_points<3>(const Scenario3&, const Body3&);
-template Particles<2> build_particles<2>(const Scenario&);
-template Particles<3> build_particles<3>(const Scenario3&);
+template Particles<2> build_particles<2>(const Scenario&, CellColumns);
+template Particles<3> build_particles<3>(const Scenario3&, CellColumns);
 
 }  // namespace skred

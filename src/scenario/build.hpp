@@ -1,7 +1,10 @@
 // Material point generation from a parsed scenario, and a human summary of it.
 #pragma once
+#include <cmath>
 #include <cstddef>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "core/particles.hpp"
 #include "core/types.hpp"
@@ -9,19 +12,36 @@
 
 namespace skred {
 
+// A run of the grid's cell columns along x, [first, end).
+struct CellColumns {
+  int first = 0, end = std::numeric_limits<int>::max();
+  bool holds(int i) const { return i >= first && i < end; }
+  bool whole() const { return first <= 0 && end == std::numeric_limits<int>::max(); }
+};
+// The cell column along x that holds point x (may be outside [0, cells[0]) off the grid).
+template <class S, class V>
+int column_of(const S& s, const V& x) {
+  return static_cast<int>(std::floor((x[0] - s.origin[0]) / s.cell_size));
+}
+
 // Fills every body with n^D material points per grid cell (n = particles_per_cell): each
 // cell is split into n^D sub-cells of side h/n and a sub-cell's centre becomes a point if it
 // lies inside the body's shape. Mass = density (h/n)^D (in 2D plane strain, per unit
 // thickness), volume0 = (h/n)^D, half0 = h/2n on every axis. In axisymmetric geometry
 // (2D) mass and volume0 are per radian: (h/n)^2 times the point's radius x_p. Bodies are filled in order,
 // cells in row-major order (x fastest, then y, then z), and the sub-cells of a cell in the
-// same order. Throws ScenarioError if a body receives no point.
+// same order. Throws ScenarioError if a body receives no point. With `columns`, only the points in
+// those cell columns along x (a process's part of the set-up, run/point_setup.hpp).
 template <int D>
-Particles<D> build_particles(const ScenarioOf<D>& s);
+Particles<D> build_particles(const ScenarioOf<D>& s, CellColumns columns = {});
 
-// Number of material points build_particles gives body `b` on the grid of `s`.
+// Number of material points build_particles gives body `b` on the grid of `s` (in `columns`).
 template <int D>
-std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b);
+std::size_t count_points(const ScenarioOf<D>& s, const BodyOf<D>& b, CellColumns columns = {});
+// The points build_particles gives each cell column along x (cells[0] counts), counted in
+// `columns` only (zero elsewhere).
+template <int D>
+std::vector<long> points_per_column(const ScenarioOf<D>& s, CellColumns columns);
 // True if body `b` receives at least one point (cheaper than count_points).
 template <int D>
 bool has_points(const ScenarioOf<D>& s, const BodyOf<D>& b);

@@ -26,8 +26,11 @@ void apply_initial_stress(const ScenarioOf<D>& s, Particles<D>& P) {
   const std::size_t n = P.size();
   constexpr int H = D == 2 ? 1 : 2;  // horizontal axes
   constexpr int axis[2] = {0, 2};    // x, then z
+  // The columns' width: the smallest points' (of the scenario's bodies, whichever of their
+  // points P holds: a process's part of the set-up, run/point_setup.hpp).
   double b = INFINITY;
-  for (std::size_t p = 0; p < n; ++p) b = std::min(b, 2.0 * P.half0[p][0]);
+  for (const BodyOf<D>& body : s.bodies)
+    if (body.dilated_from < 0) b = std::min(b, 2.0 * (0.5 * (s.cell_size / body.particles_per_cell)));
   const auto column = [&](int h, double x) {
     return static_cast<long>(std::floor((x - s.origin[axis[h]]) / b));
   };

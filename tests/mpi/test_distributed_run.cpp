@@ -321,20 +321,29 @@ TEST(DistributedRun, CheckpointInPiecesResumes) {
   expect_same_points(s, dir / "whole", dir / "cut_alone", 1e-12, "resumed alone");
 }
 
+// A one-process checkpoint, whole and as one piece with its manifest (each process then keeps
+// its share of every piece it reads), resumed on N processes.
 TEST(DistributedRun, CheckpointOfOneProcessResumesOnSeveral) {
   const Processes world = Processes::world();
   const Scenario s = parse_scenario(kSlope, "slope.toml");
   const fs::path dir = folder("spread", world);
   if (world.rank() == 0) {  // (no ASSERT before a collective call: the others would wait)
     EXPECT_TRUE(run(s, dir / "whole", Processes{}).completed);
-    EXPECT_TRUE(run(s, dir / "cut", Processes{}, 900).interrupted);  // (in the slide)
+    const RunResult cut = run(s, dir / "cut", Processes{}, 900);  // (in the slide)
+    EXPECT_TRUE(cut.interrupted);
+    fs::copy(dir / "cut", dir / "piece", fs::copy_options::recursive);
+    fs::rename(checkpoint_file(dir / "piece"), checkpoint_piece(dir / "piece", 0, 1));
+    std::ofstream(checkpoint_manifest(dir / "piece"))
+        << "skred checkpoint in pieces\nprocesses 1\nstep " << cut.steps << '\n';
   }
   world.barrier();
-  const RunResult spread = run(s, dir / "cut", world, -1, checkpoint_file(dir / "cut"));
-  ASSERT_TRUE(spread.completed) << spread.message;
-  if (world.rank() != 0) return;
-  expect_same_series(dir / "whole/series.csv", dir / "cut/series.csv", 1e-12, "spread");
-  expect_same_points(s, dir / "whole", dir / "cut", 1e-12, "spread");
+  for (const char* name : {"cut", "piece"}) {
+    const RunResult spread = run(s, dir / name, world, -1, checkpoint_file(dir / name));
+    ASSERT_TRUE(spread.completed) << name << ": " << spread.message;
+    if (world.rank() != 0) continue;
+    expect_same_series(dir / "whole/series.csv", dir / name / "series.csv", 1e-12, name);
+    expect_same_points(s, dir / "whole", dir / name, 1e-12, name);
+  }
 }
 
 TEST(DistributedRun, Column3DWithHazardMaps) {
@@ -404,9 +413,10 @@ TEST(DistributedRun, ImplicitCylinderEqualsOneProcess) {
 // and resumed: at N bit for bit, alone within the solver's tolerance (the solvers' sums run over
 // other rows). With MUMPS (direct) and with CG and GAMG (iterative): each new pattern gets a
 // fresh solver, so the resumed run's first one is the whole run's (a reset GAMG kept some of its
-// set-up, and the resumed steps differed by 1e-13 m). Beyond 3 processes GAMG's set-up is not
-// the same from run to run (measured at 4: three runs, three series, apart by 1e-15 relative),
-// so there the iterative runs are compared within the solver's tolerance.
+// set-up, and the resumed steps differed by 1e-13 m). Beyond 2 processes GAMG's set-up is not
+// always the same from run to run (measured at 4: three runs, three series, apart by 1e-15
+// relative; at 3, one test in six), so there the iterative runs are compared within the
+// solver's tolerance.
 TEST(DistributedRun, ImplicitCheckpointInPiecesResumes) {
   const Processes world = Processes::world();
   for (const std::string solver : {"direct", "iterative"}) {
@@ -426,7 +436,7 @@ TEST(DistributedRun, ImplicitCheckpointInPiecesResumes) {
     const RunResult resumed = run(s, dir / "cut", world, -1, checkpoint_file(dir / "cut"));
     ASSERT_TRUE(resumed.completed) << resumed.message;
     if (world.rank() != 0) continue;
-    if (solver == "direct" || world.size() <= 3) {
+    if (solver == "direct" || world.size() <= 2) {
       EXPECT_EQ(test::file_text(dir / "cut/series.csv"), test::file_text(dir / "whole/series.csv")) << solver;
       expect_same_points(s, dir / "whole", dir / "cut", 0.0, solver + ", resumed on as many processes");
     } else {
