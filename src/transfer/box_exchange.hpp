@@ -4,11 +4,12 @@
 // are kept in blocks of the grid (point_shares.hpp, repartition_in_blocks), so the overlaps are the
 // layers where neighbouring blocks meet: ghost layers as wide as the kernel's reach.
 //
-// A node held by several processes is owned by the lowest rank whose box holds it. The shared
-// nodes form a PETSc star forest (parallel/star_forest.hpp): a root at the owner, a leaf at each
-// other holder. A sum reduces the leaves' parts into the owner's, which sends the sum back, so
-// every holder has the same bits. The forest is rebuilt only when a box changed. Node totals (the
-// walls' and contact's work) count each node once, in the process that `counts` it.
+// A node held by several processes is owned by the lowest rank whose box holds it; for a node of
+// its own box a process asks only its neighbours, the processes whose boxes meet its own (found
+// once per setting). The shared nodes form a PETSc star forest (parallel/star_forest.hpp): a root
+// at the owner, a leaf at each other holder. A sum reduces the leaves' parts into the owner's, which sends
+// the sum back, so every holder has the same bits. The forest is rebuilt only when a box changed. Node totals
+// (the walls' and contact's work) count each node once, in the process that `counts` it.
 #pragma once
 #include <algorithm>
 #include <array>
@@ -44,7 +45,13 @@ class BoxExchange {
         same = same && boxes_[q].lo[d] == lo && boxes_[q].hi[d] == hi;
         boxes_[q].lo[d] = lo, boxes_[q].hi[d] = hi;
       }
-    if (!same) set_forest();  // (every process sees the same boxes: all rebuild, or none)
+    if (!same) {  // (every process sees the same boxes: all rebuild, or none)
+      neighbours_.clear();
+      for (std::size_t q = 0; q < k; ++q)
+        if (meet(boxes_[q], boxes_[static_cast<std::size_t>(procs.rank())]))
+          neighbours_.push_back(static_cast<int>(q));
+      set_forest();
+    }
   }
   const Processes& processes() const { return procs_; }
   const std::vector<NodeBox<D>>& boxes() const { return boxes_; }
@@ -56,8 +63,9 @@ class BoxExchange {
   // box and summed.
   bool counts(std::size_t i) const {
     const auto ij = unflatten(i);
-    for (int q = 0; q <= procs_.rank(); ++q)
-      if (inside(interior(boxes_[static_cast<std::size_t>(q)]), ij)) return q == procs_.rank();
+    for (int q : neighbours_)  // (a box that holds a node of this one meets it)
+      if (q <= procs_.rank() && inside(interior(boxes_[static_cast<std::size_t>(q)]), ij))
+        return q == procs_.rank();
     return false;
   }
 
@@ -93,7 +101,7 @@ class BoxExchange {
     root_data_.clear();
     if (r > 0)
       walk(mine, mine, [&](std::size_t i) {
-        if (owner(i) != r) return;
+        if (own_owner(i) != r) return;
         root_data_.resize(root_data_.size() + n);
         pack(i, root_data_.data() + root_data_.size() - n);
       });
@@ -144,11 +152,23 @@ class BoxExchange {
     }
     return ij;
   }
-  // The lowest rank whose box holds node i.
+  static bool meet(const NodeBox<D>& a, const NodeBox<D>& b) {
+    for (int d = 0; d < D; ++d)
+      if (std::max(a.lo[d], b.lo[d]) > std::min(a.hi[d], b.hi[d])) return false;
+    return true;
+  }
+  // The lowest rank whose box holds node i (any node: every box is asked).
   int owner(std::size_t i) const {
     const auto ij = unflatten(i);
     for (std::size_t q = 0; q < boxes_.size(); ++q)
       if (inside(boxes_[q], ij)) return static_cast<int>(q);
+    return -1;
+  }
+  // The same for a node of this process's box: only its neighbours' boxes can hold it.
+  int own_owner(std::size_t i) const {
+    const auto ij = unflatten(i);
+    for (int q : neighbours_)
+      if (inside(boxes_[static_cast<std::size_t>(q)], ij)) return q;
     return -1;
   }
   // fn(i) for the nodes of a and b both, in one order that both processes follow.
@@ -173,10 +193,10 @@ class BoxExchange {
     const auto& mine = boxes_[static_cast<std::size_t>(r)];
     roots_.clear();
     leaves_.clear();
-    for (std::size_t q = 0; q < boxes_.size(); ++q) {
-      if (static_cast<int>(q) == r) continue;
-      walk(mine, boxes_[q],
-           [&](std::size_t i) { (owner(i) == r ? roots_ : leaves_).push_back(static_cast<long>(i)); });
+    for (int q : neighbours_) {
+      if (q == r) continue;
+      walk(mine, boxes_[static_cast<std::size_t>(q)],
+           [&](std::size_t i) { (own_owner(i) == r ? roots_ : leaves_).push_back(static_cast<long>(i)); });
     }
     for (auto* v : {&roots_, &leaves_}) {
       std::sort(v->begin(), v->end());
@@ -191,6 +211,7 @@ class BoxExchange {
   Processes procs_;
   std::array<int, D> nodes_{};
   std::vector<NodeBox<D>> boxes_;
+  std::vector<int> neighbours_;  // the ranks whose boxes meet this one's, ascending (itself too)
   std::vector<double> all_;
   StarForest forest_;
   bool forest_set_ = false;
