@@ -9,7 +9,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-
 #include <type_traits>
 #include <vector>
 
