@@ -265,6 +265,10 @@ TEST(Checkpoint, CommandLineInterruptResumeAndRestart) {
   EXPECT_NE(msg.find("skred resume " + out), std::string::npos) << msg;
   EXPECT_NE(read(dir / "out" / "summary.json").find("\"status\": \"interrupted\""), std::string::npos);
   fs::copy_file(dir / "out" / "checkpoint.skc", dir / "stopped.skc");
+  const std::string stopped = read(dir / "out" / "summary.json");
+  const std::size_t at = stopped.find("\"steps\": ");
+  ASSERT_NE(at, std::string::npos) << stopped;
+  const long stopped_step = std::stol(stopped.substr(at + 9));
   const auto [resumed, rmsg] = shell(skred + " resume " + out + " --threads 1");
   EXPECT_EQ(resumed, 0) << rmsg;
   EXPECT_NE(read(dir / "out" / "summary.json").find("\"status\": \"completed\""), std::string::npos);
@@ -273,8 +277,60 @@ TEST(Checkpoint, CommandLineInterruptResumeAndRestart) {
                                        (dir / "stopped.skc").string());
   EXPECT_EQ(restarted, 0) << smsg;
   EXPECT_EQ(read(dir / "out" / "series.csv"), read(dir / "out2" / "series.csv"));
+  // --restart may name a checkpoint in pieces by its manifest (here one piece, as one process of
+  // `mpirun -np 1` writes it).
+  fs::create_directories(dir / "pieces");
+  fs::copy_file(dir / "stopped.skc", checkpoint_piece(dir / "pieces", 0, 1));
+  write(checkpoint_manifest(dir / "pieces"),
+        "skred checkpoint in pieces\nprocesses 1\nstep " + std::to_string(stopped_step) + "\n");
+  const auto [manifest, mmsg] =
+      shell(skred + " run " + scen + " -o " + (dir / "out3").string() + " --threads 1 --restart " +
+            checkpoint_manifest(dir / "pieces").string());
+  EXPECT_EQ(manifest, 0) << mmsg;
+  EXPECT_EQ(read(dir / "out" / "series.csv"), read(dir / "out3" / "series.csv"));
   const auto [foreign, fmsg] = shell(skred + " run " + scen + " -o " + out2 + " --restart " + scen);
   EXPECT_EQ(foreign, 1);
   EXPECT_NE(fmsg.find(scen + "' is not a skred checkpoint"), std::string::npos) << fmsg;
   fs::remove_all(dir);
+}
+
+// A checkpoint in pieces resumed on another count (issue 55): each process reads only the pieces
+// that hold its share [m r / N, m (r + 1) / N) of the m points, and together the processes take
+// every point once, in the pieces' order; a process with an empty share reads one piece.
+TEST(Checkpoint, PiecesToReadOnAnotherCount) {
+  const std::vector<long> points = {5, 0, 7, 3, 0, 9};
+  const long m = 24;
+  for (int N : {1, 2, 3, 5, 7, 24, 40}) {
+    long next = 0;  // the next point, over the pieces, that some process must take
+    for (int r = 0; r < N; ++r) {
+      const std::vector<PieceRun> runs = pieces_to_read(points, r, N);
+      ASSERT_FALSE(runs.empty()) << N << " processes, rank " << r;
+      long share = 0, read_points = 0;
+      for (const PieceRun& run : runs) {
+        ASSERT_GE(run.piece, 0);
+        ASSERT_LT(run.piece, static_cast<long>(points.size()));
+        const long p = points[static_cast<std::size_t>(run.piece)];
+        ASSERT_LE(0, run.first);
+        ASSERT_LE(run.first, run.end);
+        ASSERT_LE(run.end, p);
+        long start = 0;
+        for (long k = 0; k < run.piece; ++k) start += points[static_cast<std::size_t>(k)];
+        if (run.end > run.first) {
+          EXPECT_EQ(start + run.first, next)
+              << N << " processes, rank " << r << ": a point skipped or taken twice";
+          next = start + run.end;
+        }
+        share += run.end - run.first;
+        read_points += p;
+      }
+      EXPECT_EQ(share, m * (r + 1) / N - m * r / N) << N << " processes, rank " << r;
+      // It reads no piece beyond those its share touches: at most its share and two pieces' points.
+      EXPECT_LE(read_points, share + 2 * 9) << N << " processes, rank " << r;
+      if (share == 0) {
+        EXPECT_EQ(runs.size(), 1u);
+      }
+    }
+    EXPECT_EQ(next, m) << N << " processes: not every point was taken";
+  }
+  EXPECT_TRUE(pieces_to_read({}, 0, 2).empty());  // (no pieces: nothing to read)
 }

@@ -193,8 +193,22 @@ static int command(int argc, char** argv) {
   run->add_option("--checkpoint-every", ro.checkpoint_every,
                   "Write OUTDIR/checkpoint.skc every N steps and at the end")
       ->check(CLI::Range(1L, 1000000000L));
-  run->add_option("--restart", restart, "Continue from this checkpoint (of the same scenario)")
-      ->check(CLI::ExistingFile);
+  run->add_option("--restart", restart,
+                  "Continue from this checkpoint (of the same scenario): checkpoint.skc, or the "
+                  "checkpoint.manifest of one in pieces")
+      ->transform(CLI::Validator(
+          [](std::string& path) -> std::string {  // (a checkpoint in pieces: its manifest stands for it)
+            namespace fs = std::filesystem;
+            const fs::path p(path), dir = p.parent_path();
+            if (p.filename() == skred::checkpoint_manifest(dir).filename())
+              path = skred::checkpoint_file(dir).string();
+            if (fs::is_regular_file(path) ||
+                (fs::path(path).filename() == skred::checkpoint_file(dir).filename() &&
+                 fs::is_regular_file(skred::checkpoint_manifest(dir))))
+              return {};
+            return "File does not exist: " + p.string();
+          },
+          "FILE"));
   run->add_flag("--overwrite", overwrite, "Replace an earlier run in OUTDIR (removes its files first)");
 
   auto* resume = app.add_subcommand("resume", "Continue an interrupted run from OUTDIR/checkpoint.skc");

@@ -1,16 +1,23 @@
 // The unknowns of an implicit step: D displacement components at every node that carries mass
-// (the active nodes, numbered in flat-index order), and the compressed-row pattern of the
-// stiffness matrix, exact: two nodes are coupled when one block holds both — a point's stencil,
-// or with the cell-averaged volumetric strain the box of nodes of a cell's points
-// (cell_boxes.hpp). A component held by a wall (Dirichlet condition) keeps its row as an
-// identity row with a zero right-hand side, so the matrix keeps the symmetry of the tangent and
-// a node's D unknowns stay together (PETSc's block size, the multigrid's near null space).
-// Across processes (issue 55) the masses are every process's sums, so all number the unknowns
-// alike, and the pattern is the union of the processes' blocks; each remembers the rows its own
-// blocks touch (contributing_rows).
+// (the active nodes), and the compressed-row pattern of the stiffness matrix, exact: two nodes
+// are coupled when one block holds both — a point's stencil, or with the cell-averaged
+// volumetric strain the box of nodes of a cell's points (cell_boxes.hpp). A component held by a
+// wall (Dirichlet condition) keeps its row as an identity row with a zero right-hand side, so
+// the matrix keeps the symmetry of the tangent and a node's D unknowns stay together (PETSc's
+// block size, the multigrid's near null space).
+//
+// One process numbers the active nodes in flat-index order. Across processes (issue 55) the
+// masses are every process's sums, so all know the same active nodes; each node is owned by the
+// lowest rank whose points' blocks touch it, and the nodes are numbered by owner, then in flat
+// order, so each process owns one run of rows [first_row, end_row), and these follow the points'
+// blocks of the grid (point_shares.hpp): the matrix's rows lie where the points that sum them are.
+// A process keeps the pattern of its own rows (every process's couplings: their union) and of
+// the rows its points' blocks touch (its own couplings, which it sends to the rows' owners);
+// the other rows are empty in its pattern.
 #pragma once
 #include <omp.h>
 
+#include <algorithm>
 #include <array>
 #include <bit>
 #include <cstddef>
@@ -46,8 +53,6 @@ class DofMap {
         active_[i] = static_cast<std::int32_t>(nodes_.size());
         nodes_.push_back(static_cast<std::int64_t>(i));
       }
-    held_.assign(nodes_.size(), 0);
-    for (std::size_t a = 0; a < nodes_.size(); ++a) held_[a] = held[static_cast<std::size_t>(nodes_[a])];
     offsets(Sp, pair_offset_);
     offsets(Sb, box_offset_);
     int K = 1;
@@ -66,17 +71,22 @@ class DofMap {
           __atomic_fetch_or(&m[o / 64], std::uint64_t{1} << (o % 64), __ATOMIC_RELAXED);
         }
       }
-    contributing_.clear();
-    if (processes.distributed()) {  // this process's rows, then every process's couplings
-      contributing_.assign(nodes_.size() * D, 0);
-      for (std::size_t a = 0; a < nodes_.size(); ++a) {
-        bool any = false;
-        for (int w = 0; w < words_; ++w) any = any || mask_[a * words_ + w] != 0;
-        for (int c = 0; c < D; ++c) contributing_[a * D + c] = any;
-      }
-      processes.bit_or(mask_.data(), mask_.size());
+    first_node_ = 0;
+    end_node_ = nodes_.size();
+    if (processes.distributed()) own_rows_by_process(processes);
+    coupled_ = true;  // (the union of the couplings: owned rows' masks, and one process's)
+    {
+      int centre = 0;
+      for (int d = 0, pw = 1; d < D; ++d, pw *= W_) centre += (S_ - 1) * pw;
+      bool all = true;
+      for (std::size_t a = first_node_; a < end_node_; ++a)
+        all = all && ((mask_[a * words_ + centre / 64] >> (centre % 64)) & 1u);
+      coupled_ = !processes.any(!all);
     }
-    // Rows: node a's D rows each hold D entries per coupled node, in flat (= active) order.
+    held_.assign(nodes_.size(), 0);
+    for (std::size_t a = 0; a < nodes_.size(); ++a) held_[a] = held[static_cast<std::size_t>(nodes_[a])];
+    // Rows: node a's D rows each hold D entries per coupled node, in the offsets' order (one
+    // process: ascending columns).
     const std::size_t rows = nodes_.size() * D;
     pattern_.row_start.assign(rows + 1, 0);
     std::vector<int> count(nodes_.size());
@@ -127,17 +137,14 @@ class DofMap {
   std::int64_t node(std::size_t a) const { return nodes_[a]; }
   bool held(std::size_t a, int c) const { return (held_[a] >> c) & 1u; }
   const SparsePattern& pattern() const { return pattern_; }
-  // Across processes: per row, 1 where this process's blocks touch it (empty for one process).
-  const std::vector<std::uint8_t>& contributing_rows() const { return contributing_; }
   int box_width() const { return W_; }
-  // Whether every active node's own block is in the pattern (a node no block holds has none).
-  bool every_node_coupled_to_itself() const {
-    int centre = 0;
-    for (int d = 0, pw = 1; d < D; ++d, pw *= W_) centre += (S_ - 1) * pw;
-    for (std::size_t a = 0; a < nodes_.size(); ++a)
-      if (!((mask_[a * words_ + centre / 64] >> (centre % 64)) & 1u)) return false;
-    return true;
-  }
+  // Whether every active node's own block is in the pattern (a node no block holds has none):
+  // the same answer on every process.
+  bool every_node_coupled_to_itself() const { return coupled_; }
+  // The active nodes this process owns, [first_node, end_node) (all of them for one process);
+  // their rows are [D first_node, D end_node).
+  std::size_t first_node() const { return first_node_; }
+  std::size_t end_node() const { return end_node_; }
   // Position in the values of entry (row a D + r, column b D + c) for the block coupling
   // active node a to the node at offset o from it: row_entry(a, r, o) + c.
   std::int32_t row_entry(std::size_t a, int r, int o) const {
@@ -153,6 +160,39 @@ class DofMap {
   int box_offset(int i, int j, int K) const { return box_offset_[static_cast<std::size_t>(i * K + j)]; }
 
  private:
+  // Across processes: the owners, the numbering by owner and each row's mask, the union of the
+  // processes' in the rows this one owns, its own in the others (see the top of the file).
+  void own_rows_by_process(const Processes& procs) {
+    const std::size_t na = nodes_.size(), w = static_cast<std::size_t>(words_);
+    const long rank = procs.rank(), none = procs.size();
+    std::vector<long> owner(na, none);
+    for (std::size_t a = 0; a < na; ++a)
+      for (std::size_t k = 0; k < w; ++k)
+        if (mask_[a * w + k] != 0) owner[a] = rank;
+    procs.min(owner.data(), na);
+    std::vector<std::uint64_t> all(mask_);
+    procs.bit_or(all.data(), all.size());
+    std::vector<std::size_t> next(static_cast<std::size_t>(none) + 1, 0);
+    for (long& o : owner) {
+      if (o == none) o = 0;  // (no block holds it: no row either; every_node_coupled_to_itself)
+      ++next[static_cast<std::size_t>(o) + 1];
+    }
+    for (std::size_t q = 0; q < static_cast<std::size_t>(none); ++q) next[q + 1] += next[q];
+    first_node_ = next[static_cast<std::size_t>(rank)];
+    end_node_ = next[static_cast<std::size_t>(rank) + 1];
+    std::vector<std::int64_t> nodes(na);
+    std::vector<std::uint64_t> mask(na * w);
+    for (std::size_t a = 0; a < na; ++a) {  // in flat order: each owner's run stays in flat order
+      const std::size_t to = next[static_cast<std::size_t>(owner[a])]++;
+      nodes[to] = nodes_[a];
+      active_[static_cast<std::size_t>(nodes_[a])] = static_cast<std::int32_t>(to);
+      const std::uint64_t* from = owner[a] == rank ? &all[a * w] : &mask_[a * w];
+      std::copy(from, from + w, &mask[to * w]);
+    }
+    nodes_.swap(nodes);
+    mask_.swap(mask);
+  }
+
   // The offset index of node l seen from node k of a block S wide:
   // o = sum_d (l_d - k_d + S_ - 1) W^d, in the coupling box of width S_.
   void offsets(int S, std::vector<int>& table) const {
@@ -177,8 +217,9 @@ class DofMap {
   std::vector<std::int64_t> nodes_;
   std::vector<std::uint8_t> held_;
   std::vector<std::uint64_t> mask_;
-  std::vector<std::uint8_t> contributing_;
   std::vector<int> pair_offset_, box_offset_;
+  std::size_t first_node_ = 0, end_node_ = 0;
+  bool coupled_ = true;
   SparsePattern pattern_;
 };
 

@@ -153,8 +153,8 @@ StepStatus ImplicitSolver<D>::map_step() {
     prescribed_id_[a] = grid_prescribed_[static_cast<std::size_t>(dofs_.node(a))];
     driven_[a] = grid_driven_[static_cast<std::size_t>(dofs_.node(a))];
   }
-  system_.set_pattern(dofs_.pattern());
-  system_.set_contributing_rows(dofs_.contributing_rows());
+  system_.set_pattern(dofs_.pattern(), static_cast<int>(D * dofs_.first_node()),
+                      static_cast<int>(D * dofs_.end_node()));
   if (settings_.linear_solver == LinearSolverKind::Iterative) {
     std::vector<double>& xyz = trial_du_;  // (scratch until the iterations start)
     xyz.resize(dofs);

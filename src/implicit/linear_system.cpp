@@ -27,10 +27,11 @@ struct LinearSystem::Petsc {
   KSP ksp = nullptr;
   std::vector<PetscInt> rows, columns;
   // Across processes: the right-hand side and solution (owned rows), the whole solution on every
-  // process, and the scatter that fills it; the whole pattern's columns.
+  // process, and the scatter that fills it; the owned rows' entries in and beyond their diagonal
+  // block (the exact preallocation).
   Vec b = nullptr, x = nullptr, x_all = nullptr;
   VecScatter to_all = nullptr;
-  std::vector<PetscInt> all_columns;
+  std::vector<PetscInt> in_diagonal, off_diagonal;
   void destroy_vectors() {
     if (to_all) VecScatterDestroy(&to_all);
     if (x_all) VecDestroy(&x_all);
@@ -81,13 +82,13 @@ void LinearSystem::new_solver() {
   SKRED_PETSC(KSPSetFromOptions(p.ksp));
 }
 
-void LinearSystem::set_pattern(const SparsePattern& pattern) {
+void LinearSystem::set_pattern(const SparsePattern& pattern, int first_row, int end_row) {
   if (!petsc_) configure(kind_, options_, symmetric_, block_, processes_);
   Petsc& p = *petsc_;
   pattern_ = pattern;
   values_.assign(pattern_.column.size(), 0.0);
-  first_row_ = 0;
-  end_row_ = pattern_.size();
+  first_row_ = processes_.distributed() ? first_row : 0;
+  end_row_ = processes_.distributed() && end_row >= 0 ? end_row : pattern_.size();
   if (processes_.distributed()) {
     set_parallel_pattern();
     return;
@@ -177,19 +178,20 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
   return true;
 }
 
-// The owned rows of a pattern every process knows: whole nodes in contiguous runs, as even as
-// the node count allows; their compressed rows preallocate PETSc's parallel matrix exactly.
+// PETSc's parallel matrix over the owned rows, preallocated exactly from their patterns: each
+// row's entries in the diagonal block (columns this process owns) and beyond it.
 void LinearSystem::set_parallel_pattern() {
   Petsc& p = *petsc_;
-  const long n = pattern_.size(), nodes = n / block_, rank = processes_.rank(), size = processes_.size();
-  first_row_ = static_cast<int>(block_ * (nodes * rank / size));
-  end_row_ = static_cast<int>(block_ * (nodes * (rank + 1) / size));
-  const PetscInt local = end_row_ - first_row_, r0 = pattern_.row_start[static_cast<std::size_t>(first_row_)];
-  p.rows.resize(static_cast<std::size_t>(local) + 1);
-  for (PetscInt r = 0; r <= local; ++r)
-    p.rows[static_cast<std::size_t>(r)] = pattern_.row_start[static_cast<std::size_t>(first_row_ + r)] - r0;
-  p.all_columns.assign(pattern_.column.begin(), pattern_.column.end());
-  p.columns.assign(p.all_columns.begin() + r0, p.all_columns.begin() + r0 + p.rows.back());
+  const PetscInt n = pattern_.size(), local = end_row_ - first_row_;
+  p.in_diagonal.assign(static_cast<std::size_t>(local), 0);
+  p.off_diagonal.assign(static_cast<std::size_t>(local), 0);
+  for (PetscInt r = 0; r < local; ++r) {
+    const std::size_t row = static_cast<std::size_t>(first_row_ + r);
+    for (std::int32_t e = pattern_.row_start[row]; e < pattern_.row_start[row + 1]; ++e) {
+      const std::int32_t c = pattern_.column[static_cast<std::size_t>(e)];
+      ++(c >= first_row_ && c < end_row_ ? p.in_diagonal : p.off_diagonal)[static_cast<std::size_t>(r)];
+    }
+  }
   if (p.matrix) {
     new_solver();
     SKRED_PETSC(MatDestroy(&p.matrix));
@@ -199,29 +201,28 @@ void LinearSystem::set_parallel_pattern() {
   SKRED_PETSC(MatSetSizes(p.matrix, local, local, n, n));
   SKRED_PETSC(MatSetType(p.matrix, MATMPIAIJ));
   if (block_ > 1) SKRED_PETSC(MatSetBlockSize(p.matrix, block_));
-  SKRED_PETSC(MatMPIAIJSetPreallocationCSR(p.matrix, p.rows.data(), p.columns.data(), nullptr));
+  SKRED_PETSC(MatMPIAIJSetPreallocation(p.matrix, 0, p.in_diagonal.data(), 0, p.off_diagonal.data()));
   SKRED_PETSC(MatSetOption(p.matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   if (symmetric_) SKRED_PETSC(MatSetOption(p.matrix, MAT_SYMMETRIC, PETSC_TRUE));
   SKRED_PETSC(MatCreateVecs(p.matrix, &p.x, &p.b));
   SKRED_PETSC(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all));
 }
 
-// This process's values into the parallel matrix: its contributing rows and its own; PETSc adds
-// them up in the rows' owners (MatAssembly).
+// This process's values into the parallel matrix, every row its pattern holds (its own rows,
+// each with every entry, and those its points' terms fall in); PETSc adds them up in the rows'
+// owners (MatAssembly).
 void LinearSystem::add_parallel_values() {
   Petsc& p = *petsc_;
   SKRED_PETSC(MatZeroEntries(p.matrix));
   const int n = pattern_.size();
+  p.columns.resize(0);
   for (int row = 0; row < n; ++row) {
-    const bool mine = row >= first_row_ && row < end_row_;
-    if (!mine && !(static_cast<std::size_t>(row) < contributing_.size() &&
-                   contributing_[static_cast<std::size_t>(row)]))
-      continue;
     const std::int32_t e0 = pattern_.row_start[static_cast<std::size_t>(row)];
     const PetscInt len = pattern_.row_start[static_cast<std::size_t>(row) + 1] - e0;
+    if (len == 0) continue;
+    p.columns.assign(pattern_.column.begin() + e0, pattern_.column.begin() + e0 + len);
     const PetscInt r = row;
-    SKRED_PETSC(
-        MatSetValues(p.matrix, 1, &r, len, p.all_columns.data() + e0, values_.data() + e0, ADD_VALUES));
+    SKRED_PETSC(MatSetValues(p.matrix, 1, &r, len, p.columns.data(), values_.data() + e0, ADD_VALUES));
   }
 }
 

@@ -5,11 +5,12 @@
 // not) or sets up a Krylov solver with algebraic multigrid (iterative), and solves. PETSc stays
 // behind this header (and parallel/star_forest.hpp's, for the exchanges between processes).
 //
-// Across processes (issue 55) every process knows the whole pattern, the right-hand side and the
-// solution; the matrix is PETSc's parallel one (MPIAIJ), its rows owned in contiguous runs of
-// whole nodes (first_row, end_row). Each process adds its own points' values (the rows it marks
-// with set_contributing_rows, and those it owns); PETSc sends them to the rows' owners, and
-// MUMPS or the multigrid factorise and solve on all processes together.
+// Across processes (issue 55) the matrix is PETSc's parallel one (MPIAIJ). Each process owns a
+// run of whole nodes' rows, [first_row, end_row), which dof_map.hpp numbers after the points'
+// blocks of the grid, and keeps the pattern of its own rows and of the rows its points' terms
+// fall in (the others are empty). It adds its values of both; PETSc sends those of the rows it
+// does not own to their owners, and MUMPS or the multigrid factorise and solve on all processes
+// together. The right-hand side and the solution are whole in every process.
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -23,7 +24,7 @@
 
 namespace skred {
 
-// Compressed rows of a square sparse matrix with sorted column indices.
+// Compressed rows of a square sparse matrix (one process: sorted column indices).
 struct SparsePattern {
   std::vector<std::int32_t> row_start;  // n + 1 entries
   std::vector<std::int32_t> column;     // row_start[n] entries
@@ -48,8 +49,9 @@ class LinearSystem {
   // `processes`: those the matrix is split among (one alone: PETSc's sequential matrices).
   void configure(LinearSolverKind kind, const std::string& petsc_options, bool symmetric, int block,
                  const Processes& processes = {});
-  // A new pattern (each step: the points moved); the values are zeroed.
-  void set_pattern(const SparsePattern& pattern);
+  // A new pattern (each step: the points moved); the values are zeroed. Across processes, the
+  // rows this process owns are [first_row, end_row) (one process: every row).
+  void set_pattern(const SparsePattern& pattern, int first_row = 0, int end_row = -1);
   // The nodes' coordinates (block values each, in the unknowns' order): the multigrid builds
   // the rigid-body modes of elasticity from them (its near null space). Iterative only.
   void set_coordinates(const std::vector<double>& xyz);
@@ -62,9 +64,6 @@ class LinearSystem {
   bool owns(std::size_t row) const {
     return static_cast<int>(row) >= first_row_ && static_cast<int>(row) < end_row_;
   }
-  // Across processes: per row, nonzero where this process's values may be nonzero (its points'
-  // rows); factorise() sends those rows to their owners. Ignored for one process.
-  void set_contributing_rows(std::vector<std::uint8_t> rows) { contributing_ = std::move(rows); }
   // Hands the assembled values to PETSc and factorises (direct) or sets the preconditioner up.
   void factorise();
   // x = K^-1 b with the last factorisation; false (with reason()) when the solve failed.
@@ -90,7 +89,6 @@ class LinearSystem {
   int block_ = 2;
   Processes processes_;
   int first_row_ = 0, end_row_ = 0;
-  std::vector<std::uint8_t> contributing_;
   void new_solver();                                                         // KSP and PC afresh
   void set_parallel_pattern();                                               // set_pattern across processes
   void add_parallel_values();                                                // factorise across processes

@@ -158,7 +158,7 @@ struct MappedStencils {
   // Collective over `procs`.
   void trim(const GridGeometry<D>& g, int threads, const Processes& procs) {
     const std::size_t n = weight.size();
-    const bool mapped = !cell_corner.empty();
+    const bool mapped = gauss_points;
     const auto offsets = [](int j) {
       std::array<int, D> o{};
       for (int d = 0; d < D; ++d, j /= kWidth) o[static_cast<std::size_t>(d)] = j % kWidth;

@@ -82,6 +82,7 @@ void allreduce(void* comm, void* data, std::size_t n, MPI_Datatype type, MPI_Op 
 void Processes::sum(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_SUM); }
 void Processes::sum(long* data, std::size_t n) const { allreduce(comm_, data, n, MPI_LONG, MPI_SUM); }
 void Processes::min(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MIN); }
+void Processes::min(long* data, std::size_t n) const { allreduce(comm_, data, n, MPI_LONG, MPI_MIN); }
 void Processes::max(double* data, std::size_t n) const { allreduce(comm_, data, n, MPI_DOUBLE, MPI_MAX); }
 void Processes::bit_or(std::uint64_t* data, std::size_t n) const {
   allreduce(comm_, data, n, MPI_UINT64_T, MPI_BOR);

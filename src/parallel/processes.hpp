@@ -33,6 +33,7 @@ class Processes {
   void sum(double* data, std::size_t n) const;  // in place
   void sum(long* data, std::size_t n) const;
   void min(double* data, std::size_t n) const;
+  void min(long* data, std::size_t n) const;
   void max(double* data, std::size_t n) const;
   void bit_or(std::uint64_t* data, std::size_t n) const;  // in place: the union of bit sets
   long min(long v) const;

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <sstream>
@@ -157,12 +158,40 @@ void Checkpointing<D>::write(const Particles<D>& P, const Integrator<D>& solver,
     fs::remove(checkpoint_manifest(outdir_), ec);  // (an older checkpoint in pieces)
     return;
   }
+  std::vector<double> points(static_cast<std::size_t>(procs_.size()));
+  const double mine = static_cast<double>(P.size());
+  procs_.gather(&mine, 1, points.data(), points.size());
   procs_.barrier();  // every piece is on disk before the manifest names them
   if (procs_.rank() != 0) return;
   write_file_atomically(checkpoint_manifest(outdir_), [&](std::ostream& m) {
-    m << "skred checkpoint in pieces\nprocesses " << procs_.size() << "\nstep " << c.steps << '\n';
+    m << "skred checkpoint in pieces\nprocesses " << procs_.size() << "\nstep " << c.steps << "\npoints";
+    for (double k : points) m << ' ' << static_cast<long>(k);
+    m << '\n';
   });
   fs::remove(checkpoint_file(outdir_), ec);
+}
+
+std::vector<PieceRun> pieces_to_read(const std::vector<long>& points, int rank, int processes) {
+  long m = 0;
+  for (long k : points) m += k;
+  const auto cut = [&](long q) { return static_cast<long>(static_cast<__int128>(m) * q / processes); };
+  const long lo = cut(rank), hi = cut(rank + 1);
+  std::vector<PieceRun> runs;
+  long start = 0;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const long end = start + points[k], a = std::max(lo, start), b = std::min(hi, end);
+    if (a < b) runs.push_back({static_cast<long>(k), a - start, b - start});
+    start = end;
+  }
+  if (runs.empty() && !points.empty()) {  // (an empty share: the piece where it would begin)
+    long piece = 0;
+    for (start = 0; piece + 1 < static_cast<long>(points.size()) &&
+                    start + points[static_cast<std::size_t>(piece)] <= lo;
+         ++piece)
+      start += points[static_cast<std::size_t>(piece)];
+    runs.push_back({piece, 0, 0});
+  }
+  return runs;
 }
 
 // The pieces of the checkpoint `manifest` names (Checkpointing::restore).
@@ -187,14 +216,38 @@ void Checkpointing<D>::load_pieces(const fs::path& manifest, Particles<D>& P, So
     piece(procs_.rank(), P);
     return;
   }
-  // Another count: this process's share of each piece in turn (points [m q / N, m (q + 1) / N) of
-  // a piece of m, process q of N), so that it holds its share and one piece at most; the run's
-  // first step cuts the blocks.
+  std::string key_points;
+  std::vector<long> points;
+  if (in >> key_points) {  // (a manifest of 2026-12-06 or before has no counts)
+    points.resize(static_cast<std::size_t>(n));
+    for (long& k : points)
+      if (!(key_points == "points" && in >> k && k >= 0))
+        throw CheckpointError(fmt::format(
+            "checkpoint manifest '{}': its 'points' line is not one skred wrote", manifest.string()));
+  }
   P = Particles<D>();
-  for (long r = 0; r < n; ++r) {
+  if (points.empty()) {  // every piece, keeping this process's share of each
+    for (long r = 0; r < n; ++r) {
+      Particles<D> part;
+      piece(r, part);
+      keep_share(part, procs_);
+      P.append(part);
+    }
+    return;
+  }
+  // Another count: the pieces that hold this process's share, each read whole and the share
+  // kept, so a process holds its share and one piece at most; the run's first step cuts the blocks.
+  for (const PieceRun& run : pieces_to_read(points, procs_.rank(), procs_.size())) {
     Particles<D> part;
-    piece(r, part);
-    keep_share(part, procs_);
+    piece(run.piece, part);
+    if (static_cast<long>(part.size()) != points[static_cast<std::size_t>(run.piece)])
+      throw CheckpointError(fmt::format(
+          "checkpoint piece '{}' holds {} points, its manifest '{}' says {}",
+          checkpoint_piece(manifest.parent_path(), static_cast<int>(run.piece), static_cast<int>(n)).string(),
+          part.size(), manifest.string(), points[static_cast<std::size_t>(run.piece)]));
+    std::vector<std::uint8_t> keep(part.size(), 0);
+    std::fill(keep.begin() + run.first, keep.begin() + run.end, std::uint8_t{1});
+    part.erase(keep);
     P.append(part);
   }
 }

@@ -41,10 +41,19 @@ void watch_stop_signals();
 std::filesystem::path checkpoint_file(const std::filesystem::path& outdir);
 // A run split among N processes checkpoints in pieces, one per process (its points and the run's
 // state), checkpoint.<rank>-of-<N>.skc, and the first process then writes checkpoint.manifest
-// naming the count and the step: the pieces it names are the newest checkpoint (the last written
-// of checkpoint.skc and the manifest is; writing one removes the other).
+// naming the count, the step and each piece's points: the pieces it names are the newest
+// checkpoint (the last written of checkpoint.skc and the manifest is; writing one removes the
+// other).
 std::filesystem::path checkpoint_piece(const std::filesystem::path& outdir, int rank, int processes);
 std::filesystem::path checkpoint_manifest(const std::filesystem::path& outdir);
+// What process `rank` of `processes` reads of a checkpoint in pieces of `points` points each, on
+// another count: its share of the points in the pieces' order, [m rank / N, m (rank + 1) / N) of
+// m, as runs [first, end) of the pieces that hold it. A process whose share is empty still reads
+// one piece (none of its points), for the run's state.
+struct PieceRun {
+  long piece = 0, first = 0, end = 0;
+};
+std::vector<PieceRun> pieces_to_read(const std::vector<long>& points, int rank, int processes);
 // The scenario hash a checkpoint is bound to: FNV-1a of the scenario file's text (of its
 // source name when it is not a file).
 std::uint64_t scenario_hash(const std::string& source);
@@ -68,8 +77,8 @@ class Checkpointing {
   // stage's materials), the progress and the output indexes and series; returns true. Throws
   // CheckpointError for a checkpoint that cannot be used. Next to a checkpoint.manifest (a
   // checkpoint in pieces), a run on as many processes reads its own piece (and goes on bit for
-  // bit); on another count, every process reads every piece and keeps its share, as it does of a
-  // single checkpoint.skc. Collective.
+  // bit); on another count, each process reads the pieces that hold its share (pieces_to_read),
+  // and keeps its share of a single checkpoint.skc. Collective.
   bool restore(Particles<D>& P, Integrator<D>& solver, RunProgress<D>& at, SeriesWriter& series,
                PvdWriter& particles_pvd, PvdWriter& grid_pvd);
   // After a step: writes the periodic checkpoint when one is due; when a signal arrived (at any

@@ -39,7 +39,7 @@ void describe_implicit(Summary& sum, const ScenarioOf<D>& s, const ImplicitSolve
   const Stage* last = nullptr;
   for (const Stage& st : s.stages)
     if (st.integrator == IntegratorKind::Implicit) last = &st;
-  sum.implicit = Summary::Implicit{to_string(s.geometry),
+  sum.implicit = Summary::Implicit{D == 3 ? "3D" : to_string(s.geometry),
                                    to_string(last->implicit.analysis),
                                    to_string(last->implicit.iteration),
                                    t.linear_solver,

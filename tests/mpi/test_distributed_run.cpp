@@ -321,8 +321,9 @@ TEST(DistributedRun, CheckpointInPiecesResumes) {
   expect_same_points(s, dir / "whole", dir / "cut_alone", 1e-12, "resumed alone");
 }
 
-// A one-process checkpoint, whole and as one piece with its manifest (each process then keeps
-// its share of every piece it reads), resumed on N processes.
+// A one-process checkpoint, whole and as one piece with its manifest (with the pieces' points,
+// each process reads the run of them that is its share; without, it keeps its share of every
+// piece), resumed on N processes.
 TEST(DistributedRun, CheckpointOfOneProcessResumesOnSeveral) {
   const Processes world = Processes::world();
   const Scenario s = parse_scenario(kSlope, "slope.toml");
@@ -335,9 +336,13 @@ TEST(DistributedRun, CheckpointOfOneProcessResumesOnSeveral) {
     fs::rename(checkpoint_file(dir / "piece"), checkpoint_piece(dir / "piece", 0, 1));
     std::ofstream(checkpoint_manifest(dir / "piece"))
         << "skred checkpoint in pieces\nprocesses 1\nstep " << cut.steps << '\n';
+    // As a manifest names it now, with the piece's points: each process reads only its run.
+    fs::copy(dir / "piece", dir / "counted", fs::copy_options::recursive);
+    std::ofstream(checkpoint_manifest(dir / "counted")) << "skred checkpoint in pieces\nprocesses 1\nstep "
+                                                        << cut.steps << "\npoints " << cut.particles << '\n';
   }
   world.barrier();
-  for (const char* name : {"cut", "piece"}) {
+  for (const char* name : {"cut", "piece", "counted"}) {
     const RunResult spread = run(s, dir / name, world, -1, checkpoint_file(dir / name));
     ASSERT_TRUE(spread.completed) << name << ": " << spread.message;
     if (world.rank() != 0) continue;

@@ -1,0 +1,130 @@
+// The implicit integrator's unknowns across processes (issue 55, dof_map.hpp): each active node
+// is owned by the lowest rank whose points' blocks touch it, the nodes are numbered by owner so
+// each process owns one run of rows, and a process keeps the pattern of its own rows (every
+// process's couplings) and of the rows its blocks touch (its own), not the whole matrix's.
+// Checked on a strip of linear cells (2 x 2 nodes each) cut into N runs of columns, against the
+// same cells' DofMap on one process.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdint>
+#include <set>
+#include <utility>
+#include <vector>
+
+#include "core/grid.hpp"
+#include "implicit/dof_map.hpp"
+#include "parallel/processes.hpp"
+
+namespace skred {
+namespace {
+
+constexpr int kCellsX = 40, kCellsY = 10;
+
+// The cells' blocks (their 4 nodes, axis 0 fastest) with ix in [from, to).
+std::vector<std::int64_t> cell_blocks(const GridGeometry<2>& g, int from, int to) {
+  std::vector<std::int64_t> b;
+  for (int iy = 0; iy < kCellsY; ++iy)
+    for (int ix = from; ix < to; ++ix)
+      for (int k = 0; k < 4; ++k) {
+        const int i = ix + 1 + (k & 1), j = iy + 1 + (k >> 1);
+        b.push_back(static_cast<std::int64_t>(i) + static_cast<std::int64_t>(j) * g.nodes(0));
+      }
+  return b;
+}
+
+// Row `row` of a pattern as the set of (node, component) pairs of its columns.
+std::set<std::pair<std::int64_t, int>> row_nodes(const DofMap<2>& m, int row) {
+  std::set<std::pair<std::int64_t, int>> s;
+  const SparsePattern& p = m.pattern();
+  for (std::int32_t e = p.row_start[static_cast<std::size_t>(row)];
+       e < p.row_start[static_cast<std::size_t>(row) + 1]; ++e) {
+    const std::int32_t c = p.column[static_cast<std::size_t>(e)];
+    s.insert({m.node(static_cast<std::size_t>(c / 2)), c % 2});
+  }
+  return s;
+}
+
+TEST(DofOwnership, RowsFollowThePointsBlocks) {
+  const Processes world = Processes::world();
+  const int N = world.size(), r = world.rank();
+  GridGeometry<2> g;
+  g.cells = {kCellsX + 4, kCellsY + 4};
+  const auto first_cell = [&](int q) { return kCellsX * q / N; };
+  const std::vector<std::int64_t> all = cell_blocks(g, 0, kCellsX);
+  const std::vector<std::int64_t> mine = cell_blocks(g, first_cell(r), first_cell(r + 1));
+  std::vector<double> mass(g.node_count(), 0.0);
+  for (std::int64_t i : all) mass[static_cast<std::size_t>(i)] = 1.0;
+  const std::vector<std::uint8_t> held(g.node_count(), 0);
+
+  DofMap<2> one, split;
+  one.build(all.data(), all.size() / 4, 2, 2, g, mass, held, 1);
+  split.build(mine.data(), mine.size() / 4, 2, 2, g, mass, held, 1, world);
+  ASSERT_EQ(split.active_nodes(), one.active_nodes());
+  EXPECT_TRUE(split.every_node_coupled_to_itself());
+
+  // The runs of owned nodes, every process's, cover the nodes in rank order.
+  std::vector<double> runs(2 * static_cast<std::size_t>(N));
+  const double run[2] = {static_cast<double>(split.first_node()), static_cast<double>(split.end_node())};
+  world.gather(run, 2, runs.data(), runs.size());
+  EXPECT_EQ(runs.front(), 0.0);
+  EXPECT_EQ(runs.back(), static_cast<double>(one.active_nodes()));
+  for (int q = 1; q < N; ++q)
+    EXPECT_EQ(runs[2 * static_cast<std::size_t>(q)], runs[2 * static_cast<std::size_t>(q) - 1]);
+  const auto owner = [&](std::int32_t a) {
+    for (int q = 0; q < N; ++q)
+      if (a >= runs[2 * static_cast<std::size_t>(q)] && a < runs[2 * static_cast<std::size_t>(q) + 1])
+        return q;
+    return -1;
+  };
+
+  // Each node is owned by the lowest rank whose cells touch it (node column i touches the
+  // cells i - 2 and i - 1), and within a run numbered in flat order.
+  std::int64_t last = -1;
+  for (std::size_t a = split.first_node(); a < split.end_node(); ++a) {
+    EXPECT_GT(split.node(a), last) << "not in flat order within the run";
+    last = split.node(a);
+  }
+  for (std::size_t a = 0; a < split.active_nodes(); ++a) {
+    const int i = static_cast<int>(split.node(a) % g.nodes(0));
+    const int ix = std::max(i - 2, 0);
+    int expected = 0;
+    while (expected + 1 < N && first_cell(expected + 1) <= ix) ++expected;
+    ASSERT_EQ(owner(static_cast<std::int32_t>(a)), expected) << "node " << split.node(a);
+    EXPECT_EQ(split.active(static_cast<std::size_t>(split.node(a))), static_cast<std::int32_t>(a));
+  }
+
+  // The owned rows hold every process's couplings: the one-process pattern's rows, node for node.
+  for (std::size_t a = split.first_node(); a < split.end_node(); ++a)
+    for (int c = 0; c < 2; ++c) {
+      const int row_split = static_cast<int>(2 * a) + c;
+      const int row_one = 2 * one.active(static_cast<std::size_t>(split.node(a))) + c;
+      ASSERT_EQ(row_nodes(split, row_split), row_nodes(one, row_one)) << "node " << split.node(a);
+    }
+
+  // A row it does not own holds this process's couplings only, and only where its cells touch.
+  std::set<std::int64_t> touched(mine.begin(), mine.end());
+  for (std::size_t a = 0; a < split.active_nodes(); ++a) {
+    if (a >= split.first_node() && a < split.end_node()) continue;
+    const auto s = row_nodes(split, static_cast<int>(2 * a));
+    if (!touched.count(split.node(a))) {
+      EXPECT_TRUE(s.empty()) << "an untouched row is held: node " << split.node(a);
+      continue;
+    }
+    for (const auto& [node, c] : s)
+      EXPECT_TRUE(touched.count(node)) << "a coupling of another process's cells";
+  }
+
+  // Not the whole matrix in every process: only a cut's layer of nodes is held twice.
+  const long held_entries = world.sum_of(static_cast<long>(split.pattern().column.size()));
+  const long whole = static_cast<long>(one.pattern().column.size());
+  const long layer = static_cast<long>(kCellsY + 1) * 2 * 9 * 2;  // a column of nodes' rows, 9 nodes x 2 each
+  EXPECT_GE(held_entries, whole);
+  EXPECT_LE(held_entries, whole + (N - 1) * layer);
+  if (N > 1) {
+    EXPECT_LT(held_entries, N * whole);
+  }
+}
+
+}  // namespace
+}  // namespace skred
