@@ -13,7 +13,9 @@
 // blocks of the grid (point_shares.hpp): the matrix's rows lie where the points that sum them are.
 // A process keeps the pattern of its own rows (every process's couplings: their union) and of
 // the rows its points' blocks touch (its own couplings, which it sends to the rows' owners);
-// the other rows are empty in its pattern.
+// the other rows are empty in its pattern. The residual's sums over the processes follow the same
+// rows (sum_rows): each owner adds the others' parts of its rows and sends the sums back to the
+// processes that touch them.
 #pragma once
 #include <omp.h>
 
@@ -27,6 +29,7 @@
 #include "core/grid.hpp"
 #include "implicit/linear_system.hpp"
 #include "parallel/processes.hpp"
+#include "parallel/star_forest.hpp"
 
 namespace skred {
 
@@ -73,7 +76,8 @@ class DofMap {
       }
     first_node_ = 0;
     end_node_ = nodes_.size();
-    if (processes.distributed()) own_rows_by_process(processes);
+    distributed_ = processes.distributed();
+    if (distributed_) own_rows_by_process(processes);
     coupled_ = true;  // (the union of the couplings: owned rows' masks, and one process's)
     {
       int centre = 0;
@@ -141,6 +145,22 @@ class DofMap {
   // Whether every active node's own block is in the pattern (a node no block holds has none):
   // the same answer on every process.
   bool every_node_coupled_to_itself() const { return coupled_; }
+  // Across processes: the sums over the processes of per-row values (D per active node, in the
+  // unknowns' order) in the rows this process owns or its blocks touch, each process having put
+  // its own parts there; the owner adds the others' parts to its own in a fixed order and sends
+  // the sums back (a star forest). The other rows are left as they are. Collective; nothing for
+  // one process.
+  void sum_rows(double* v) {
+    if (!distributed_) return;
+    leaf_values_.resize(leaf_node_.size() * D);
+    for (std::size_t k = 0; k < leaf_node_.size(); ++k)
+      std::copy_n(v + leaf_node_[k] * D, D, leaf_values_.data() + k * D);
+    double* own = v + first_node_ * D;
+    rows_.reduce(D, leaf_values_.data(), own);
+    rows_.broadcast(D, own, leaf_values_.data());
+    for (std::size_t k = 0; k < leaf_node_.size(); ++k)
+      std::copy_n(leaf_values_.data() + k * D, D, v + leaf_node_[k] * D);
+  }
   // The active nodes this process owns, [first_node, end_node) (all of them for one process);
   // their rows are [D first_node, D end_node).
   std::size_t first_node() const { return first_node_; }
@@ -166,9 +186,10 @@ class DofMap {
     const std::size_t na = nodes_.size(), w = static_cast<std::size_t>(words_);
     const long rank = procs.rank(), none = procs.size();
     std::vector<long> owner(na, none);
+    std::vector<std::uint8_t> touched(na, 0);
     for (std::size_t a = 0; a < na; ++a)
       for (std::size_t k = 0; k < w; ++k)
-        if (mask_[a * w + k] != 0) owner[a] = rank;
+        if (mask_[a * w + k] != 0) owner[a] = rank, touched[a] = 1;
     procs.min(owner.data(), na);
     std::vector<std::uint64_t> all(mask_);
     procs.bit_or(all.data(), all.size());
@@ -180,17 +201,27 @@ class DofMap {
     for (std::size_t q = 0; q < static_cast<std::size_t>(none); ++q) next[q + 1] += next[q];
     first_node_ = next[static_cast<std::size_t>(rank)];
     end_node_ = next[static_cast<std::size_t>(rank) + 1];
+    const std::vector<std::size_t> run(next);  // each owner's first node
     std::vector<std::int64_t> nodes(na);
     std::vector<std::uint64_t> mask(na * w);
+    std::vector<int> leaf_rank;
+    std::vector<long> leaf_index;
+    leaf_node_.clear();
     for (std::size_t a = 0; a < na; ++a) {  // in flat order: each owner's run stays in flat order
-      const std::size_t to = next[static_cast<std::size_t>(owner[a])]++;
+      const std::size_t q = static_cast<std::size_t>(owner[a]), to = next[q]++;
       nodes[to] = nodes_[a];
       active_[static_cast<std::size_t>(nodes_[a])] = static_cast<std::int32_t>(to);
       const std::uint64_t* from = owner[a] == rank ? &all[a * w] : &mask_[a * w];
       std::copy(from, from + w, &mask[to * w]);
+      if (touched[a] && owner[a] != rank) {  // a leaf of the row sums: root to - run[q] of q
+        leaf_node_.push_back(to);
+        leaf_rank.push_back(static_cast<int>(q));
+        leaf_index.push_back(static_cast<long>(to - run[q]));
+      }
     }
     nodes_.swap(nodes);
     mask_.swap(mask);
+    rows_.connect(procs, static_cast<long>(end_node_ - first_node_), leaf_rank, leaf_index);
   }
 
   // The offset index of node l seen from node k of a block S wide:
@@ -219,7 +250,10 @@ class DofMap {
   std::vector<std::uint64_t> mask_;
   std::vector<int> pair_offset_, box_offset_;
   std::size_t first_node_ = 0, end_node_ = 0;
-  bool coupled_ = true;
+  bool coupled_ = true, distributed_ = false;
+  StarForest rows_;                     // sum_rows: a root per owned node, a leaf per touched one
+  std::vector<std::size_t> leaf_node_;  // the touched nodes another process owns
+  std::vector<double> leaf_values_;
   SparsePattern pattern_;
 };
 

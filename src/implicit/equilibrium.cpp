@@ -73,7 +73,9 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
   trial_plastic_.resize(n);
   trial_state_.resize(n);
   if (tangent) tangent_.resize(n);
-  // Across processes each sums its own points' internal forces, and all of them the whole.
+  // Across processes each sums its own points' internal forces, and the rows' owners the whole
+  // of their rows, which they send back to the processes that touch them (DofMap::sum_rows): R
+  // is right in those rows, and |R| is summed over the owned rows.
   const bool split = state_.processes.distributed();
   if (split)
     r_.assign(f_ext_.size(), 0.0);
@@ -140,7 +142,7 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
     }
   });
   if (split) {
-    state_.processes.sum(r, r_.size());
+    dofs_.sum_rows(r);
     for (std::size_t i = 0; i < r_.size(); ++i) r_[i] += f_ext_[i];
   }
   const bool inertia = dynamic() && !v_bar_.empty();
@@ -155,8 +157,9 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
         r_[i] = 0.0;
         continue;
       }
-      s += r_[i] * r_[i];
+      if (a >= dofs_.first_node() && a < dofs_.end_node()) s += r_[i] * r_[i];
     }
+  state_.processes.sum(&s, 1);
   return std::sqrt(s);
 }
 

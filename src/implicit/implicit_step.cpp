@@ -256,17 +256,19 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
   double rn = residual(du_, dt, !elastic);
   // The force scale: the largest of |F_ext|, |F_int(sigma^k)| with the supports' forces, and the
   // inertial force of du = 0.
-  {
-    double fint = 0.0, inert = 0.0;
-    for (double f : held_force_) fint += f * f;
+  {  // (R and the supports' forces are right in the owned rows: sums over those, then the processes)
+    double sums[2] = {0.0, 0.0};  // |F_int|^2 with the supports' forces, |inertia|^2
+    const std::size_t first = D * dofs_.first_node(), end = D * dofs_.end_node();
+    for (std::size_t i = first; i < end; ++i) sums[0] += held_force_[i] * held_force_[i];
     const double c1 = 4.0 / dt;
-    for (std::size_t i = 0; i < dofs; ++i) {
+    for (std::size_t i = first; i < end; ++i) {
       const double in = dynamic() ? mass_[i] * (c1 * v_bar_[i] + a_bar_[i]) : 0.0;
       const double fi = f_ext_[i] - r_[i] + in;
-      fint += fi * fi;
-      inert += in * in;
+      sums[0] += fi * fi;
+      sums[1] += in * in;
     }
-    force_scale_ = std::max({norm(f_ext_), std::sqrt(fint), std::sqrt(inert)});
+    state_.processes.sum(sums, 2);
+    force_scale_ = std::max({norm(f_ext_), std::sqrt(sums[0]), std::sqrt(sums[1])});
     if (!(force_scale_ > 0.0)) force_scale_ = 1.0;
   }
   const double tol = settings_.residual_tolerance * force_scale_;
@@ -469,11 +471,13 @@ void ImplicitSolver<D>::commit_step(double dt) {
 
 // F_int of the last residual (eq. 7), for the grid frames' |F_int| (eq. 26): F_ext - R with the
 // held rows' support forces and, dynamic, the inertia of du.
+// Across processes each forms its owned rows' and all of them add up the whole (a step's one
+// sum of the unknowns' length: the grid frames' files and the walls' forces read every node).
 template <int D>
 void ImplicitSolver<D>::store_internal_force(double dt) {
   const bool inertia = dynamic() && !v_bar_.empty();
   f_int_.assign(du_.size(), 0.0);
-  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
+  for (std::size_t a = dofs_.first_node(); a < dofs_.end_node(); ++a)
     for (int c = 0; c < D; ++c) {
       const std::size_t i = a * D + c;
       const double R = dofs_.held(a, c) ? -held_force_[i] : r_[i];
@@ -481,6 +485,7 @@ void ImplicitSolver<D>::store_internal_force(double dt) {
           inertia ? mass_[i] * (4.0 / (dt * dt) * du_[i] - 4.0 / dt * v_bar_[i] - a_bar_[i]) : 0.0;
       f_int_[i] = f_ext_[i] - R - m;
     }
+  state_.processes.sum(f_int_.data(), f_int_.size());
 }
 
 // The prescribed velocities' forces on the material at t + dt (the sums of the supports' forces
@@ -489,11 +494,12 @@ template <int D>
 void ImplicitSolver<D>::commit_boundary_forces(double dt) {
   if (model_.prescribed.empty()) return;
   BoundaryForces f{};
-  for (std::size_t a = 0; a < prescribed_id_.size(); ++a)
-    if (prescribed_id_[a] >= 0)
+  for (std::size_t a = dofs_.first_node(); a < std::min(dofs_.end_node(), prescribed_id_.size()); ++a)
+    if (prescribed_id_[a] >= 0)  // (the owned nodes: there the supports' forces are right)
       for (int c = 0; c < D; ++c)
         if ((driven_[a] >> c) & 1u)
           f[static_cast<std::size_t>(3 * prescribed_id_[a] + c)] += held_force_[a * D + c];
+  state_.processes.sum(f.data(), f.size());
   for (std::size_t b = 0; b < model_.prescribed.size(); ++b)
     for (int c = 0; c < D; ++c) {
       const std::size_t k = 3 * b + static_cast<std::size_t>(c);

@@ -115,6 +115,30 @@ TEST(DofOwnership, RowsFollowThePointsBlocks) {
       EXPECT_TRUE(touched.count(node)) << "a coupling of another process's cells";
   }
 
+  // The rows' sums (sum_rows): each process adds, per cell of its own, 1 and the cell's index to
+  // each of its nodes' two rows; after the sum the rows it owns or touches hold every process's
+  // parts (the count of cells at the node and the sum of their indices), the others none.
+  std::vector<double> v(2 * split.active_nodes(), 0.0), expect(v.size(), 0.0);
+  const auto add_cells = [&](const std::vector<std::int64_t>& blocks, std::vector<double>& to, int first) {
+    for (std::size_t b = 0; b < blocks.size() / 4; ++b)
+      for (int k = 0; k < 4; ++k) {
+        const std::size_t a =
+            static_cast<std::size_t>(split.active(static_cast<std::size_t>(blocks[4 * b + k])));
+        to[2 * a] += 1.0;
+        to[2 * a + 1] += static_cast<double>(first * kCellsY) + static_cast<double>(b);
+      }
+  };
+  add_cells(mine, v, first_cell(r));
+  for (int q = 0; q < N; ++q)
+    add_cells(cell_blocks(g, first_cell(q), first_cell(q + 1)), expect, first_cell(q));
+  split.sum_rows(v.data());
+  for (std::size_t a = 0; a < split.active_nodes(); ++a) {
+    const bool held_here = (a >= split.first_node() && a < split.end_node()) || touched.count(split.node(a));
+    for (int c = 0; c < 2; ++c)
+      EXPECT_EQ(v[2 * a + c], held_here ? expect[2 * a + c] : 0.0)
+          << "node " << split.node(a) << ", row " << c;
+  }
+
   // Not the whole matrix in every process: only a cut's layer of nodes is held twice.
   const long held_entries = world.sum_of(static_cast<long>(split.pattern().column.size()));
   const long whole = static_cast<long>(one.pattern().column.size());
