@@ -161,6 +161,8 @@ class DofMap {
     for (std::size_t k = 0; k < leaf_node_.size(); ++k)
       std::copy_n(leaf_values_.data() + k * D, D, v + leaf_node_[k] * D);
   }
+  // Across processes: the nodes this process's blocks touch that another owns (ascending).
+  const std::vector<std::size_t>& touched_not_owned() const { return leaf_node_; }
   // The active nodes this process owns, [first_node, end_node) (all of them for one process);
   // their rows are [D first_node, D end_node).
   std::size_t first_node() const { return first_node_; }

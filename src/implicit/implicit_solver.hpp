@@ -158,6 +158,8 @@ class ImplicitSolver final : public Integrator<D> {
   // implicit_step.cpp (and equilibrium.cpp: point_strain to assemble)
   StepStatus map_step();
   long agreed_point(long bad) const;  // the first failing point over the processes (-1: none)
+  void needed_rows();                 // across processes: the rows of du this one reads
+  double owned_norm(const std::vector<double>& v) const;  // |v| over the processes' owned rows
   void held_components();
   void lumped_masses();
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp

@@ -155,6 +155,7 @@ StepStatus ImplicitSolver<D>::map_step() {
   }
   system_.set_pattern(dofs_.pattern(), static_cast<int>(D * dofs_.first_node()),
                       static_cast<int>(D * dofs_.end_node()));
+  if (state_.processes.distributed()) needed_rows();
   if (settings_.linear_solver == LinearSolverKind::Iterative) {
     std::vector<double>& xyz = trial_du_;  // (scratch until the iterations start)
     xyz.resize(dofs);
@@ -192,6 +193,42 @@ StepStatus ImplicitSolver<D>::map_step() {
       a_bar_[i] = dofs_.held(a, c) ? 0.0 : a_bar_[i] / mass_[i];
     }
   return {};
+}
+
+// Across processes: the rows of du this process reads, which the solves fill (the others are not
+// its points'): its own, those its blocks touch, its points' stencils' and, with Acosta's remedies,
+// the nodes of its points' boxes.
+template <int D>
+void ImplicitSolver<D>::needed_rows() {
+  std::vector<std::uint8_t> read(dofs_.active_nodes(), 0);
+  std::fill(read.begin() + static_cast<long>(dofs_.first_node()),
+            read.begin() + static_cast<long>(dofs_.end_node()), std::uint8_t{1});
+  for (std::size_t a : dofs_.touched_not_owned()) read[a] = 1;
+  const auto mark = [&](const std::vector<std::int64_t>& nodes) {
+    const std::int64_t count = static_cast<std::int64_t>(state_.grid.node_count());
+    for (std::int64_t i : nodes)
+      if (i >= 0 && i < count)
+        if (const std::int32_t a = dofs_.active(static_cast<std::size_t>(i)); a >= 0)
+          read[static_cast<std::size_t>(a)] = 1;
+  };
+  mark(stencils_.node);
+  if (!settings_.at_points()) mark(mapped_.box);
+  std::vector<std::int32_t> rows;
+  for (std::size_t a = 0; a < read.size(); ++a)
+    if (read[a])
+      for (int c = 0; c < D; ++c)
+        rows.push_back(static_cast<std::int32_t>(a * D + static_cast<std::size_t>(c)));
+  system_.set_needed_rows(std::move(rows));
+}
+
+// The norm of per-unknown values over the processes: each sums its owned rows (where the solves'
+// and the residual's values are right), then all of them add up. One process: all the rows.
+template <int D>
+double ImplicitSolver<D>::owned_norm(const std::vector<double>& v) const {
+  double s = 0.0;
+  for (std::size_t i = D * dofs_.first_node(); i < D * dofs_.end_node(); ++i) s += v[i] * v[i];
+  state_.processes.sum(&s, 1);
+  return std::sqrt(s);
 }
 
 // The components each node with mass has held (Dirichlet conditions): every one on or beyond a
@@ -329,7 +366,7 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
       why = "the out-of-balance force became non-finite";
       return false;
     }
-    if (single || rn <= tol || alpha * norm(ddu_) <= settings_.displacement_tolerance * norm(du_))
+    if (single || rn <= tol || alpha * owned_norm(ddu_) <= settings_.displacement_tolerance * owned_norm(du_))
       return within_a_cell(why);
     if (rn > 1e12 * force_scale_) break;  // diverging
   }
@@ -343,11 +380,12 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
 // offer such a solution along a spurious mechanism of the discretisation.
 template <int D>
 bool ImplicitSolver<D>::within_a_cell(std::string& why) const {
-  double largest = 0.0;
-  for (std::size_t a = 0; a < dofs_.active_nodes(); ++a) {
+  double largest = 0.0;  // (over the owned nodes, then the processes)
+  for (std::size_t a = dofs_.first_node(); a < dofs_.end_node(); ++a) {
     const Eigen::Map<const Vec<D>> u(&du_[a * D]);
     largest = std::max(largest, u.norm());
   }
+  state_.processes.max(&largest, 1);
   if (largest <= state_.grid.h) return true;
   why = fmt::format("the converged increment moves a node by {:.3g} m, more than a cell ({:.3g} m)", largest,
                     state_.grid.h);
@@ -456,10 +494,11 @@ void ImplicitSolver<D>::commit_step(double dt) {
     pressure_forces(state_.clock.time + dt, f1);
     state_.processes.sum(f0.data(), f0.size());
     state_.processes.sum(f1.data(), f1.size());
-    double w = 0.0;
-    for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
+    double w = 0.0;  // (over the owned nodes, then the processes)
+    for (std::size_t a = dofs_.first_node(); a < dofs_.end_node(); ++a)
       for (int c = 0; c < D; ++c)
         if (!dofs_.held(a, c)) w += 0.5 * (f0[a * D + c] + f1[a * D + c]) * du_[a * D + c];
+    state_.processes.sum(&w, 1);
     state_.clock.energy.load_work += w;
   }
   sum_over_processes(state_.processes, strain, plastic, gravity);
@@ -509,16 +548,18 @@ void ImplicitSolver<D>::commit_boundary_forces(double dt) {
   state_.clock.boundary_force = f;
 }
 
-#define SKRED_IMPLICIT_STEP(D)                                       \
-  template StepStatus ImplicitSolver<D>::map_step();                 \
-  template long ImplicitSolver<D>::agreed_point(long) const;         \
-  template void ImplicitSolver<D>::held_components();                \
-  template bool ImplicitSolver<D>::solve_step(double, std::string&); \
-  template void ImplicitSolver<D>::initial_acceleration();           \
-  template void ImplicitSolver<D>::commit_step(double);              \
-  template void ImplicitSolver<D>::commit_boundary_forces(double);   \
-  template void ImplicitSolver<D>::store_internal_force(double);     \
-  template bool ImplicitSolver<D>::within_a_cell(std::string&) const;
+#define SKRED_IMPLICIT_STEP(D)                                        \
+  template StepStatus ImplicitSolver<D>::map_step();                  \
+  template long ImplicitSolver<D>::agreed_point(long) const;          \
+  template void ImplicitSolver<D>::held_components();                 \
+  template bool ImplicitSolver<D>::solve_step(double, std::string&);  \
+  template void ImplicitSolver<D>::initial_acceleration();            \
+  template void ImplicitSolver<D>::commit_step(double);               \
+  template void ImplicitSolver<D>::commit_boundary_forces(double);    \
+  template void ImplicitSolver<D>::store_internal_force(double);      \
+  template bool ImplicitSolver<D>::within_a_cell(std::string&) const; \
+  template void ImplicitSolver<D>::needed_rows();                     \
+  template double ImplicitSolver<D>::owned_norm(const std::vector<double>&) const;
 SKRED_IMPLICIT_STEP(2)
 SKRED_IMPLICIT_STEP(3)
 #undef SKRED_IMPLICIT_STEP

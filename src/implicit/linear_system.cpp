@@ -26,9 +26,9 @@ struct LinearSystem::Petsc {
   Mat matrix = nullptr;
   KSP ksp = nullptr;
   std::vector<PetscInt> rows, columns;
-  // Across processes: the right-hand side and solution (owned rows), the whole solution on every
-  // process, and the scatter that fills it; the owned rows' entries in and beyond their diagonal
-  // block (the exact preallocation).
+  // Across processes: the right-hand side and solution (owned rows), the rows of the solution
+  // this process reads, and the scatter that fills them; the owned rows' entries in and beyond
+  // their diagonal block (the exact preallocation).
   Vec b = nullptr, x = nullptr, x_all = nullptr;
   VecScatter to_all = nullptr;
   std::vector<PetscInt> in_diagonal, off_diagonal;
@@ -170,12 +170,11 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
                         : fmt::format("the linear solver failed ({})", name ? name : "?");
     return false;
   }
-  for (double v : x)
-    if (!std::isfinite(v)) {
-      reason_ = "the linear solve gave a non-finite displacement (a singular stiffness matrix?)";
-      return false;
-    }
-  return true;
+  bool finite = true;
+  for (double v : x) finite = finite && std::isfinite(v);
+  if (!processes_.any(!finite)) return true;  // (every process alike: they read other rows)
+  reason_ = "the linear solve gave a non-finite displacement (a singular stiffness matrix?)";
+  return false;
 }
 
 // PETSc's parallel matrix over the owned rows, preallocated exactly from their patterns: each
@@ -205,7 +204,26 @@ void LinearSystem::set_parallel_pattern() {
   SKRED_PETSC(MatSetOption(p.matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   if (symmetric_) SKRED_PETSC(MatSetOption(p.matrix, MAT_SYMMETRIC, PETSC_TRUE));
   SKRED_PETSC(MatCreateVecs(p.matrix, &p.x, &p.b));
+  needed_.clear();
+  every_row_ = true;  // (until set_needed_rows)
   SKRED_PETSC(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all));
+}
+
+void LinearSystem::set_needed_rows(std::vector<std::int32_t> rows) {
+  if (!processes_.distributed()) return;
+  Petsc& p = *petsc_;
+  needed_ = std::move(rows);
+  every_row_ = false;
+  if (p.to_all) VecScatterDestroy(&p.to_all);
+  if (p.x_all) VecDestroy(&p.x_all);
+  const std::vector<PetscInt> from(needed_.begin(), needed_.end());
+  IS is = nullptr;
+  SKRED_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), from.data(),
+                              PETSC_COPY_VALUES, &is));
+  SKRED_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &p.x_all));
+  const PetscErrorCode made = VecScatterCreate(p.x, is, p.x_all, nullptr, &p.to_all);
+  ISDestroy(&is);
+  SKRED_PETSC(made);
 }
 
 // This process's values into the parallel matrix, every row its pattern holds (its own rows,
@@ -239,7 +257,10 @@ int LinearSystem::parallel_solve(const std::vector<double>& b, std::vector<doubl
   SKRED_PETSC(VecScatterEnd(p.to_all, p.x, p.x_all, INSERT_VALUES, SCATTER_FORWARD));
   const PetscScalar* all = nullptr;
   SKRED_PETSC(VecGetArrayRead(p.x_all, &all));
-  std::copy(all, all + x.size(), x.begin());
+  if (every_row_)
+    std::copy(all, all + x.size(), x.begin());
+  else
+    for (std::size_t k = 0; k < needed_.size(); ++k) x[static_cast<std::size_t>(needed_[k])] = all[k];
   SKRED_PETSC(VecRestoreArrayRead(p.x_all, &all));
   return 0;
 }

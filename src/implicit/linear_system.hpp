@@ -10,7 +10,8 @@
 // blocks of the grid, and keeps the pattern of its own rows and of the rows its points' terms
 // fall in (the others are empty). It adds its values of both; PETSc sends those of the rows it
 // does not own to their owners, and MUMPS or the multigrid factorise and solve on all processes
-// together. The right-hand side and the solution are whole in every process.
+// together. The right-hand side is read in the owned rows, and the solution comes back to the
+// rows each process reads (set_needed_rows).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -64,9 +65,13 @@ class LinearSystem {
   bool owns(std::size_t row) const {
     return static_cast<int>(row) >= first_row_ && static_cast<int>(row) < end_row_;
   }
+  // Across processes: the rows of the solution this process reads (ascending; after
+  // set_pattern). solve() fills those, and leaves the others 0. Not called: every row.
+  void set_needed_rows(std::vector<std::int32_t> rows);
   // Hands the assembled values to PETSc and factorises (direct) or sets the preconditioner up.
   void factorise();
-  // x = K^-1 b with the last factorisation; false (with reason()) when the solve failed.
+  // x = K^-1 b with the last factorisation; false (with reason()) when the solve failed (on
+  // every process alike). b: the owned rows are read.
   bool solve(const std::vector<double>& b, std::vector<double>& x);
   std::string reason() const { return reason_; }
   int last_iterations() const { return iterations_; }
@@ -80,7 +85,9 @@ class LinearSystem {
   std::unique_ptr<Petsc> petsc_;
   SparsePattern pattern_;
   std::vector<double> values_;
-  std::vector<double> coordinates_;  // set_coordinates
+  std::vector<double> coordinates_;   // set_coordinates
+  std::vector<std::int32_t> needed_;  // set_needed_rows
+  bool every_row_ = true;
   std::string reason_;
   int iterations_ = 0;
   bool symmetric_ = true;
