@@ -11,15 +11,19 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
 #include "core/particles.hpp"
 #include "implicit/point_stencils.hpp"
 #include "parallel/processes.hpp"
+#include "parallel/star_forest.hpp"
 #include "solver/volumetric_averaging.hpp"
+#include "transfer/box_exchange.hpp"
 
 namespace skred {
 
@@ -39,14 +43,15 @@ struct CellBoxes {
   // 1 / r_p (else empty). Returns a point whose stencil does not fit its cell's box (a
   // particle size beyond a cell: no box of S + 1 nodes holds the cell's stencils), or -1.
   //
-  // Across processes (issue 55) the cells are those any process's points occupy, numbered in
-  // the grid's order alike in all of them (a cell without points here has none in `points`);
-  // a box starts at the lowest stencil base of all its cell's points, and V_c and b_c are every
-  // process's sums. A process returns its own failing point or -1, and all of them return early
-  // alike (the caller agrees on the point).
+  // Across processes (issue 55) a process's cells are those its own points occupy, numbered in
+  // the grid's order. A cell that several processes' points occupy is shared between them by a
+  // star forest of its own (a root at the lowest of them, found over the boxes that hold the
+  // cell's lower corner, `boxes`): its box starts at the lowest stencil base of all its points,
+  // and V_c and b_c are every process's sums (sum_cells). A process returns its own failing point
+  // or -1, and all of them return early alike (the caller agrees on the point).
   long build(const PointStencils<D>& st, int Sp, const GridGeometry<D>& g, const Particles<D>& P,
              const std::vector<double>& point_volume, const std::vector<double>& inv_r, int threads,
-             const Processes& procs = {}) {
+             BoxExchange<D>* boxes = nullptr) {
     const std::size_t n = P.size();
     const int Kp = st.K;
     // The occupied cells (one bit per grid cell, by its lower node), numbered in the grid's order.
@@ -58,13 +63,18 @@ struct CellBoxes {
       cell[p] = static_cast<std::int32_t>(c);
       occupied_[c / 64] |= std::uint64_t{1} << (c % 64);
     }
-    procs.bit_or(occupied_.data(), occupied_.size());
     slot_.assign(grid_cells, -1);
+    corner_.clear();
     int cells = 0;
     for (std::size_t w = 0; w < occupied_.size(); ++w)
-      for (std::uint64_t bits = occupied_[w]; bits; bits &= bits - 1)
-        slot_[64 * w + static_cast<std::size_t>(std::countr_zero(bits))] = cells++;
+      for (std::uint64_t bits = occupied_[w]; bits; bits &= bits - 1) {
+        const std::size_t c = 64 * w + static_cast<std::size_t>(std::countr_zero(bits));
+        slot_[c] = cells++;
+        corner_.push_back(static_cast<long>(c));
+      }
     for (std::size_t p = 0; p < n; ++p) cell[p] = slot_[static_cast<std::size_t>(cell[p])];
+    shared_ = boxes && boxes->processes().distributed();
+    if (shared_) share_cells(*boxes);
     // The points grouped by cell (counting sort, in point order).
     start.assign(static_cast<std::size_t>(cells) + 1, 0);
     for (std::size_t p = 0; p < n; ++p) ++start[static_cast<std::size_t>(cell[p]) + 1];
@@ -87,7 +97,8 @@ struct CellBoxes {
           e[d] = std::min(e[d], double(ij[d])), e[D + d] = std::min(e[D + d], -double(ij[d]));
       }
     }
-    procs.min(extent_.data(), extent_.size());
+    if (shared_)
+      for (int k = 0; k < 2 * D; ++k) combine_cells(extent_.data(), 2 * D, k, StarForest::Combine::Min);
     base_.resize(static_cast<std::size_t>(cells));
     int spread = 0;
     long bad = -1;
@@ -103,6 +114,10 @@ struct CellBoxes {
           if (bad < 0 && start[c] < start[c + 1]) bad = points[start[c]];
         }
       }
+    }
+    if (shared_) {  // (every process alike: the boxes' width is the unknowns' coupling width)
+      wide = boxes->processes().any(wide);
+      spread = static_cast<int>(boxes->processes().max(static_cast<long>(spread)));
     }
     if (wide) return bad;
     S = Sp + spread;
@@ -143,9 +158,9 @@ struct CellBoxes {
       }
       volume[static_cast<std::size_t>(c)] = vc;
     }
-    procs.sum(volume.data(), volume.size());
+    sum_cells(volume.data(), 1);
     static_assert(sizeof(Vec<D>) == D * sizeof(double), "b_c summed as doubles");
-    procs.sum(mean_div.empty() ? nullptr : mean_div[0].data(), mean_div.size() * D);
+    sum_cells(mean_div.empty() ? nullptr : mean_div[0].data(), K * D);
     for (int c = 0; c < cells; ++c)
       for (int j = 0; j < K; ++j)
         mean_div[static_cast<std::size_t>(c) * K + j] /= volume[static_cast<std::size_t>(c)];
@@ -154,11 +169,88 @@ struct CellBoxes {
 
   int cells() const { return static_cast<int>(start.size()) - 1; }
 
+  // Across processes: per-cell values (`per` a cell, in the cells' order) summed over the
+  // processes whose points occupy the cell. Collective; nothing for one process.
+  void sum_cells(double* v, int per) {
+    if (!shared_) return;
+    const std::size_t m = static_cast<std::size_t>(per);
+    root_values_.resize(root_slot_.size() * m);
+    leaf_values_.resize(leaf_slot_.size() * m);
+    for (std::size_t k = 0; k < root_slot_.size(); ++k)
+      std::copy_n(v + static_cast<std::size_t>(root_slot_[k]) * m, m, root_values_.data() + k * m);
+    for (std::size_t k = 0; k < leaf_slot_.size(); ++k)
+      std::copy_n(v + static_cast<std::size_t>(leaf_slot_[k]) * m, m, leaf_values_.data() + k * m);
+    forest_.reduce(per, leaf_values_.data(), root_values_.data());
+    forest_.broadcast(per, root_values_.data(), leaf_values_.data());
+    for (std::size_t k = 0; k < root_slot_.size(); ++k)
+      std::copy_n(root_values_.data() + k * m, m, v + static_cast<std::size_t>(root_slot_[k]) * m);
+    for (std::size_t k = 0; k < leaf_slot_.size(); ++k)
+      std::copy_n(leaf_values_.data() + k * m, m, v + static_cast<std::size_t>(leaf_slot_[k]) * m);
+  }
+
  private:
+  // Value `k` of `per` per cell: the least or greatest over the processes that occupy the cell.
+  void combine_cells(double* v, int per, int k, StarForest::Combine how) {
+    const std::size_t m = static_cast<std::size_t>(per), j = static_cast<std::size_t>(k);
+    root_values_.resize(root_slot_.size());
+    leaf_values_.resize(leaf_slot_.size());
+    for (std::size_t q = 0; q < root_slot_.size(); ++q)
+      root_values_[q] = v[static_cast<std::size_t>(root_slot_[q]) * m + j];
+    for (std::size_t q = 0; q < leaf_slot_.size(); ++q)
+      leaf_values_[q] = v[static_cast<std::size_t>(leaf_slot_[q]) * m + j];
+    forest_.reduce(1, leaf_values_.data(), root_values_.data(), how);
+    forest_.broadcast(1, root_values_.data(), leaf_values_.data());
+    for (std::size_t q = 0; q < root_slot_.size(); ++q)
+      v[static_cast<std::size_t>(root_slot_[q]) * m + j] = root_values_[q];
+    for (std::size_t q = 0; q < leaf_slot_.size(); ++q)
+      v[static_cast<std::size_t>(leaf_slot_[q]) * m + j] = leaf_values_[q];
+  }
+  // The star forest of the cells several processes occupy: over the boxes (which hold every
+  // occupied cell's lower corner), how many processes occupy each and the lowest of them; a root
+  // at that one, a leaf at each other, matched by the corner's node number.
+  void share_cells(BoxExchange<D>& boxes) {
+    const Processes& procs = boxes.processes();
+    std::vector<double> count(corner_.size(), 1.0), lowest(corner_.size(), procs.rank());
+    const auto per_cell = [&](std::vector<double>& v, double absent) {
+      return std::pair{[&v, absent, this](std::size_t i, double* at) {
+                         const std::int32_t c = slot_[i];
+                         at[0] = c >= 0 ? v[static_cast<std::size_t>(c)] : absent;
+                       },
+                       [&v, this](std::size_t i, const double* at) {
+                         if (const std::int32_t c = slot_[i]; c >= 0) v[static_cast<std::size_t>(c)] = at[0];
+                       }};
+    };
+    {
+      auto [pack, set] = per_cell(count, 0.0);
+      boxes.sum(1, pack, set);
+    }
+    {
+      auto [pack, set] = per_cell(lowest, INFINITY);
+      boxes.combine(1, StarForest::Combine::Min, pack, set);
+    }
+    std::vector<long> roots, leaves;
+    root_slot_.clear();
+    leaf_slot_.clear();
+    for (std::size_t c = 0; c < corner_.size(); ++c) {
+      if (count[c] < 2.0) continue;
+      const bool root = lowest[c] == static_cast<double>(procs.rank());
+      (root ? roots : leaves).push_back(corner_[c]);
+      (root ? root_slot_ : leaf_slot_).push_back(static_cast<std::int32_t>(c));
+    }
+    forest_.match_nodes(procs, static_cast<long>(occupied_.size() * 64), roots, leaves);
+  }
+
   std::vector<std::int32_t> slot_, fill_;  // per grid cell; per cell (scratch)
   std::vector<std::uint64_t> occupied_;    // one bit per grid cell
   std::vector<double> extent_;             // per cell: lowest base, minus highest (per axis)
   std::vector<std::array<int, D>> base_;   // per cell: the box's low node
+  // Across processes: each cell's lower corner (its grid cell), and the shared cells' forest with
+  // the cells' slots of its roots and leaves (each ascending by corner).
+  bool shared_ = false;
+  std::vector<long> corner_;
+  std::vector<std::int32_t> root_slot_, leaf_slot_;
+  std::vector<double> root_values_, leaf_values_;
+  StarForest forest_;
 };
 
 }  // namespace skred

@@ -6,30 +6,37 @@
 // the matrix keeps the symmetry of the tangent and a node's D unknowns stay together (PETSc's
 // block size, the multigrid's near null space).
 //
-// One process numbers the active nodes in flat-index order. Across processes (issue 55) the
-// masses are every process's sums, so all know the same active nodes; each node is owned by the
-// lowest rank whose points' blocks touch it, and the nodes are numbered by owner, then in flat
-// order, so each process owns one run of rows [first_row, end_row), and these follow the points'
-// blocks of the grid (point_shares.hpp): the matrix's rows lie where the points that sum them are.
-// A process keeps the pattern of its own rows (every process's couplings: their union) and of
-// the rows its points' blocks touch (its own couplings, which it sends to the rows' owners);
-// the other rows are empty in its pattern. The residual's sums over the processes follow the same
-// rows (sum_rows): each owner adds the others' parts of its rows and sends the sums back to the
-// processes that touch them.
+// One process numbers the active nodes in flat-index order. Across processes (issue 55) each
+// process knows the nodes of its box (transfer/box_exchange.hpp: the nodes its points reach, and
+// a stencil's width beyond), whose masses are every process's sums, and numbers those that carry
+// mass locally: the ones it owns first, then the others, each in flat order. A node is owned by
+// the lowest rank whose points' blocks touch it (else by the lowest whose box holds it), and the
+// unknowns' global numbers run by owner, so each process owns one run of the matrix's rows, and
+// these follow the points' blocks of the grid (point_shares.hpp). Owners, global numbers and
+// couplings are agreed between the processes whose boxes meet, over the boxes' star forest; no
+// process holds the whole grid's unknowns. A process keeps the pattern of its own rows (every
+// process's couplings: their union) and of the rows its points' blocks touch (its own
+// couplings, which it sends to the rows' owners); its other rows are empty. The residual's sums
+// over the processes follow the same rows (sum_rows): each owner adds the others' parts of its
+// rows and sends the sums back to the processes that touch them.
 #pragma once
 #include <omp.h>
 
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
 #include "implicit/linear_system.hpp"
 #include "parallel/processes.hpp"
 #include "parallel/star_forest.hpp"
+#include "transfer/box_exchange.hpp"
 
 namespace skred {
 
@@ -39,23 +46,35 @@ class DofMap {
   // The coupling blocks: `blocks` runs of Kb = Sb^D flat node indices at `block_node` (boxes
   // Sb nodes wide per axis, axis 0 fastest); the points' stencils are Sp wide (Sp <= Sb).
   // `mass` per grid node (its active nodes: mass > 0), `held` per grid node the bits c of its
-  // components held by a wall.
+  // components held by a wall. Across processes, `boxes` (set: this process's box, holding every
+  // node of its blocks and their couplings) and `mass` summed over the processes in the box.
   void build(const std::int64_t* block_node, std::size_t blocks, int Sb, int Sp, const GridGeometry<D>& g,
              const std::vector<double>& mass, const std::vector<std::uint8_t>& held, int threads,
-             const Processes& processes = {}) {
+             BoxExchange<D>* boxes = nullptr) {
+    const bool across = boxes && boxes->processes().distributed();
     S_ = Sb;
     W_ = 2 * Sb - 1;
     int box = 1;
     for (int d = 0; d < D; ++d) box *= W_;
     words_ = (box + 63) / 64;
-    // Active nodes in flat order.
+    // Active nodes in flat order (across processes: those of this process's box).
     active_.assign(mass.size(), -1);
     nodes_.clear();
-    for (std::size_t i = 0; i < mass.size(); ++i)
-      if (mass[i] > 0.0) {
-        active_[i] = static_cast<std::int32_t>(nodes_.size());
-        nodes_.push_back(static_cast<std::int64_t>(i));
-      }
+    const auto add = [&](std::size_t i) {
+      if (!(mass[i] > 0.0)) return;
+      active_[i] = static_cast<std::int32_t>(nodes_.size());
+      nodes_.push_back(static_cast<std::int64_t>(i));
+    };
+    if (across) {
+      const NodeBox<D>& box = boxes->boxes()[static_cast<std::size_t>(boxes->processes().rank())];
+      std::size_t stride[D];
+      for (int d = 0; d < D; ++d) stride[d] = g.stride(d);
+      const long rows = box_rows(box), width = box.hi[0] - box.lo[0] + 1;
+      for (long r = 0; r < rows; ++r)  // (the rows in ascending flat order)
+        for (long j = 0; j < width; ++j) add(box_row_start(box, stride, r) + static_cast<std::size_t>(j));
+    } else {
+      for (std::size_t i = 0; i < mass.size(); ++i) add(i);
+    }
     offsets(Sp, pair_offset_);
     offsets(Sb, box_offset_);
     int K = 1;
@@ -76,8 +95,11 @@ class DofMap {
       }
     first_node_ = 0;
     end_node_ = nodes_.size();
-    distributed_ = processes.distributed();
-    if (distributed_) own_rows_by_process(processes);
+    first_global_ = 0;
+    global_nodes_ = static_cast<long>(nodes_.size());
+    distributed_ = across;
+    global_.clear();
+    if (distributed_) own_rows_by_process(*boxes);
     coupled_ = true;  // (the union of the couplings: owned rows' masks, and one process's)
     {
       int centre = 0;
@@ -85,7 +107,7 @@ class DofMap {
       bool all = true;
       for (std::size_t a = first_node_; a < end_node_; ++a)
         all = all && ((mask_[a * words_ + centre / 64] >> (centre % 64)) & 1u);
-      coupled_ = !processes.any(!all);
+      coupled_ = !(across ? boxes->processes().any(!all) : !all);
     }
     held_.assign(nodes_.size(), 0);
     for (std::size_t a = 0; a < nodes_.size(); ++a) held_[a] = held[static_cast<std::size_t>(nodes_[a])];
@@ -124,7 +146,7 @@ class DofMap {
         for (std::uint64_t bits = mask_[a * words_ + w]; bits; bits &= bits - 1) {
           const int o = 64 * w + std::countr_zero(bits);
           const std::int64_t b = nodes_[a] + offset_step[static_cast<std::size_t>(o)];
-          const std::int32_t ab = active_[static_cast<std::size_t>(b)];
+          const std::int32_t ab = active_[static_cast<std::size_t>(b)];  // (in the box: >= 0)
           for (int c = 0; c < D; ++c) col[j++] = ab * D + c;
         }
       const int len = j;
@@ -134,8 +156,27 @@ class DofMap {
   }
 
  public:
+  // This process's unknowns (one process: all of them) and its active nodes.
   int dofs() const { return static_cast<int>(nodes_.size()) * D; }
   std::size_t active_nodes() const { return nodes_.size(); }
+  // The whole system's active nodes, and the global number of this process's active node a
+  // (one process: a). Its own nodes are [first_global, first_global + end_node).
+  long global_nodes() const { return global_nodes_; }
+  long global_node(std::size_t a) const { return distributed_ ? global_[a] : static_cast<long>(a); }
+  long first_global() const { return first_global_; }
+  // Across processes: each local row's row in the whole system (LinearSystem::set_pattern).
+  GlobalRows global_rows() const {
+    if (static_cast<double>(global_nodes_) * D > 2147483647.0)
+      throw std::runtime_error(
+          "the implicit system has more unknowns than this PETSc's 32-bit indices count");
+    GlobalRows rows;
+    rows.owned = static_cast<int>(D * end_node_);
+    rows.size = static_cast<int>(D * global_nodes_);
+    rows.row.resize(nodes_.size() * D);
+    for (std::size_t a = 0; a < nodes_.size(); ++a)
+      for (int c = 0; c < D; ++c) rows.row[a * D + c] = static_cast<std::int32_t>(global_node(a) * D + c);
+    return rows;
+  }
   // Active index of grid node i, -1 when it carries no mass.
   std::int32_t active(std::size_t i) const { return active_[i]; }
   std::int64_t node(std::size_t a) const { return nodes_[a]; }
@@ -163,8 +204,8 @@ class DofMap {
   }
   // Across processes: the nodes this process's blocks touch that another owns (ascending).
   const std::vector<std::size_t>& touched_not_owned() const { return leaf_node_; }
-  // The active nodes this process owns, [first_node, end_node) (all of them for one process);
-  // their rows are [D first_node, D end_node).
+  // The active nodes this process owns, [first_node, end_node) (all of them for one process;
+  // across processes first_node is 0); their rows are [D first_node, D end_node).
   std::size_t first_node() const { return first_node_; }
   std::size_t end_node() const { return end_node_; }
   // Position in the values of entry (row a D + r, column b D + c) for the block coupling
@@ -183,47 +224,92 @@ class DofMap {
 
  private:
   // Across processes: the owners, the numbering by owner and each row's mask, the union of the
-  // processes' in the rows this one owns, its own in the others (see the top of the file).
-  void own_rows_by_process(const Processes& procs) {
+  // processes' in the rows this one owns, its own in the others (see the top of the file); each
+  // agreed with the processes whose boxes hold the node, over the boxes' star forest.
+  void own_rows_by_process(BoxExchange<D>& boxes) {
+    const Processes& procs = boxes.processes();
     const std::size_t na = nodes_.size(), w = static_cast<std::size_t>(words_);
-    const long rank = procs.rank(), none = procs.size();
-    std::vector<long> owner(na, none);
+    const double rank = procs.rank(), none = procs.size();
+    // The owner: the least over the holders of rank (its blocks touch the node) or none + rank.
+    std::vector<double> key(na);
     std::vector<std::uint8_t> touched(na, 0);
-    for (std::size_t a = 0; a < na; ++a)
-      for (std::size_t k = 0; k < w; ++k)
-        if (mask_[a * w + k] != 0) owner[a] = rank, touched[a] = 1;
-    procs.min(owner.data(), na);
-    std::vector<std::uint64_t> all(mask_);
-    procs.bit_or(all.data(), all.size());
-    std::vector<std::size_t> next(static_cast<std::size_t>(none) + 1, 0);
-    for (long& o : owner) {
-      if (o == none) o = 0;  // (no block holds it: no row either; every_node_coupled_to_itself)
-      ++next[static_cast<std::size_t>(o) + 1];
+    for (std::size_t a = 0; a < na; ++a) {
+      for (std::size_t k = 0; k < w; ++k) touched[a] = touched[a] || mask_[a * w + k] != 0;
+      key[a] = touched[a] ? rank : none + rank;
     }
-    for (std::size_t q = 0; q < static_cast<std::size_t>(none); ++q) next[q + 1] += next[q];
-    first_node_ = next[static_cast<std::size_t>(rank)];
-    end_node_ = next[static_cast<std::size_t>(rank) + 1];
-    const std::vector<std::size_t> run(next);  // each owner's first node
+    const auto per_node = [&](std::vector<double>& v, double absent) {
+      return std::pair{[&v, absent, this](std::size_t i, double* at) {
+                         const std::int32_t a = active_[i];
+                         at[0] = a >= 0 ? v[static_cast<std::size_t>(a)] : absent;
+                       },
+                       [&v, this](std::size_t i, const double* at) {
+                         if (const std::int32_t a = active_[i]; a >= 0)
+                           v[static_cast<std::size_t>(a)] = at[0];
+                       }};
+    };
+    {
+      auto [pack, set] = per_node(key, INFINITY);
+      boxes.combine(1, StarForest::Combine::Min, pack, set);
+    }
+    std::vector<int> owner(na);
+    std::size_t owned = 0;
+    for (std::size_t a = 0; a < na; ++a) {
+      owner[a] = static_cast<int>(key[a] < none ? key[a] : key[a] - none);
+      owned += owner[a] == procs.rank();
+    }
+    // The union of the holders' couplings.
+    std::vector<std::uint64_t> all(mask_);
+    boxes.unite_bits(
+        words_,
+        [&](std::size_t i, std::uint64_t* at) {
+          const std::int32_t a = active_[i];
+          for (std::size_t k = 0; k < w; ++k) at[k] = a >= 0 ? mask_[static_cast<std::size_t>(a) * w + k] : 0;
+        },
+        [&](std::size_t i, const std::uint64_t* at) {
+          if (const std::int32_t a = active_[i]; a >= 0)
+            std::copy_n(at, w, &all[static_cast<std::size_t>(a) * w]);
+        });
+    // The global numbers: each owner's run, in flat order, sent to the other holders.
+    first_global_ = procs.offset(static_cast<long>(owned));
+    global_nodes_ = procs.sum_of(static_cast<long>(owned));
+    std::vector<double> number(na, -1.0);
+    for (std::size_t a = 0, k = 0; a < na; ++a)
+      if (owner[a] == procs.rank()) number[a] = static_cast<double>(first_global_ + static_cast<long>(k++));
+    {
+      auto [pack, set] = per_node(number, -1.0);
+      boxes.combine(1, StarForest::Combine::Max, pack, set);
+    }
+    std::vector<double> firsts(static_cast<std::size_t>(procs.size()));
+    const double mine = static_cast<double>(first_global_);
+    procs.gather(&mine, 1, firsts.data(), firsts.size());
+    // The local order: the owned nodes, then the others.
     std::vector<std::int64_t> nodes(na);
     std::vector<std::uint64_t> mask(na * w);
+    global_.assign(na, 0);
     std::vector<int> leaf_rank;
     std::vector<long> leaf_index;
     leaf_node_.clear();
-    for (std::size_t a = 0; a < na; ++a) {  // in flat order: each owner's run stays in flat order
-      const std::size_t q = static_cast<std::size_t>(owner[a]), to = next[q]++;
+    std::size_t next_owned = 0, next_other = owned;
+    for (std::size_t a = 0; a < na; ++a) {
+      if (number[a] < 0.0) throw std::logic_error("DofMap: an active node without a global number");
+      const bool own = owner[a] == procs.rank();
+      const std::size_t to = own ? next_owned++ : next_other++;
       nodes[to] = nodes_[a];
+      global_[to] = static_cast<long>(number[a]);
       active_[static_cast<std::size_t>(nodes_[a])] = static_cast<std::int32_t>(to);
-      const std::uint64_t* from = owner[a] == rank ? &all[a * w] : &mask_[a * w];
+      const std::uint64_t* from = own ? &all[a * w] : &mask_[a * w];
       std::copy(from, from + w, &mask[to * w]);
-      if (touched[a] && owner[a] != rank) {  // a leaf of the row sums: root to - run[q] of q
+      if (touched[a] && !own) {  // a leaf of the row sums: the owner's root of its global number
         leaf_node_.push_back(to);
-        leaf_rank.push_back(static_cast<int>(q));
-        leaf_index.push_back(static_cast<long>(to - run[q]));
+        leaf_rank.push_back(owner[a]);
+        leaf_index.push_back(global_[to] - static_cast<long>(firsts[static_cast<std::size_t>(owner[a])]));
       }
     }
     nodes_.swap(nodes);
     mask_.swap(mask);
-    rows_.connect(procs, static_cast<long>(end_node_ - first_node_), leaf_rank, leaf_index);
+    first_node_ = 0;
+    end_node_ = owned;
+    rows_.connect(procs, static_cast<long>(owned), leaf_rank, leaf_index);
   }
 
   // The offset index of node l seen from node k of a block S wide:
@@ -252,6 +338,8 @@ class DofMap {
   std::vector<std::uint64_t> mask_;
   std::vector<int> pair_offset_, box_offset_;
   std::size_t first_node_ = 0, end_node_ = 0;
+  long first_global_ = 0, global_nodes_ = 0;
+  std::vector<long> global_;  // across processes: each active node's global number
   bool coupled_ = true, distributed_ = false;
   StarForest rows_;                     // sum_rows: a root per owned node, a leaf per touched one
   std::vector<std::size_t> leaf_node_;  // the touched nodes another process owns

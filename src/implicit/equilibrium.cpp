@@ -114,7 +114,7 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
       }
       cell_theta_[static_cast<std::size_t>(c)] = theta;
     }
-    state_.processes.sum(cell_theta_.data(), cell_theta_.size());
+    cells_.sum_cells(cell_theta_.data(), 1);
 #pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
     for (int c = 0; c < cells; ++c) {
       const double theta =
@@ -129,7 +129,7 @@ double ImplicitSolver<D>::residual(const std::vector<double>& du, double dt, boo
       }
       cell_mean_[static_cast<std::size_t>(c)] = mean;
     }
-    state_.processes.sum(cell_mean_.data(), cell_mean_.size());
+    cells_.sum_cells(cell_mean_.data(), 1);
 #pragma omp parallel for num_threads(state_.threads) schedule(dynamic, 64)
     for (int c = 0; c < cells; ++c) {
       const double mean =

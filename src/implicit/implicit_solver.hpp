@@ -32,6 +32,7 @@
 #include "solver/boundary_side.hpp"
 #include "solver/integrator.hpp"
 #include "solver/mpm_state.hpp"
+#include "transfer/box_exchange.hpp"
 
 namespace skred {
 
@@ -47,11 +48,13 @@ struct ImplicitModel {
   std::vector<BoundaryPressure> pressures;
   bool volumetric_averaging = false;  // the cell-averaged volumetric strain (cell_boxes.hpp)
   std::vector<PrescribedVelocity> prescribed;
-  // The processes the points are split among (issue 55): the grid's sums over the points (m_i,
-  // v_i, a_i, F_ext, F_int, the tangent) are every process's, so all of them hold the same
-  // unknowns and iterate alike; the linear solves run on PETSc's parallel matrices. The
-  // cell-averaged volumetric strain's cells are every process's (cell_boxes.hpp), and so are
-  // the cells' point counts of Acosta's W* and DM (mapped_stencils.hpp).
+  // The processes the points are split among (issue 55): each process works on the box of grid
+  // nodes its points reach (box_exchange.hpp) and holds the unknowns there (dof_map.hpp); the
+  // grid's sums over the points (m_i, v_i, a_i, F_ext, F_int, the cells' point counts of
+  // Acosta's W* and DM) are completed between the processes whose boxes meet, the residual's
+  // between a row's owner and the processes that touch it, and the cell-averaged volumetric
+  // strain's sums between the processes whose points share a cell (cell_boxes.hpp); the linear
+  // solves run on PETSc's parallel matrices.
   Processes processes;
 };
 
@@ -138,7 +141,8 @@ class ImplicitSolver final : public Integrator<D> {
     model_.pressures.at(k).pressure = value;
     model_.pressures.at(k).ramp_time = 0.0;
   }
-  // F_int per grid node of the last evaluation (zero at nodes without mass).
+  // F_int per grid node of the last evaluation (zero at nodes without mass; across processes,
+  // at the nodes of this process's box).
   void node_internal_force(std::vector<Vec<D>>& f) const;
 
  private:
@@ -162,6 +166,8 @@ class ImplicitSolver final : public Integrator<D> {
   double owned_norm(const std::vector<double>& v) const;  // |v| over the processes' owned rows
   void held_components();
   void lumped_masses();
+  void set_box();                                   // across processes: the box of nodes this one holds
+  void sum_in_boxes(std::vector<double>& v) const;  // per-unknown values, over the processes
   void external_forces(double t, std::vector<double>& f) const;  // loads.cpp
   void pressure_forces(double t, std::vector<double>& f) const;  // loads.cpp
   void keep_outermost_over_processes(std::unordered_map<std::int64_t, std::size_t>& outermost, int axis,
@@ -216,6 +222,7 @@ class ImplicitSolver final : public Integrator<D> {
   void mapped_cells(std::vector<std::int64_t>& blocks);
   int width_ = 2;  // S, nodes per axis of a point's stencil
   DofMap<D> dofs_;
+  mutable BoxExchange<D> boxes_;         // across processes: the grid's sums between the boxes that meet
   CellBoxes<D> cells_;                   // with the cell-averaged volumetric strain
   std::vector<double> grid_mass_;        // per grid node (scratch of map_step)
   std::vector<std::uint8_t> grid_held_;  // per grid node

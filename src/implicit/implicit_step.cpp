@@ -19,16 +19,6 @@
 
 namespace skred {
 
-namespace {
-
-double norm(const std::vector<double>& v) {
-  double s = 0.0;
-  for (double x : v) s += x * x;
-  return std::sqrt(s);
-}
-
-}  // namespace
-
 // m_i = sum_p N_ip m_p (eq. 43) on the step's grid.
 template <int D>
 void ImplicitSolver<D>::lumped_masses() {
@@ -42,7 +32,44 @@ void ImplicitSolver<D>::lumped_masses() {
 #pragma omp atomic
       gm[stencils_.node[p * K + k]] += stencils_.N[p * K + k] * state_.points.mass[p];
     }
-  state_.processes.sum(gm, grid_mass_.size());  // every process's points
+  if (state_.processes.distributed())  // every process's points, in the box
+    boxes_.sum(
+        1, [&](std::size_t i, double* at) { at[0] = gm[i]; },
+        [&](std::size_t i, const double* at) { gm[i] = at[0]; });
+}
+
+// Across processes: the box of nodes this process holds, the nodes its points' stencils reach
+// (node_box.hpp) and a stencil's width beyond them, where the nodes its blocks couple to lie.
+// Collective.
+template <int D>
+void ImplicitSolver<D>::set_box() {
+  const GridGeometry<D>& g = state_.grid;
+  Extent<D> e;
+  for (std::size_t p = 0; p < state_.points.size(); ++p) e.add(state_.points.x[p]);
+  NodeBox<D> box = reach_of(g, e);
+  if (!box.empty())
+    for (int d = 0; d < D; ++d) {
+      box.lo[d] = std::max(0, box.lo[d] - skred::kMaxStencil);
+      box.hi[d] = std::min(g.nodes(d) - 1, box.hi[d] + skred::kMaxStencil);
+    }
+  boxes_.set(g, box, state_.processes);
+}
+
+// Across processes: per-unknown values (D a node) summed over the processes whose boxes hold the
+// node: every node of this process's box then has every process's parts. Collective.
+template <int D>
+void ImplicitSolver<D>::sum_in_boxes(std::vector<double>& v) const {
+  if (!state_.processes.distributed()) return;
+  boxes_.sum(
+      D,
+      [&](std::size_t i, double* at) {
+        const std::int32_t a = dofs_.active(i);
+        for (int c = 0; c < D; ++c) at[c] = a >= 0 ? v[static_cast<std::size_t>(a) * D + c] : 0.0;
+      },
+      [&](std::size_t i, const double* at) {
+        if (const std::int32_t a = dofs_.active(i); a >= 0)
+          std::copy_n(at, D, &v[static_cast<std::size_t>(a) * D]);
+      });
 }
 
 // A point that failed on some process, named by its index over all of them in rank order, on
@@ -70,6 +97,11 @@ StepStatus ImplicitSolver<D>::map_step() {
   bad = agreed_point(bad);
   if (bad >= 0) return {false, bad, "a point left the grid"};
   const std::size_t n = state_.points.size();
+  BoxExchange<D>* boxes = nullptr;
+  if (state_.processes.distributed()) {
+    set_box();
+    boxes = &boxes_;
+  }
   lumped_masses();
   // A node with a sliver of mass (below min_node_fill of a full node's, rho h^D; axisymmetric,
   // per radian, times r_i, h / 6 on the axis), which a point's domain grown with det F or moved
@@ -86,6 +118,7 @@ StepStatus ImplicitSolver<D>::map_step() {
     sliver_[i] = grid_mass_[i] > 0.0 && grid_mass_[i] < m_min * r;
     any = any || sliver_[i];
   }
+  if (state_.processes.distributed()) any = state_.processes.any(any);  // (the masses are collective)
   if (any) {
     stencils_.aggregate_slivers(g, state_.points, sliver_, state_.threads);
     lumped_masses();
@@ -102,9 +135,9 @@ StepStatus ImplicitSolver<D>::map_step() {
   }
   held_components();
   if (!settings_.at_points()) {
-    const long wide = agreed_point(mapped_.build(settings_.integration, settings_.stress_recovery, stencils_,
-                                                 g, state_.points, volume_, inv_r_, grid_mass_,
-                                                 state_.threads, state_.processes));
+    const long wide =
+        agreed_point(mapped_.build(settings_.integration, settings_.stress_recovery, stencils_, g,
+                                   state_.points, volume_, inv_r_, grid_mass_, state_.threads, boxes));
     if (wide >= 0) return {false, wide, "its stencil spreads beyond the 4 nodes per axis around its cell"};
     mapped_.trim(g, state_.threads, state_.processes);
     // Acosta's stiffness (eq. 19-20) couples the corners of a cell only: its pattern is the
@@ -114,35 +147,25 @@ StepStatus ImplicitSolver<D>::map_step() {
     if (cell_pattern_) {
       mapped_cells(cell_blocks_);
       dofs_.build(cell_blocks_.data(), cell_blocks_.size() / MappedStencils<D>::KG, 2, 2, g, grid_mass_,
-                  grid_held_, state_.threads, state_.processes);
+                  grid_held_, state_.threads, boxes);
       cell_pattern_ = dofs_.every_node_coupled_to_itself();
     }
     if (!cell_pattern_)
       dofs_.build(mapped_.box.data(), n, mapped_.width, mapped_.width, g, grid_mass_, grid_held_,
-                  state_.threads, state_.processes);
+                  state_.threads, boxes);
   } else if (averaging()) {
     const long wide = agreed_point(
-        cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads, state_.processes));
+        cells_.build(stencils_, width_, g, state_.points, volume_, inv_r_, state_.threads, boxes));
     if (wide >= 0)
       return {false, wide, "its stencil spreads beyond its cell's box (cell-averaged volumetric strain)"};
-    const std::int64_t* boxes = cells_.node.data();
-    std::size_t count = static_cast<std::size_t>(cells_.cells());
-    if (state_.processes.distributed()) {  // the boxes of the cells this process's points are in
-      cell_blocks_.clear();
-      for (int c = 0; c < cells_.cells(); ++c)
-        if (cells_.start[c] < cells_.start[c + 1])
-          cell_blocks_.insert(cell_blocks_.end(), boxes + static_cast<std::size_t>(c) * cells_.K,
-                              boxes + static_cast<std::size_t>(c + 1) * cells_.K);
-      boxes = cell_blocks_.data();
-      count = cell_blocks_.size() / static_cast<std::size_t>(cells_.K);
-    }
-    dofs_.build(boxes, count, cells_.S, width_, g, grid_mass_, grid_held_, state_.threads, state_.processes);
+    // (across processes: the boxes of the cells this process's points are in)
+    dofs_.build(cells_.node.data(), static_cast<std::size_t>(cells_.cells()), cells_.S, width_, g, grid_mass_,
+                grid_held_, state_.threads, boxes);
   } else {
-    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, state_.threads,
-                state_.processes);
+    dofs_.build(stencils_.node.data(), n, width_, width_, g, grid_mass_, grid_held_, state_.threads, boxes);
   }
   const std::size_t dofs = static_cast<std::size_t>(dofs_.dofs());
-  totals_.max_unknowns = std::max(totals_.max_unknowns, static_cast<long>(dofs));
+  totals_.max_unknowns = std::max(totals_.max_unknowns, D * dofs_.global_nodes());
   mass_.resize(dofs);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c) mass_[a * D + c] = grid_mass_[static_cast<std::size_t>(dofs_.node(a))];
@@ -153,9 +176,13 @@ StepStatus ImplicitSolver<D>::map_step() {
     prescribed_id_[a] = grid_prescribed_[static_cast<std::size_t>(dofs_.node(a))];
     driven_[a] = grid_driven_[static_cast<std::size_t>(dofs_.node(a))];
   }
-  system_.set_pattern(dofs_.pattern(), static_cast<int>(D * dofs_.first_node()),
-                      static_cast<int>(D * dofs_.end_node()));
-  if (state_.processes.distributed()) needed_rows();
+  if (state_.processes.distributed()) {
+    const GlobalRows rows = dofs_.global_rows();
+    system_.set_pattern(dofs_.pattern(), &rows);
+    needed_rows();
+  } else {
+    system_.set_pattern(dofs_.pattern());
+  }
   if (settings_.linear_solver == LinearSolverKind::Iterative) {
     std::vector<double>& xyz = trial_du_;  // (scratch until the iterations start)
     xyz.resize(dofs);
@@ -166,7 +193,9 @@ StepStatus ImplicitSolver<D>::map_step() {
     system_.set_coordinates(xyz);
   }
   if (!dynamic()) return {};
-  if (state_.points.acceleration.size() != n) initial_acceleration();
+  bool start = state_.points.acceleration.size() != n;
+  if (state_.processes.distributed()) start = state_.processes.any(start);  // (collective sums)
+  if (start) initial_acceleration();
   v_bar_.assign(dofs, 0.0);
   a_bar_.assign(dofs, 0.0);
   double *vb = v_bar_.data(), *ab = a_bar_.data();
@@ -184,8 +213,8 @@ StepStatus ImplicitSolver<D>::map_step() {
         ab[a * D + c] += wm * state_.points.acceleration[p][c];
       }
     }
-  state_.processes.sum(vb, dofs);
-  state_.processes.sum(ab, dofs);
+  sum_in_boxes(v_bar_);
+  sum_in_boxes(a_bar_);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c) {
       const std::size_t i = a * D + c;
@@ -305,7 +334,7 @@ bool ImplicitSolver<D>::solve_step(double dt, std::string& why) {
       sums[1] += in * in;
     }
     state_.processes.sum(sums, 2);
-    force_scale_ = std::max({norm(f_ext_), std::sqrt(sums[0]), std::sqrt(sums[1])});
+    force_scale_ = std::max({owned_norm(f_ext_), std::sqrt(sums[0]), std::sqrt(sums[1])});
     if (!(force_scale_ > 0.0)) force_scale_ = 1.0;
   }
   const double tol = settings_.residual_tolerance * force_scale_;
@@ -492,8 +521,8 @@ void ImplicitSolver<D>::commit_step(double dt) {
     std::vector<double> f0(du_.size(), 0.0), f1(du_.size(), 0.0);
     pressure_forces(state_.clock.time, f0);
     pressure_forces(state_.clock.time + dt, f1);
-    state_.processes.sum(f0.data(), f0.size());
-    state_.processes.sum(f1.data(), f1.size());
+    sum_in_boxes(f0);
+    sum_in_boxes(f1);
     double w = 0.0;  // (over the owned nodes, then the processes)
     for (std::size_t a = dofs_.first_node(); a < dofs_.end_node(); ++a)
       for (int c = 0; c < D; ++c)
@@ -510,8 +539,8 @@ void ImplicitSolver<D>::commit_step(double dt) {
 
 // F_int of the last residual (eq. 7), for the grid frames' |F_int| (eq. 26): F_ext - R with the
 // held rows' support forces and, dynamic, the inertia of du.
-// Across processes each forms its owned rows' and all of them add up the whole (a step's one
-// sum of the unknowns' length: the grid frames' files and the walls' forces read every node).
+// Across processes each forms its owned rows' and the processes whose boxes hold a node add them
+// up (the grid frames read every node of a box).
 template <int D>
 void ImplicitSolver<D>::store_internal_force(double dt) {
   const bool inertia = dynamic() && !v_bar_.empty();
@@ -524,7 +553,7 @@ void ImplicitSolver<D>::store_internal_force(double dt) {
           inertia ? mass_[i] * (4.0 / (dt * dt) * du_[i] - 4.0 / dt * v_bar_[i] - a_bar_[i]) : 0.0;
       f_int_[i] = f_ext_[i] - R - m;
     }
-  state_.processes.sum(f_int_.data(), f_int_.size());
+  sum_in_boxes(f_int_);
 }
 
 // The prescribed velocities' forces on the material at t + dt (the sums of the supports' forces
@@ -548,17 +577,19 @@ void ImplicitSolver<D>::commit_boundary_forces(double dt) {
   state_.clock.boundary_force = f;
 }
 
-#define SKRED_IMPLICIT_STEP(D)                                        \
-  template StepStatus ImplicitSolver<D>::map_step();                  \
-  template long ImplicitSolver<D>::agreed_point(long) const;          \
-  template void ImplicitSolver<D>::held_components();                 \
-  template bool ImplicitSolver<D>::solve_step(double, std::string&);  \
-  template void ImplicitSolver<D>::initial_acceleration();            \
-  template void ImplicitSolver<D>::commit_step(double);               \
-  template void ImplicitSolver<D>::commit_boundary_forces(double);    \
-  template void ImplicitSolver<D>::store_internal_force(double);      \
-  template bool ImplicitSolver<D>::within_a_cell(std::string&) const; \
-  template void ImplicitSolver<D>::needed_rows();                     \
+#define SKRED_IMPLICIT_STEP(D)                                               \
+  template StepStatus ImplicitSolver<D>::map_step();                         \
+  template long ImplicitSolver<D>::agreed_point(long) const;                 \
+  template void ImplicitSolver<D>::held_components();                        \
+  template bool ImplicitSolver<D>::solve_step(double, std::string&);         \
+  template void ImplicitSolver<D>::initial_acceleration();                   \
+  template void ImplicitSolver<D>::commit_step(double);                      \
+  template void ImplicitSolver<D>::commit_boundary_forces(double);           \
+  template void ImplicitSolver<D>::store_internal_force(double);             \
+  template bool ImplicitSolver<D>::within_a_cell(std::string&) const;        \
+  template void ImplicitSolver<D>::needed_rows();                            \
+  template void ImplicitSolver<D>::set_box();                                \
+  template void ImplicitSolver<D>::sum_in_boxes(std::vector<double>&) const; \
   template double ImplicitSolver<D>::owned_norm(const std::vector<double>&) const;
 SKRED_IMPLICIT_STEP(2)
 SKRED_IMPLICIT_STEP(3)

@@ -29,12 +29,12 @@ struct LinearSystem::Petsc {
   // Across processes: the right-hand side and solution (owned rows), the rows of the solution
   // this process reads, and the scatter that fills them; the owned rows' entries in and beyond
   // their diagonal block (the exact preallocation).
-  Vec b = nullptr, x = nullptr, x_all = nullptr;
-  VecScatter to_all = nullptr;
+  Vec b = nullptr, x = nullptr, x_needed = nullptr;
+  VecScatter to_needed = nullptr;
   std::vector<PetscInt> in_diagonal, off_diagonal;
   void destroy_vectors() {
-    if (to_all) VecScatterDestroy(&to_all);
-    if (x_all) VecDestroy(&x_all);
+    if (to_needed) VecScatterDestroy(&to_needed);
+    if (x_needed) VecDestroy(&x_needed);
     if (x) VecDestroy(&x);
     if (b) VecDestroy(&b);
   }
@@ -82,14 +82,17 @@ void LinearSystem::new_solver() {
   SKRED_PETSC(KSPSetFromOptions(p.ksp));
 }
 
-void LinearSystem::set_pattern(const SparsePattern& pattern, int first_row, int end_row) {
+void LinearSystem::set_pattern(const SparsePattern& pattern, const GlobalRows* global) {
   if (!petsc_) configure(kind_, options_, symmetric_, block_, processes_);
   Petsc& p = *petsc_;
   pattern_ = pattern;
   values_.assign(pattern_.column.size(), 0.0);
-  first_row_ = processes_.distributed() ? first_row : 0;
-  end_row_ = processes_.distributed() && end_row >= 0 ? end_row : pattern_.size();
+  owned_ = pattern_.size();
   if (processes_.distributed()) {
+    if (!global || global->row.size() != static_cast<std::size_t>(pattern_.size()))
+      throw LinearSolverError("a pattern across processes without its rows in the whole system");
+    global_ = *global;
+    owned_ = global_.owned;
     set_parallel_pattern();
     return;
   }
@@ -133,8 +136,7 @@ void LinearSystem::factorise() {
     PetscBool gamg = PETSC_FALSE;
     SKRED_PETSC(PetscObjectTypeCompare(reinterpret_cast<PetscObject>(pc), PCGAMG, &gamg));
     if (gamg)  // the owned nodes' coordinates
-      SKRED_PETSC(PCSetCoordinates(pc, block_, static_cast<PetscInt>(end_row_ - first_row_) / block_,
-                                   coordinates_.data() + first_row_));
+      SKRED_PETSC(PCSetCoordinates(pc, block_, static_cast<PetscInt>(owned_) / block_, coordinates_.data()));
   }
   SKRED_PETSC(KSPSetUp(p.ksp));
 }
@@ -181,15 +183,13 @@ bool LinearSystem::solve(const std::vector<double>& b, std::vector<double>& x) {
 // row's entries in the diagonal block (columns this process owns) and beyond it.
 void LinearSystem::set_parallel_pattern() {
   Petsc& p = *petsc_;
-  const PetscInt n = pattern_.size(), local = end_row_ - first_row_;
+  const PetscInt local = owned_;
   p.in_diagonal.assign(static_cast<std::size_t>(local), 0);
   p.off_diagonal.assign(static_cast<std::size_t>(local), 0);
   for (PetscInt r = 0; r < local; ++r) {
-    const std::size_t row = static_cast<std::size_t>(first_row_ + r);
-    for (std::int32_t e = pattern_.row_start[row]; e < pattern_.row_start[row + 1]; ++e) {
-      const std::int32_t c = pattern_.column[static_cast<std::size_t>(e)];
-      ++(c >= first_row_ && c < end_row_ ? p.in_diagonal : p.off_diagonal)[static_cast<std::size_t>(r)];
-    }
+    const std::size_t row = static_cast<std::size_t>(r);
+    for (std::int32_t e = pattern_.row_start[row]; e < pattern_.row_start[row + 1]; ++e)
+      ++(pattern_.column[static_cast<std::size_t>(e)] < owned_ ? p.in_diagonal : p.off_diagonal)[row];
   }
   if (p.matrix) {
     new_solver();
@@ -197,38 +197,39 @@ void LinearSystem::set_parallel_pattern() {
   }
   p.destroy_vectors();
   SKRED_PETSC(MatCreate(PETSC_COMM_WORLD, &p.matrix));
-  SKRED_PETSC(MatSetSizes(p.matrix, local, local, n, n));
+  SKRED_PETSC(MatSetSizes(p.matrix, local, local, global_.size, global_.size));
   SKRED_PETSC(MatSetType(p.matrix, MATMPIAIJ));
   if (block_ > 1) SKRED_PETSC(MatSetBlockSize(p.matrix, block_));
   SKRED_PETSC(MatMPIAIJSetPreallocation(p.matrix, 0, p.in_diagonal.data(), 0, p.off_diagonal.data()));
   SKRED_PETSC(MatSetOption(p.matrix, MAT_NEW_NONZERO_ALLOCATION_ERR, PETSC_TRUE));
   if (symmetric_) SKRED_PETSC(MatSetOption(p.matrix, MAT_SYMMETRIC, PETSC_TRUE));
   SKRED_PETSC(MatCreateVecs(p.matrix, &p.x, &p.b));
-  needed_.clear();
-  every_row_ = true;  // (until set_needed_rows)
-  SKRED_PETSC(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all));
+  std::vector<std::int32_t> every(static_cast<std::size_t>(pattern_.size()));
+  for (std::size_t r = 0; r < every.size(); ++r) every[r] = static_cast<std::int32_t>(r);
+  set_needed_rows(std::move(every));  // (until the caller names fewer)
 }
 
 void LinearSystem::set_needed_rows(std::vector<std::int32_t> rows) {
   if (!processes_.distributed()) return;
   Petsc& p = *petsc_;
   needed_ = std::move(rows);
-  every_row_ = false;
-  if (p.to_all) VecScatterDestroy(&p.to_all);
-  if (p.x_all) VecDestroy(&p.x_all);
-  const std::vector<PetscInt> from(needed_.begin(), needed_.end());
+  if (p.to_needed) VecScatterDestroy(&p.to_needed);
+  if (p.x_needed) VecDestroy(&p.x_needed);
+  std::vector<PetscInt> from(needed_.size());
+  for (std::size_t k = 0; k < needed_.size(); ++k)
+    from[k] = global_.row[static_cast<std::size_t>(needed_[k])];
   IS is = nullptr;
   SKRED_PETSC(ISCreateGeneral(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), from.data(),
                               PETSC_COPY_VALUES, &is));
-  SKRED_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &p.x_all));
-  const PetscErrorCode made = VecScatterCreate(p.x, is, p.x_all, nullptr, &p.to_all);
+  SKRED_PETSC(VecCreateSeq(PETSC_COMM_SELF, static_cast<PetscInt>(from.size()), &p.x_needed));
+  const PetscErrorCode made = VecScatterCreate(p.x, is, p.x_needed, nullptr, &p.to_needed);
   ISDestroy(&is);
   SKRED_PETSC(made);
 }
 
 // This process's values into the parallel matrix, every row its pattern holds (its own rows,
-// each with every entry, and those its points' terms fall in); PETSc adds them up in the rows'
-// owners (MatAssembly).
+// each with every entry, and those its points' terms fall in), by their rows and columns in the
+// whole system; PETSc adds them up in the rows' owners (MatAssembly).
 void LinearSystem::add_parallel_values() {
   Petsc& p = *petsc_;
   SKRED_PETSC(MatZeroEntries(p.matrix));
@@ -238,30 +239,30 @@ void LinearSystem::add_parallel_values() {
     const std::int32_t e0 = pattern_.row_start[static_cast<std::size_t>(row)];
     const PetscInt len = pattern_.row_start[static_cast<std::size_t>(row) + 1] - e0;
     if (len == 0) continue;
-    p.columns.assign(pattern_.column.begin() + e0, pattern_.column.begin() + e0 + len);
-    const PetscInt r = row;
+    p.columns.resize(static_cast<std::size_t>(len));
+    for (PetscInt e = 0; e < len; ++e)
+      p.columns[static_cast<std::size_t>(e)] =
+          global_.row[static_cast<std::size_t>(pattern_.column[static_cast<std::size_t>(e0 + e)])];
+    const PetscInt r = global_.row[static_cast<std::size_t>(row)];
     SKRED_PETSC(MatSetValues(p.matrix, 1, &r, len, p.columns.data(), values_.data() + e0, ADD_VALUES));
   }
 }
 
-// Solves with the owned rows of b and gives every process the whole solution.
+// Solves with the owned rows of b and brings the solution's rows this process reads back.
 int LinearSystem::parallel_solve(const std::vector<double>& b, std::vector<double>& x) {
   Petsc& p = *petsc_;
   PetscScalar* a = nullptr;
   SKRED_PETSC(VecGetArray(p.b, &a));
-  std::copy(b.begin() + first_row_, b.begin() + end_row_, a);
+  std::copy(b.begin(), b.begin() + owned_, a);
   SKRED_PETSC(VecRestoreArray(p.b, &a));
   const PetscErrorCode code = KSPSolve(p.ksp, p.b, p.x);
   if (code != 0) return static_cast<int>(code);
-  SKRED_PETSC(VecScatterBegin(p.to_all, p.x, p.x_all, INSERT_VALUES, SCATTER_FORWARD));
-  SKRED_PETSC(VecScatterEnd(p.to_all, p.x, p.x_all, INSERT_VALUES, SCATTER_FORWARD));
-  const PetscScalar* all = nullptr;
-  SKRED_PETSC(VecGetArrayRead(p.x_all, &all));
-  if (every_row_)
-    std::copy(all, all + x.size(), x.begin());
-  else
-    for (std::size_t k = 0; k < needed_.size(); ++k) x[static_cast<std::size_t>(needed_[k])] = all[k];
-  SKRED_PETSC(VecRestoreArrayRead(p.x_all, &all));
+  SKRED_PETSC(VecScatterBegin(p.to_needed, p.x, p.x_needed, INSERT_VALUES, SCATTER_FORWARD));
+  SKRED_PETSC(VecScatterEnd(p.to_needed, p.x, p.x_needed, INSERT_VALUES, SCATTER_FORWARD));
+  const PetscScalar* got = nullptr;
+  SKRED_PETSC(VecGetArrayRead(p.x_needed, &got));
+  for (std::size_t k = 0; k < needed_.size(); ++k) x[static_cast<std::size_t>(needed_[k])] = got[k];
+  SKRED_PETSC(VecRestoreArrayRead(p.x_needed, &got));
   return 0;
 }
 

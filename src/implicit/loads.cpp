@@ -32,7 +32,7 @@ void ImplicitSolver<D>::external_forces(double t, std::vector<double>& f) const 
       }
     }
   pressure_forces(t, f);
-  state_.processes.sum(fa, f.size());  // every process's points
+  sum_in_boxes(f);  // every process's points
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a)
     for (int c = 0; c < D; ++c)
       if (dofs_.held(a, c)) f[a * D + c] = 0.0;

@@ -250,7 +250,8 @@ void ImplicitSolver<D>::mapped_cells(std::vector<std::int64_t>& blocks) {
 // last converged step; false before the first step.
 template <int D>
 bool ImplicitSolver<D>::node_magnitudes(std::vector<double>& k_mag, std::vector<double>& f_mag) const {
-  if (f_int_.empty() || dofs_.active_nodes() == 0) return false;
+  const bool stored = !f_int_.empty() && dofs_.active_nodes() > 0;
+  if (!(state_.processes.distributed() ? state_.processes.any(stored) : stored)) return false;
   const std::size_t nodes = state_.grid.node_count();
   std::vector<double> diag(static_cast<std::size_t>(dofs_.dofs()), 0.0);
   const std::size_t n = state_.points.size();
@@ -273,7 +274,7 @@ bool ImplicitSolver<D>::node_magnitudes(std::vector<double>& k_mag, std::vector<
       add(a, a, 0, Mat<D>(volume_[p] * B.transpose() * WT * B));
     }
   }
-  state_.processes.sum(diag.data(), diag.size());
+  sum_in_boxes(diag);
   k_mag.assign(nodes, 0.0);
   f_mag.assign(nodes, 0.0);
   for (std::size_t a = 0; a < dofs_.active_nodes(); ++a) {
@@ -281,6 +282,17 @@ bool ImplicitSolver<D>::node_magnitudes(std::vector<double>& k_mag, std::vector<
     k_mag[i] = Eigen::Map<const Vec<D>>(&diag[a * D]).norm();
     f_mag[i] = Eigen::Map<const Vec<D>>(&f_int_[a * D]).norm();
   }
+  if (state_.processes.distributed())  // the first process writes the grid's file: it gets every box's
+    boxes_.gather_to_first(
+        2,
+        [&](std::size_t i, double* at) {
+          at[0] = k_mag[i];
+          at[1] = f_mag[i];
+        },
+        [&](std::size_t i, const double* at) {
+          k_mag[i] = at[0];
+          f_mag[i] = at[1];
+        });
   return true;
 }
 

@@ -41,6 +41,7 @@
 #include "parallel/processes.hpp"
 #include "shape/gimp.hpp"
 #include "solver/implicit_settings.hpp"
+#include "transfer/box_exchange.hpp"
 
 namespace skred {
 
@@ -94,15 +95,16 @@ struct MappedStencils {
   // integration at the points and their recovery at the points), `volume` V_p (per radian when
   // axisymmetric, with inv_r = 1 / r_p, else empty), `mass` per grid node (> 0: an unknown).
   // Returns a point whose stencil leaves its box, or -1; when no process has one, trim() must
-  // follow. Collective over `procs` (the cells' point counts).
+  // follow. Across processes, collective over `boxes` (set: the cells' point counts, summed
+  // between the processes whose boxes hold a cell's lower corner).
   long build(ForceIntegration integration, StressRecovery recovery, const PointStencils<D>& kernel,
              const GridGeometry<D>& g, const Particles<D>& P, const std::vector<double>& volume,
              const std::vector<double>& inv_r, const std::vector<double>& mass, int threads,
-             const Processes& procs) {
+             BoxExchange<D>* boxes = nullptr) {
     const std::size_t n = P.size();
     const bool axi = !inv_r.empty();
     if (integration == ForceIntegration::ModifiedWeights || integration == ForceIntegration::DoubleMapping)
-      count_points(g, P, procs);
+      count_points(g, P, boxes);
     width = kWidth;
     KS = KB;
     box.resize(n * KB);
@@ -253,10 +255,13 @@ struct MappedStencils {
     return k;
   }
   // cmp: the points each cell holds (keyed by its lower corner), every process's.
-  void count_points(const GridGeometry<D>& g, const Particles<D>& P, const Processes& procs) {
+  void count_points(const GridGeometry<D>& g, const Particles<D>& P, BoxExchange<D>* boxes) {
     count_.assign(g.node_count(), 0);
     for (std::size_t p = 0; p < P.size(); ++p) ++count_[cell_key(g, cell_of(g, P.x[p]))];
-    procs.sum(count_.data(), count_.size());
+    if (boxes && boxes->processes().distributed())
+      boxes->sum(
+          1, [&](std::size_t i, double* at) { at[0] = static_cast<double>(count_[i]); },
+          [&](std::size_t i, const double* at) { count_[i] = static_cast<long>(at[0]); });
   }
   double cmp(const GridGeometry<D>& g, const std::array<int, D>& c) const {
     return static_cast<double>(count_[cell_key(g, c)]);

@@ -44,6 +44,7 @@ struct StarForest::Petsc {
   long leaves_out = 0, roots_out = 0, root_ranks = 0, leaf_ranks = 0;
 
   MPI_Datatype unit(MPI_Datatype base, std::size_t count) {
+    if (count == 1) return base;  // (one value: MPI's own type, which MIN and MAX take)
     for (const Unit& u : units)
       if (u.base == base && u.count == count) return u.type;
     MPI_Datatype t = MPI_DATATYPE_NULL;
@@ -142,12 +143,26 @@ void StarForest::connect(const Processes& procs, long roots, std::span<const int
   p.set_up(procs);
 }
 
-void StarForest::reduce(int per, const double* leaf, double* root) {
+void StarForest::reduce(int per, const double* leaf, double* root, Combine how) {
   Petsc& p = *petsc_;
+  // (MPI's own MIN and MAX take basic types only: one double a leaf)
+  if (how != Combine::Sum && per != 1)
+    throw std::logic_error("StarForest::reduce: the least or greatest of one value a leaf");
+  const MPI_Op op = how == Combine::Sum ? MPI_SUM : how == Combine::Min ? MPI_MIN : MPI_MAX;
   const MPI_Datatype unit = p.unit(MPI_DOUBLE, static_cast<std::size_t>(per));
-  SKRED_PETSC(PetscSFReduceBegin(p.sf, unit, leaf, root, MPI_SUM));
-  SKRED_PETSC(PetscSFReduceEnd(p.sf, unit, leaf, root, MPI_SUM));
+  SKRED_PETSC(PetscSFReduceBegin(p.sf, unit, leaf, root, op));
+  SKRED_PETSC(PetscSFReduceEnd(p.sf, unit, leaf, root, op));
   count_exchange(1, p.root_ranks, static_cast<double>(p.leaves_out) * per * sizeof(double));
+}
+
+void StarForest::reduce_bits(int per, const std::uint64_t* leaf, std::uint64_t* root) {
+  Petsc& p = *petsc_;
+  // (bytes: PETSc's packing knows contiguous runs of chars, and a word's OR is its bytes')
+  const std::size_t bytes = static_cast<std::size_t>(per) * sizeof(std::uint64_t);
+  const MPI_Datatype unit = p.unit(MPI_UNSIGNED_CHAR, bytes);
+  SKRED_PETSC(PetscSFReduceBegin(p.sf, unit, leaf, root, MPI_BOR));
+  SKRED_PETSC(PetscSFReduceEnd(p.sf, unit, leaf, root, MPI_BOR));
+  count_exchange(1, p.root_ranks, static_cast<double>(p.leaves_out) * static_cast<double>(bytes));
 }
 
 void StarForest::broadcast(int per, const double* root, double* leaf) {

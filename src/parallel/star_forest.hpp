@@ -10,6 +10,7 @@
 // PETSc stays in star_forest.cpp.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 
@@ -33,9 +34,13 @@ class StarForest {
   // Collective. This process has `roots` roots; its leaf k is root index[k] of process rank[k].
   void connect(const Processes& procs, long roots, std::span<const int> rank, std::span<const long> index);
 
+  // How a reduction combines a root's value with its leaves'.
+  enum class Combine { Sum, Min, Max };
   // Collective. root (roots × per doubles) += the leaves' parts (leaves × per), the leaves of
-  // each root taken in one fixed order.
-  void reduce(int per, const double* leaf, double* root);
+  // each root taken in one fixed order; or the least or greatest of the root's and leaves'.
+  void reduce(int per, const double* leaf, double* root, Combine how = Combine::Sum);
+  // Collective. root (roots × per words) |= the leaves' bits.
+  void reduce_bits(int per, const std::uint64_t* leaf, std::uint64_t* root);
   // Collective. leaf (leaves × per doubles) <- its root's values.
   void broadcast(int per, const double* root, double* leaf);
   // Collective. leaf (leaves × `bytes`) <- its root's bytes (trivially copyable values).

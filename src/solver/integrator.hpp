@@ -59,6 +59,7 @@ class Integrator {
   virtual StepReport last_step() const { return {}; }
   // Per grid node, the stiffness magnitude K_mag and the internal force's |F_int| of the last
   // step (Acosta eq. 25-26; the implicit integrator); false when the integrator has none.
+  // Across processes (collective) the first process has every node's, the others their box's.
   virtual bool node_magnitudes(std::vector<double>& k_mag, std::vector<double>& f_mag) const {
     (void)k_mag;
     (void)f_mag;

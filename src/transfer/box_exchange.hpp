@@ -14,6 +14,8 @@
 #include <algorithm>
 #include <array>
 #include <cstddef>
+#include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -74,19 +76,19 @@ class BoxExchange {
   // over the star forest.
   template <class Pack, class Set>
   void sum(int per, Pack&& pack, Set&& set) {
-    const std::size_t n = static_cast<std::size_t>(per);
-    root_data_.resize(roots_.size() * n);
-    leaf_data_.resize(leaves_.size() * n);
-    for (std::size_t k = 0; k < roots_.size(); ++k)
-      pack(static_cast<std::size_t>(roots_[k]), root_data_.data() + k * n);
-    for (std::size_t k = 0; k < leaves_.size(); ++k)
-      pack(static_cast<std::size_t>(leaves_[k]), leaf_data_.data() + k * n);
-    forest_.reduce(per, leaf_data_.data(), root_data_.data());
-    for (std::size_t k = 0; k < roots_.size(); ++k)
-      set(static_cast<std::size_t>(roots_[k]), root_data_.data() + k * n);
-    forest_.broadcast(per, root_data_.data(), leaf_data_.data());
-    for (std::size_t k = 0; k < leaves_.size(); ++k)
-      set(static_cast<std::size_t>(leaves_[k]), leaf_data_.data() + k * n);
+    combine(per, StarForest::Combine::Sum, pack, set);
+  }
+  // The same with the least or greatest of the holders' values instead of their sum.
+  template <class Pack, class Set>
+  void combine(int per, StarForest::Combine how, Pack&& pack, Set&& set) {
+    exchange(per, root_data_, leaf_data_, pack, set,
+             [&](const double* leaf, double* root) { forest_.reduce(per, leaf, root, how); });
+  }
+  // The union of per-node bit sets, `per` words a node.
+  template <class Pack, class Set>
+  void unite_bits(int per, Pack&& pack, Set&& set) {
+    exchange(per, root_bits_, leaf_bits_, pack, set,
+             [&](const std::uint64_t* leaf, std::uint64_t* root) { forest_.reduce_bits(per, leaf, root); });
   }
 
   // The first process gets every node's value where another process owns it (for a file it
@@ -132,6 +134,27 @@ class BoxExchange {
   }
 
  private:
+  // Packs the shared nodes' values, reduces the leaves into the roots, broadcasts the roots back.
+  template <class T, class Pack, class Set, class Reduce>
+  void exchange(int per, std::vector<T>& roots, std::vector<T>& leaves, Pack& pack, Set& set,
+                Reduce&& reduce) {
+    const std::size_t n = static_cast<std::size_t>(per);
+    roots.resize(roots_.size() * n);
+    leaves.resize(leaves_.size() * n);
+    for (std::size_t k = 0; k < roots_.size(); ++k)
+      pack(static_cast<std::size_t>(roots_[k]), roots.data() + k * n);
+    for (std::size_t k = 0; k < leaves_.size(); ++k)
+      pack(static_cast<std::size_t>(leaves_[k]), leaves.data() + k * n);
+    reduce(leaves.data(), roots.data());
+    for (std::size_t k = 0; k < roots_.size(); ++k)
+      set(static_cast<std::size_t>(roots_[k]), roots.data() + k * n);
+    if constexpr (std::is_same_v<T, double>)
+      forest_.broadcast(per, roots.data(), leaves.data());
+    else
+      forest_.broadcast_bytes(n * sizeof(T), roots.data(), leaves.data());
+    for (std::size_t k = 0; k < leaves_.size(); ++k)
+      set(static_cast<std::size_t>(leaves_[k]), leaves.data() + k * n);
+  }
   static bool inside(const NodeBox<D>& b, const std::array<int, D>& ij) {
     for (int d = 0; d < D; ++d)
       if (ij[d] < b.lo[d] || ij[d] > b.hi[d]) return false;
@@ -217,6 +240,7 @@ class BoxExchange {
   bool forest_set_ = false;
   std::vector<long> roots_, leaves_;  // global node numbers, ascending
   std::vector<double> root_data_, leaf_data_;
+  std::vector<std::uint64_t> root_bits_, leaf_bits_;
 };
 
 }  // namespace skred

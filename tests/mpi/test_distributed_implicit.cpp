@@ -127,8 +127,10 @@ Outcome expect_same(const ScenarioOf<D>& s, const char* what, double tol = 1e-10
   EXPECT_LE(ds, tol * s_scale) << what << ": the stresses differ by up to " << ds << " Pa";
   for (std::size_t i = 0; i < one.energies.size(); ++i)
     EXPECT_LE(std::abs(all.energies[i] - one.energies[i]), tol * e_scale) << what << ": energy " << i;
+  // (the whole grid's magnitudes in the first process, which writes the grid's files)
   for (const auto& [a, b, name] :
        {std::tuple{&all.k_mag, &one.k_mag, "K_mag"}, std::tuple{&all.f_mag, &one.f_mag, "|F_int|"}}) {
+    if (world.rank() != 0) break;
     EXPECT_EQ(a->size(), b->size()) << what << ": " << name;
     if (a->size() != b->size()) continue;
     const double scale = largest(*b);

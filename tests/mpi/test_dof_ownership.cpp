@@ -1,7 +1,8 @@
-// The implicit integrator's unknowns across processes (issue 55, dof_map.hpp): each active node
-// is owned by the lowest rank whose points' blocks touch it, the nodes are numbered by owner so
-// each process owns one run of rows, and a process keeps the pattern of its own rows (every
-// process's couplings) and of the rows its blocks touch (its own), not the whole matrix's.
+// The implicit integrator's unknowns across processes (issue 55, dof_map.hpp): each process holds
+// the unknowns of its box of the grid only; each active node is owned by the lowest rank whose
+// points' blocks touch it, the nodes are numbered by owner so each process owns one run of rows,
+// and a process keeps the pattern of its own rows (every process's couplings) and of the rows its
+// blocks touch (its own), not the whole matrix's.
 // Checked on a strip of linear cells (2 x 2 nodes each) cut into N runs of columns, against the
 // same cells' DofMap on one process.
 #include <gtest/gtest.h>
@@ -17,6 +18,7 @@
 #include "implicit/dof_map.hpp"
 #include "implicit/linear_system.hpp"
 #include "parallel/processes.hpp"
+#include "transfer/box_exchange.hpp"
 
 namespace skred {
 namespace {
@@ -59,7 +61,13 @@ class DofOwnership : public ::testing::Test {
     for (std::int64_t i : all) mass[static_cast<std::size_t>(i)] = 1.0;
     const std::vector<std::uint8_t> held(g.node_count(), 0);
     one.build(all.data(), all.size() / 4, 2, 2, g, mass, held, 1);
-    split.build(mine.data(), mine.size() / 4, 2, 2, g, mass, held, 1, world);
+    // This process's box: the node columns of its cells and two beyond (the mass outside it is
+    // not read).
+    NodeBox<2> box;
+    box.lo = {std::max(0, first_cell(r) + 1 - 2), 0};
+    box.hi = {std::min(g.nodes(0) - 1, first_cell(r + 1) + 1 + 2), g.nodes(1) - 1};
+    boxes.set(g, box, world);
+    split.build(mine.data(), mine.size() / 4, 2, 2, g, mass, held, 1, &boxes);
   }
   int first_cell(int q) const { return kCellsX * q / N; }
 
@@ -67,24 +75,31 @@ class DofOwnership : public ::testing::Test {
   const int N = world.size(), r = world.rank();
   GridGeometry<2> g;
   std::vector<std::int64_t> all, mine;
+  BoxExchange<2> boxes;
   DofMap<2> one, split;
 };
 
 TEST_F(DofOwnership, RowsFollowThePointsBlocks) {
-  ASSERT_EQ(split.active_nodes(), one.active_nodes());
+  ASSERT_EQ(split.global_nodes(), static_cast<long>(one.active_nodes()));
   EXPECT_TRUE(split.every_node_coupled_to_itself());
+  EXPECT_EQ(split.first_node(), 0u);
+  if (N > 1) {
+    EXPECT_LT(split.active_nodes(), one.active_nodes()) << "a process holds every unknown";
+  }
 
-  // The runs of owned nodes, every process's, cover the nodes in rank order.
+  // The runs of owned nodes' global numbers, every process's, cover the nodes in rank order.
   std::vector<double> runs(2 * static_cast<std::size_t>(N));
-  const double run[2] = {static_cast<double>(split.first_node()), static_cast<double>(split.end_node())};
+  const double run[2] = {static_cast<double>(split.first_global()),
+                         static_cast<double>(split.first_global() + static_cast<long>(split.end_node()))};
   world.gather(run, 2, runs.data(), runs.size());
   EXPECT_EQ(runs.front(), 0.0);
   EXPECT_EQ(runs.back(), static_cast<double>(one.active_nodes()));
   for (int q = 1; q < N; ++q)
     EXPECT_EQ(runs[2 * static_cast<std::size_t>(q)], runs[2 * static_cast<std::size_t>(q) - 1]);
-  const auto owner = [&](std::int32_t a) {
+  const auto owner = [&](long global) {
     for (int q = 0; q < N; ++q)
-      if (a >= runs[2 * static_cast<std::size_t>(q)] && a < runs[2 * static_cast<std::size_t>(q) + 1])
+      if (static_cast<double>(global) >= runs[2 * static_cast<std::size_t>(q)] &&
+          static_cast<double>(global) < runs[2 * static_cast<std::size_t>(q) + 1])
         return q;
     return -1;
   };
@@ -101,8 +116,24 @@ TEST_F(DofOwnership, RowsFollowThePointsBlocks) {
     const int ix = std::max(i - 2, 0);
     int expected = 0;
     while (expected + 1 < N && first_cell(expected + 1) <= ix) ++expected;
-    ASSERT_EQ(owner(static_cast<std::int32_t>(a)), expected) << "node " << split.node(a);
+    ASSERT_EQ(owner(split.global_node(a)), expected) << "node " << split.node(a);
     EXPECT_EQ(split.active(static_cast<std::size_t>(split.node(a))), static_cast<std::int32_t>(a));
+  }
+  // Every process numbers a node alike: the sum of its global numbers over the processes that
+  // hold it is its number times their count.
+  {
+    std::vector<double> number(g.node_count(), 0.0), holders(g.node_count(), 0.0);
+    for (std::size_t a = 0; a < split.active_nodes(); ++a) {
+      number[static_cast<std::size_t>(split.node(a))] = static_cast<double>(split.global_node(a));
+      holders[static_cast<std::size_t>(split.node(a))] = 1.0;
+    }
+    std::vector<double> sum(number), count(holders);
+    world.sum(sum.data(), sum.size());
+    world.sum(count.data(), count.size());
+    for (std::size_t a = 0; a < split.active_nodes(); ++a) {
+      const std::size_t i = static_cast<std::size_t>(split.node(a));
+      EXPECT_EQ(sum[i], number[i] * count[i]) << "node " << i << " numbered differently";
+    }
   }
 
   // The owned rows hold every process's couplings: the one-process pattern's rows, node for node.
@@ -133,8 +164,9 @@ TEST_F(DofOwnership, RowsFollowThePointsBlocks) {
   const auto add_cells = [&](const std::vector<std::int64_t>& blocks, std::vector<double>& to, int first) {
     for (std::size_t b = 0; b < blocks.size() / 4; ++b)
       for (int k = 0; k < 4; ++k) {
-        const std::size_t a =
-            static_cast<std::size_t>(split.active(static_cast<std::size_t>(blocks[4 * b + k])));
+        const std::int32_t held_at = split.active(static_cast<std::size_t>(blocks[4 * b + k]));
+        if (held_at < 0) continue;  // (beyond this process's box)
+        const std::size_t a = static_cast<std::size_t>(held_at);
         to[2 * a] += 1.0;
         to[2 * a + 1] += static_cast<double>(first * kCellsY) + static_cast<double>(b);
       }
@@ -171,7 +203,8 @@ std::vector<double> solve_cells(const DofMap<2>& m, const Blocks& blocks, const 
                                 const std::vector<std::int32_t>* needed) {
   LinearSystem system;
   system.configure(LinearSolverKind::Direct, "", true, 2, procs);
-  system.set_pattern(m.pattern(), static_cast<int>(2 * m.first_node()), static_cast<int>(2 * m.end_node()));
+  const GlobalRows rows = m.global_rows();
+  system.set_pattern(m.pattern(), procs.distributed() ? &rows : nullptr);
   if (needed) system.set_needed_rows(*needed);
   std::vector<double>& v = system.values();
   for (std::size_t b = 0; b < blocks.size() / 4; ++b)
