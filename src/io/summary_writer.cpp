@@ -163,9 +163,10 @@ std::string processes_json(const Summary& s) {
   const double mean = static_cast<double>(s.particles) / s.processes;
   return fmt::format(
       "  \"processes\": {{\"count\": {}, \"points_min\": {}, \"points_max\": {}, \"imbalance\": {}, "
-      "\"setup_peak_bytes\": {}, \"rebalances\": {}}},\n",
+      "\"setup_peak_bytes\": {}, \"rebalances\": {}, \"bytes_per_step\": {}, \"messages_per_step\": {}}},\n",
       s.processes, s.share_min, s.share_max, json_number(mean > 0 ? s.share_max / mean : NAN),
-      json_number(s.setup_peak_bytes), s.rebalances);
+      json_number(s.setup_peak_bytes), s.rebalances, json_number(s.bytes_per_step),
+      json_number(s.messages_per_step));
 }
 
 }  // namespace

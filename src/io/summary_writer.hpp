@@ -73,6 +73,9 @@ struct Summary {
   long share_min = 0, share_max = 0;
   double setup_peak_bytes = 0.0;  // the largest peak of a process in the set-up (0: not apart)
   long rebalances = 0;            // how often the shares were evened out (splitting)
+  // The most bytes and the most messages (to single processes) any process sent the others per
+  // step of this run (parallel/processes.hpp: skred's own exchanges, not PETSc's solves).
+  double bytes_per_step = NAN, messages_per_step = NAN;
   // The velocity transfer and volumetric strain the run used (written after the scheme when
   // set; "auto" resolved): xpic_order and xpic_period [h/c] for "xpic", pic_fraction for "flip".
   std::string velocity_transfer = {}, volumetric_strain = {};

@@ -300,6 +300,8 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   RunResult res;
 
   const auto start = Clock::now();
+  const Exchanged traffic_start = exchanged();  // (this process's, from here to the run's end)
+  const long steps_start = solver->steps();
   double compute_seconds = 0.0;
   long computed_updates = 0;  // point updates stepped here (the point count may change)
   long rebalances = 0;        // the repartitions that moved points (processes)
@@ -532,6 +534,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   procs.sum(&peak, 1);
   procs.sum(&above_idle, 1);
   const long share_min = procs.min(own), share_max = procs.max(own);
+  // The most any process exchanged per step (frames and rebalances included).
+  double traffic[2] = {exchanged().bytes - traffic_start.bytes,
+                       static_cast<double>(exchanged().messages - traffic_start.messages)};
+  procs.max(traffic, 2);
   std::vector<std::string> run_maps;
   if constexpr (D == 3)
     if (at.maps.enabled() && !stopped)  // the run's maps (a resumed run writes them at its end)
@@ -563,6 +569,10 @@ RunResult run_simulation(const ScenarioOf<D>& s, const fs::path& outdir, const R
   sum.rebalances = rebalances;
   sum.share_min = share_min;
   sum.share_max = share_max;
+  if (const long taken = res.steps - steps_start; taken > 0) {
+    sum.bytes_per_step = traffic[0] / static_cast<double>(taken);
+    sum.messages_per_step = traffic[1] / static_cast<double>(taken);
+  }
   res.limit_equilibrium = describe_scenario(sum, s, n);
   sum.time_step = explicit_dt;
   if (ImplicitSolver<D>* im = integrators.implicit()) describe_implicit(sum, s, *im);

@@ -279,6 +279,12 @@ TEST(DistributedRun, SplitSharesAreEvenedOut) {
   ASSERT_NE(im, std::string::npos);
   EXPECT_LE(std::stod(summary.substr(im + 13)), 1.01) << summary;
   EXPECT_GT(one.particles, 1500) << "no point split";
+  // What a process sent per step: the grid's layers and the moved points, to its neighbour.
+  const auto bytes = summary.find("\"bytes_per_step\": "), messages = summary.find("\"messages_per_step\": ");
+  ASSERT_NE(bytes, std::string::npos) << summary;
+  ASSERT_NE(messages, std::string::npos) << summary;
+  EXPECT_GT(std::stod(summary.substr(bytes + 18)), 0.0) << summary;
+  EXPECT_GE(std::stod(summary.substr(messages + 21)), 1.0) << summary;
 }
 
 TEST(DistributedRun, SplittingCapIsTheRuns) {
