@@ -14,7 +14,6 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -211,23 +210,8 @@ struct CellBoxes {
   void share_cells(BoxExchange<D>& boxes) {
     const Processes& procs = boxes.processes();
     std::vector<double> count(corner_.size(), 1.0), lowest(corner_.size(), procs.rank());
-    const auto per_cell = [&](std::vector<double>& v, double absent) {
-      return std::pair{[&v, absent, this](std::size_t i, double* at) {
-                         const std::int32_t c = slot_[i];
-                         at[0] = c >= 0 ? v[static_cast<std::size_t>(c)] : absent;
-                       },
-                       [&v, this](std::size_t i, const double* at) {
-                         if (const std::int32_t c = slot_[i]; c >= 0) v[static_cast<std::size_t>(c)] = at[0];
-                       }};
-    };
-    {
-      auto [pack, set] = per_cell(count, 0.0);
-      boxes.sum(1, pack, set);
-    }
-    {
-      auto [pack, set] = per_cell(lowest, INFINITY);
-      boxes.combine(1, StarForest::Combine::Min, pack, set);
-    }
+    boxes.combine_slots(StarForest::Combine::Sum, slot_, count, 0.0);
+    boxes.combine_slots(StarForest::Combine::Min, slot_, lowest, INFINITY);
     std::vector<long> roots, leaves;
     root_slot_.clear();
     leaf_slot_.clear();

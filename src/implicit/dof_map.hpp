@@ -29,7 +29,6 @@
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
-#include <utility>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -237,20 +236,7 @@ class DofMap {
       for (std::size_t k = 0; k < w; ++k) touched[a] = touched[a] || mask_[a * w + k] != 0;
       key[a] = touched[a] ? rank : none + rank;
     }
-    const auto per_node = [&](std::vector<double>& v, double absent) {
-      return std::pair{[&v, absent, this](std::size_t i, double* at) {
-                         const std::int32_t a = active_[i];
-                         at[0] = a >= 0 ? v[static_cast<std::size_t>(a)] : absent;
-                       },
-                       [&v, this](std::size_t i, const double* at) {
-                         if (const std::int32_t a = active_[i]; a >= 0)
-                           v[static_cast<std::size_t>(a)] = at[0];
-                       }};
-    };
-    {
-      auto [pack, set] = per_node(key, INFINITY);
-      boxes.combine(1, StarForest::Combine::Min, pack, set);
-    }
+    boxes.combine_slots(StarForest::Combine::Min, active_, key, INFINITY);
     std::vector<int> owner(na);
     std::size_t owned = 0;
     for (std::size_t a = 0; a < na; ++a) {
@@ -275,10 +261,7 @@ class DofMap {
     std::vector<double> number(na, -1.0);
     for (std::size_t a = 0, k = 0; a < na; ++a)
       if (owner[a] == procs.rank()) number[a] = static_cast<double>(first_global_ + static_cast<long>(k++));
-    {
-      auto [pack, set] = per_node(number, -1.0);
-      boxes.combine(1, StarForest::Combine::Max, pack, set);
-    }
+    boxes.combine_slots(StarForest::Combine::Max, active_, number, -1.0);
     std::vector<double> firsts(static_cast<std::size_t>(procs.size()));
     const double mine = static_cast<double>(first_global_);
     procs.gather(&mine, 1, firsts.data(), firsts.size());

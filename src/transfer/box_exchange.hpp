@@ -84,6 +84,19 @@ class BoxExchange {
     exchange(per, root_data_, leaf_data_, pack, set,
              [&](const double* leaf, double* root) { forest_.reduce(per, leaf, root, how); });
   }
+  // The same for values kept by slot: node i's is v[slot[i]] (slot[i] < 0: none here, `absent`
+  // sent for it).
+  void combine_slots(StarForest::Combine how, const std::vector<std::int32_t>& slot, std::vector<double>& v,
+                     double absent) {
+    combine(
+        1, how,
+        [&](std::size_t i, double* at) {
+          at[0] = slot[i] >= 0 ? v[static_cast<std::size_t>(slot[i])] : absent;
+        },
+        [&](std::size_t i, const double* at) {
+          if (slot[i] >= 0) v[static_cast<std::size_t>(slot[i])] = at[0];
+        });
+  }
   // The union of per-node bit sets, `per` words a node.
   template <class Pack, class Set>
   void unite_bits(int per, Pack&& pack, Set&& set) {
