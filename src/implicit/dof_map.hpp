@@ -137,6 +137,7 @@ class DofMap {
   // Fills the column indices, given each offset's flat-index step (the grid's strides).
   void fill_columns(const std::vector<std::int64_t>& offset_step, int threads) {
     const std::size_t na = nodes_.size();
+    bool outside = false;
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t a = 0; a < na; ++a) {
       std::int32_t* col = &pattern_.column[static_cast<std::size_t>(pattern_.row_start[a * D])];
@@ -145,13 +146,18 @@ class DofMap {
         for (std::uint64_t bits = mask_[a * words_ + w]; bits; bits &= bits - 1) {
           const int o = 64 * w + std::countr_zero(bits);
           const std::int64_t b = nodes_[a] + offset_step[static_cast<std::size_t>(o)];
-          const std::int32_t ab = active_[static_cast<std::size_t>(b)];  // (in the box: >= 0)
+          const std::int32_t ab = active_[static_cast<std::size_t>(b)];
+          if (ab < 0) {  // (ImplicitSolver::set_box's box holds every coupled node)
+#pragma omp atomic write
+            outside = true;
+          }
           for (int c = 0; c < D; ++c) col[j++] = ab * D + c;
         }
       const int len = j;
       for (int r = 1; r < D; ++r)
         for (int i = 0; i < len; ++i) col[r * len + i] = col[i];
     }
+    if (outside) throw std::logic_error("DofMap: a node coupled to an active one lies outside the box");
   }
 
  public:

@@ -38,8 +38,12 @@ void ImplicitSolver<D>::lumped_masses() {
         [&](std::size_t i, const double* at) { gm[i] = at[0]; });
 }
 
-// Across processes: the box of nodes this process holds, the nodes its points' stencils reach
-// (node_box.hpp) and a stencil's width beyond them, where the nodes its blocks couple to lie.
+// Across processes: the box of nodes this process holds. It must hold every node coupled to a
+// node its points touch, since it numbers the columns of the rows it owns (dof_map.hpp). A point
+// in cell c (lower node c per axis) touches nodes c - 1 .. c + 2 (the widest stencils, 4 nodes);
+// a block couples nodes at most Sb - 1 apart, Sb <= 4 for the points' and the mapped stencils
+// and Sp + 1 <= 5 for a cell's box with the cell-averaged strain. reach_of (node_box.hpp) spans
+// c - 5 .. c + 5 of the points' extreme cells, so one layer beyond it holds c - 5 .. c + 6.
 // Collective.
 template <int D>
 void ImplicitSolver<D>::set_box() {
@@ -49,8 +53,8 @@ void ImplicitSolver<D>::set_box() {
   NodeBox<D> box = reach_of(g, e);
   if (!box.empty())
     for (int d = 0; d < D; ++d) {
-      box.lo[d] = std::max(0, box.lo[d] - skred::kMaxStencil);
-      box.hi[d] = std::min(g.nodes(d) - 1, box.hi[d] + skred::kMaxStencil);
+      box.lo[d] = std::max(0, box.lo[d] - 1);
+      box.hi[d] = std::min(g.nodes(d) - 1, box.hi[d] + 1);
     }
   boxes_.set(g, box, state_.processes);
 }
