@@ -27,4 +27,12 @@ inline Launch launched_processes() {
   return {};
 }
 
+// This process's rank among them, from the same launchers' OMPI_COMM_WORLD_RANK or PMI_RANK
+// (0 when started alone), for a message only the first should print before MPI starts.
+inline long launched_rank() {
+  for (const char* name : {"OMPI_COMM_WORLD_RANK", "PMI_RANK"})
+    if (const char* text = std::getenv(name); text && *text) return std::strtol(text, nullptr, 10);
+  return 0;
+}
+
 }  // namespace skred

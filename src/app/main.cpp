@@ -178,8 +178,12 @@ static int command(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 256 * 1024);
   CLI::App app{"skred: material point method for large-deformation geomechanics"};
   app.require_subcommand(1);
-  app.set_version_flag("--version",
-                       fmt::format("skred {} (commit {})", skred::version(), skred::git_commit()));
+  app.set_version_flag(
+      "--version",
+      fmt::format("skred {} (commit {}){}", skred::version(), skred::git_commit(),
+                  skred::built_with_mpi() ? ""
+                                          : "\nbuilt without MPI and PETSc (cmake -DSKRED_MPI=OFF): runs in "
+                                            "one process, explicit integrator only"));
   bool overwrite = false;
 
   std::string scenario, outdir;
@@ -487,6 +491,18 @@ int main(int argc, char** argv) {
   skred::apply_default_omp_wait_policy(argv);  // before any OpenMP call (it may re-execute)
   // Started by an MPI launcher: MPI for every process of the world (parallel/processes.hpp), and
   // MPI_Finalize on every way out of the command.
-  if (skred::launched_processes().processes > 1) skred::start_processes(&argc, &argv);
+  if (const skred::Launch launch = skred::launched_processes(); launch.processes > 1) {
+    if (!skred::built_with_mpi()) {  // (CMake's SKRED_MPI=OFF: each of the N would write alone)
+      if (skred::launched_rank() == 0)
+        fmt::print(stderr,
+                   "skred: error: started as one of {} processes by an MPI launcher ({}={}), but this "
+                   "build of skred has no MPI (configured with cmake -DSKRED_MPI=OFF) and runs in one "
+                   "process only. Start it without the launcher, or rebuild with the default "
+                   "(-DSKRED_MPI=ON, README) to run across processes.\n",
+                   launch.processes, launch.variable, launch.processes);
+      return code::kUsage;
+    }
+    skred::start_processes(&argc, &argv);
+  }
   return skred::finish_processes(command(argc, argv));
 }

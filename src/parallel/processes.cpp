@@ -16,12 +16,13 @@ namespace {
 
 bool started = false;
 int machine_rank = 0, machine_size = 1;  // among the processes of this machine (start_processes)
-Exchanged traffic;                       // (only the main thread calls MPI)
 std::vector<void (*)()> stops;           // stop_before_finish
 
 MPI_Comm comm_of(void* c) { return c ? static_cast<MPI_Comm>(c) : MPI_COMM_SELF; }
 
 }  // namespace
+
+bool built_with_mpi() { return true; }
 
 int start_processes(int* argc, char*** argv) {
   int provided = 0;
@@ -73,8 +74,7 @@ void allreduce(void* comm, void* data, std::size_t n, MPI_Datatype type, MPI_Op 
   if (!comm || n == 0) return;
   int bytes = 0;
   MPI_Type_size(type, &bytes);
-  ++traffic.calls;
-  traffic.bytes += static_cast<double>(bytes) * static_cast<double>(n);
+  count_exchange(1, 0, static_cast<double>(bytes) * static_cast<double>(n));
   MPI_Allreduce(MPI_IN_PLACE, data, static_cast<int>(n), type, op, comm_of(comm));
 }
 }  // namespace
@@ -98,26 +98,16 @@ long Processes::max(long v) const {
   return v;
 }
 
-Exchanged exchanged() { return traffic; }
-
-void count_exchange(long calls, long messages, double bytes, long forests) {
-  traffic.forests += forests;
-  traffic.calls += calls;
-  traffic.messages += messages;
-  traffic.bytes += bytes;
-}
-
 void Processes::barrier() const {
   if (!distributed()) return;
-  ++traffic.calls;
+  count_exchange(1, 0, 0.0);
   MPI_Barrier(comm_of(comm_));
 }
 
 long Processes::offset(long v) const {
   long below = 0;
   if (distributed()) {
-    ++traffic.calls;
-    traffic.bytes += sizeof v;
+    count_exchange(1, 0, sizeof v);
     MPI_Exscan(&v, &below, 1, MPI_LONG, MPI_SUM, comm_of(comm_));
     if (rank_ == 0) below = 0;  // (MPI_Exscan leaves rank 0's result undefined)
   }
@@ -131,8 +121,7 @@ void Processes::gather(const double* data, std::size_t n, double* all, std::size
   }
   std::vector<int> counts(static_cast<std::size_t>(size_)), starts(static_cast<std::size_t>(size_));
   const int mine = static_cast<int>(n);
-  traffic.calls += 2;
-  traffic.bytes += sizeof mine + static_cast<double>(n) * sizeof(double);
+  count_exchange(2, 0, sizeof mine + static_cast<double>(n) * sizeof(double));
   MPI_Allgather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, comm_of(comm_));
   int at = 0;
   for (int r = 0; r < size_; ++r) {
@@ -148,9 +137,7 @@ void Processes::all_to_all(const long* send, int per, long* recv) const {
     std::copy_n(send, per, recv);
     return;
   }
-  ++traffic.calls;
-  traffic.messages += size_ - 1;
-  traffic.bytes += static_cast<double>(size_ - 1) * per * sizeof(long);
+  count_exchange(1, size_ - 1, static_cast<double>(size_ - 1) * per * sizeof(long));
   MPI_Alltoall(send, per, MPI_LONG, recv, per, MPI_LONG, comm_of(comm_));
 }
 

@@ -71,6 +71,11 @@ Exchanged exchanged();
 // Adds to exchanged() (the exchanges that other classes make: star_forest.hpp).
 void count_exchange(long calls, long messages, double bytes, long forests = 0);
 
+// Whether this build has MPI and PETSc (CMake's SKRED_MPI, on by default). Without them
+// (processes_alone.cpp) skred runs in one process and has no implicit integrator, whose solves
+// are PETSc's; main() and the scenario parser say so when asked for either.
+bool built_with_mpi();
+
 // MPI_Init when started by an MPI launcher (launched_processes() > 1); call once, first thing.
 // Returns the world's size.
 int start_processes(int* argc, char*** argv);

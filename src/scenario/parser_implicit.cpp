@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "parallel/processes.hpp"
 #include "scenario/initial_stress.hpp"
 #include "scenario/parser_detail.hpp"
 
@@ -239,6 +240,16 @@ void check_integrators(const TableReader& root, ScenarioOf<D>& s) {
   parse_pressures(root, s, explicit_stage);
   parse_prescribed(root, s, explicit_stage);
   if (!implicit_stage) return;
+  if (!built_with_mpi()) {  // (CMake's SKRED_MPI=OFF: no PETSc, whose solvers the integrator uses)
+    const std::size_t k = static_cast<std::size_t>(implicit_stage - s.stages.data());
+    const std::string why =
+        "the implicit integrator solves with PETSc, and this build of skred has none (configured "
+        "with cmake -DSKRED_MPI=OFF, without MPI and PETSc); rebuild with the default "
+        "(-DSKRED_MPI=ON, README) or use integrator = \"explicit\"";
+    if (k < stage_tables.size() && stage_tables[k].has("integrator"))
+      stage_tables[k].fail_at("integrator", why);
+    root.table("solver", true)->fail_at("integrator", why);
+  }
   check_remedies(root, s);
 
   // What the implicit integrator does not support (yet).
