@@ -54,15 +54,23 @@ struct CellBoxes {
     const std::size_t n = P.size();
     const int Kp = st.K;
     // The occupied cells (one bit per grid cell, by its lower node), numbered in the grid's order.
+    // (reset at the previous build's cells alone, which corner_ lists: O(them), not the grid)
     const std::size_t grid_cells = g.node_count();
-    occupied_.assign((grid_cells + 63) / 64, 0);
+    if (slot_.size() != grid_cells) {
+      occupied_.assign((grid_cells + 63) / 64, 0);
+      slot_.assign(grid_cells, -1);
+    } else {
+      for (const long c : corner_) {
+        occupied_[static_cast<std::size_t>(c) / 64] = 0;
+        slot_[static_cast<std::size_t>(c)] = -1;
+      }
+    }
     cell.resize(n);
     for (std::size_t p = 0; p < n; ++p) {
       const std::uint32_t c = VolumetricAveraging<D>::cell_of(g, P.x[p]);
       cell[p] = static_cast<std::int32_t>(c);
       occupied_[c / 64] |= std::uint64_t{1} << (c % 64);
     }
-    slot_.assign(grid_cells, -1);
     corner_.clear();
     int cells = 0;
     for (std::size_t w = 0; w < occupied_.size(); ++w)

@@ -28,6 +28,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <stdexcept>
 #include <vector>
 
@@ -48,7 +49,7 @@ class DofMap {
   // components held by a wall. Across processes, `boxes` (set: this process's box, holding every
   // node of its blocks and their couplings) and `mass` summed over the processes in the box.
   void build(const std::int64_t* block_node, std::size_t blocks, int Sb, int Sp, const GridGeometry<D>& g,
-             const std::vector<double>& mass, const std::vector<std::uint8_t>& held, int threads,
+             std::span<const double> mass, std::span<const std::uint8_t> held, int threads,
              BoxExchange<D>* boxes = nullptr) {
     const bool across = boxes && boxes->processes().distributed();
     S_ = Sb;
@@ -56,8 +57,12 @@ class DofMap {
     int box = 1;
     for (int d = 0; d < D; ++d) box *= W_;
     words_ = (box + 63) / 64;
-    // Active nodes in flat order (across processes: those of this process's box).
-    active_.assign(mass.size(), -1);
+    // Active nodes in flat order (across processes: those of this process's box). active_ is -1
+    // but at the previous build's active nodes, which alone are reset (O(the box), not the grid).
+    if (active_.size() != mass.size())
+      active_.assign(mass.size(), -1);
+    else
+      for (const std::int64_t i : nodes_) active_[static_cast<std::size_t>(i)] = -1;
     nodes_.clear();
     const auto add = [&](std::size_t i) {
       if (!(mass[i] > 0.0)) return;

@@ -22,6 +22,7 @@
 #include <vector>
 
 #include <omp.h>
+#include "core/huge_pages.hpp"
 #include "implicit/cell_boxes.hpp"
 #include "implicit/dof_map.hpp"
 #include "implicit/linear_system.hpp"
@@ -33,6 +34,7 @@
 #include "solver/integrator.hpp"
 #include "solver/mpm_state.hpp"
 #include "transfer/box_exchange.hpp"
+#include "transfer/node_box.hpp"
 
 namespace skred {
 
@@ -213,6 +215,8 @@ class ImplicitSolver final : public Integrator<D> {
   // Acosta's stiffness cell by cell (assemble_by_cells): per grid node the slot of the cell whose
   // lower corner it is, and per cell its corner, lower radius and W D_g A_g per Gauss point.
   std::vector<std::int32_t> cell_slot_;
+  std::vector<std::int64_t> cell_slots_set_;  // the nodes whose cell_slot_ is set (clear_cell_slots)
+  void clear_cell_slots();
   std::vector<std::int64_t> cell_node_;
   std::vector<double> cell_r0_;
   std::vector<std::array<Mat6, MappedStencils<D>::KG>> cell_D_;
@@ -222,15 +226,23 @@ class ImplicitSolver final : public Integrator<D> {
   void mapped_cells(std::vector<std::int64_t>& blocks);
   int width_ = 2;  // S, nodes per axis of a point's stencil
   DofMap<D> dofs_;
-  mutable BoxExchange<D> boxes_;         // across processes: the grid's sums between the boxes that meet
-  CellBoxes<D> cells_;                   // with the cell-averaged volumetric strain
-  std::vector<double> grid_mass_;        // per grid node (scratch of map_step)
-  std::vector<std::uint8_t> grid_held_;  // per grid node
-  std::vector<std::uint8_t> sliver_;     // per grid node: its mass a sliver (map_step)
-  // The prescribed velocities: per grid node (scratch) and per active node, the table's index
-  // (-1: none) and the bits of the components it drives (not held by a wall).
-  std::vector<std::int8_t> grid_prescribed_, prescribed_id_;
-  std::vector<std::uint8_t> grid_driven_, driven_;
+  mutable BoxExchange<D> boxes_;  // across processes: the grid's sums between the boxes that meet
+  CellBoxes<D> cells_;            // with the cell-averaged volumetric strain
+  // Per grid node, map_step's scratch. Across processes each is written in the step's box only
+  // and cleared there at the next step (clear_scratch): the pages of nodes no box reaches stay
+  // untouched (GridArray), and a step costs O(the box), not O(the grid).
+  GridArray<double> grid_mass_;
+  GridArray<std::uint8_t> grid_held_;  // the components held (held_components)
+  GridArray<std::uint8_t> sliver_;     // its mass a sliver
+  NodeBox<D> scratch_box_;             // across processes: the box the scratch was written in
+  void clear_scratch();
+  // The prescribed velocities: per grid node (scratch: the table's index + 1, 0: none) and per
+  // active node (the index, -1: none), and the bits of the components it drives (not held by a
+  // wall).
+  GridArray<std::int8_t> grid_prescribed_;
+  std::vector<std::int8_t> prescribed_id_;
+  GridArray<std::uint8_t> grid_driven_;
+  std::vector<std::uint8_t> driven_;
   std::vector<double> mass_;                 // m_i per unknown (lumped, eq. 43)
   std::vector<double> v_bar_, a_bar_;        // v_i^t, a_i^t per unknown (eq. 43-44)
   std::vector<double> f_ext_, f_ext_start_;  // F_ext at t + dt and at t

@@ -24,8 +24,10 @@ template <int D>
 void ImplicitSolver<D>::lumped_masses() {
   const std::size_t n = state_.points.size();
   const int K = stencils_.K;
-  grid_mass_.assign(state_.grid.node_count(), 0.0);
+  if (!state_.processes.distributed()) grid_mass_.assign(state_.grid.node_count(), 0.0);
   double* gm = grid_mass_.data();
+  if (state_.processes.distributed())  // (the box: its nodes alone are written; clear_scratch)
+    for_box(state_.grid, boxes_.own_box(), state_.threads, [&](std::size_t i) { gm[i] = 0.0; });
 #pragma omp parallel for num_threads(state_.threads) schedule(static)
   for (std::size_t p = 0; p < n; ++p)
     for (int k = 0; k < K; ++k) {
@@ -57,6 +59,27 @@ void ImplicitSolver<D>::set_box() {
       box.hi[d] = std::min(g.nodes(d) - 1, box.hi[d] + 1);
     }
   boxes_.set(g, box, state_.processes);
+}
+
+// Across processes: the per-node scratch sized to the grid (untouched pages) and cleared in the
+// box the previous step wrote it in, so that it is clear everywhere; then that box is this
+// step's. (One process assigns the whole grid as it goes.)
+template <int D>
+void ImplicitSolver<D>::clear_scratch() {
+  const std::size_t nodes = state_.grid.node_count();
+  const bool prescribed = !model_.prescribed.empty();
+  grid_mass_.resize(nodes);
+  grid_held_.resize(nodes);
+  sliver_.resize(nodes);
+  grid_prescribed_.resize(prescribed ? nodes : 0);
+  grid_driven_.resize(prescribed ? nodes : 0);
+  if (!scratch_box_.empty())
+    for_box(state_.grid, scratch_box_, state_.threads, [&](std::size_t i) {
+      grid_mass_[i] = 0.0;
+      grid_held_[i] = sliver_[i] = 0;
+      if (prescribed) grid_prescribed_[i] = 0, grid_driven_[i] = 0;
+    });
+  scratch_box_ = boxes_.own_box();
 }
 
 // Across processes: per-unknown values (D a node) summed over the processes whose boxes hold the
@@ -104,6 +127,7 @@ StepStatus ImplicitSolver<D>::map_step() {
   BoxExchange<D>* boxes = nullptr;
   if (state_.processes.distributed()) {
     set_box();
+    clear_scratch();
     boxes = &boxes_;
   }
   lumped_masses();
@@ -115,20 +139,30 @@ StepStatus ImplicitSolver<D>::map_step() {
     rho_max = std::max(rho_max, state_.points.mass[p] / state_.points.volume(p));
   state_.processes.max(&rho_max, 1);
   const double m_min = settings_.min_node_fill * rho_max * std::pow(g.h, D);
-  sliver_.assign(g.node_count(), 0);
   bool any = false;
-  for (std::size_t i = 0; i < grid_mass_.size(); ++i) {
+  const auto mark_sliver = [&](std::size_t i) {
     const double r = axisymmetric() ? std::max(g.node_position(i)[0], g.h / 6.0) : 1.0;
     sliver_[i] = grid_mass_[i] > 0.0 && grid_mass_[i] < m_min * r;
     any = any || sliver_[i];
+  };
+  const auto drop_sliver = [&](std::size_t i) {
+    if (sliver_[i]) grid_mass_[i] = 0.0;
+  };
+  if (state_.processes.distributed()) {  // (in the box; one thread: `any`)
+    for_box(g, boxes_.own_box(), 1, mark_sliver);
+    any = state_.processes.any(any);  // (the masses are collective)
+  } else {
+    sliver_.assign(g.node_count(), 0);
+    for (std::size_t i = 0; i < grid_mass_.size(); ++i) mark_sliver(i);
   }
-  if (state_.processes.distributed()) any = state_.processes.any(any);  // (the masses are collective)
   if (any) {
     stencils_.aggregate_slivers(g, state_.points, sliver_, state_.threads);
     lumped_masses();
     // What is left on a sliver (a point whose nodes are all slivers) is no unknown.
-    for (std::size_t i = 0; i < grid_mass_.size(); ++i)
-      if (sliver_[i]) grid_mass_[i] = 0.0;
+    if (state_.processes.distributed())
+      for_box(g, boxes_.own_box(), state_.threads, drop_sliver);
+    else
+      for (std::size_t i = 0; i < grid_mass_.size(); ++i) drop_sliver(i);
   }
   volume_.resize(n);
   for (std::size_t p = 0; p < n; ++p) volume_[p] = state_.points.volume(p);
@@ -177,7 +211,8 @@ StepStatus ImplicitSolver<D>::map_step() {
   prescribed_id_.assign(grid_prescribed_.empty() ? 0 : dofs_.active_nodes(), -1);
   driven_.assign(prescribed_id_.size(), 0);
   for (std::size_t a = 0; a < prescribed_id_.size(); ++a) {
-    prescribed_id_[a] = grid_prescribed_[static_cast<std::size_t>(dofs_.node(a))];
+    prescribed_id_[a] =
+        static_cast<std::int8_t>(grid_prescribed_[static_cast<std::size_t>(dofs_.node(a))] - 1);
     driven_[a] = grid_driven_[static_cast<std::size_t>(dofs_.node(a))];
   }
   if (state_.processes.distributed()) {
@@ -272,13 +307,15 @@ double ImplicitSolver<D>::owned_norm(const std::vector<double>& v) const {
 template <int D>
 void ImplicitSolver<D>::held_components() {
   const GridGeometry<D>& g = state_.grid;
-  grid_held_.assign(g.node_count(), 0);
-  grid_prescribed_.assign(model_.prescribed.empty() ? 0 : g.node_count(), -1);
-  grid_driven_.assign(grid_prescribed_.size(), 0);
+  if (!state_.processes.distributed()) {  // (across processes: clear_scratch)
+    grid_held_.assign(g.node_count(), 0);
+    grid_prescribed_.assign(model_.prescribed.empty() ? 0 : g.node_count(), 0);
+    grid_driven_.assign(grid_prescribed_.size(), 0);
+  }
   const double tol = 1e-9 * g.h;
   const Vec<D> hi = g.origin + g.extent();
-  for (std::size_t i = 0; i < grid_held_.size(); ++i) {
-    if (grid_mass_[i] <= 0.0) continue;
+  const auto hold = [&](std::size_t i) {
+    if (grid_mass_[i] <= 0.0) return;
     const Vec<D> x = g.node_position(i);
     std::uint8_t bits = 0;
     for (int d = 0; d < D; ++d)
@@ -299,13 +336,17 @@ void ImplicitSolver<D>::held_components() {
         in = in && x[d] >= pv.min[static_cast<std::size_t>(d)] - tol &&
              x[d] <= pv.max[static_cast<std::size_t>(d)] + tol;
       if (!in) continue;
-      grid_prescribed_[i] = static_cast<std::int8_t>(b);
+      grid_prescribed_[i] = static_cast<std::int8_t>(b + 1);
       grid_driven_[i] = static_cast<std::uint8_t>(pv.components & ~bits);
       bits |= pv.components;
       break;
     }
     grid_held_[i] = bits;
-  }
+  };
+  if (state_.processes.distributed())
+    for_box(g, boxes_.own_box(), state_.threads, hold);
+  else
+    for (std::size_t i = 0; i < grid_held_.size(); ++i) hold(i);
 }
 
 // Newton-Raphson on du for one step of dt (Acosta §2, App. B): false, with the reason, when it

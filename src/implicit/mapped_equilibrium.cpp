@@ -157,7 +157,7 @@ void ImplicitSolver<D>::assemble_by_cells(double* v) {
   const std::size_t n = state_.points.size();
   const bool axi = axisymmetric();
   const double h = state_.grid.h;
-  cell_slot_.assign(state_.grid.node_count(), -1);
+  clear_cell_slots();
   cell_node_.clear();
   cell_r0_.clear();
   cell_D_.clear();
@@ -171,6 +171,7 @@ void ImplicitSolver<D>::assemble_by_cells(double* v) {
       std::int32_t& slot = cell_slot_[static_cast<std::size_t>(corner)];
       if (slot < 0) {
         slot = static_cast<std::int32_t>(cell_node_.size());
+        cell_slots_set_.push_back(corner);
         cell_node_.push_back(corner);
         cell_r0_.push_back(mapped_.cell_r[p * MS::KG + static_cast<std::size_t>(e)]);
         cell_D_.emplace_back();
@@ -220,12 +221,23 @@ void ImplicitSolver<D>::assemble_by_cells(double* v) {
   }
 }
 
+// cell_slot_ -1 at every node: assigned once, then reset only where it was set since
+// (cell_slots_set_), in O(the cells) rather than O(the grid).
+template <int D>
+void ImplicitSolver<D>::clear_cell_slots() {
+  if (cell_slot_.size() != state_.grid.node_count())
+    cell_slot_.assign(state_.grid.node_count(), -1);
+  else
+    for (const std::int64_t corner : cell_slots_set_) cell_slot_[static_cast<std::size_t>(corner)] = -1;
+  cell_slots_set_.clear();
+}
+
 // The corner nodes of every cell a point maps to, once each (a block of 2^D per cell).
 template <int D>
 void ImplicitSolver<D>::mapped_cells(std::vector<std::int64_t>& blocks) {
   using MS = MappedStencils<D>;
   const std::size_t n = state_.points.size();
-  cell_slot_.assign(state_.grid.node_count(), -1);
+  clear_cell_slots();
   blocks.clear();
   for (std::size_t p = 0; p < n; ++p) {
     const std::int64_t* box = &mapped_.box[p * static_cast<std::size_t>(mapped_.KS)];
@@ -235,6 +247,7 @@ void ImplicitSolver<D>::mapped_cells(std::vector<std::int64_t>& blocks) {
       const std::int64_t corner = box[c0];
       if (cell_slot_[static_cast<std::size_t>(corner)] >= 0) continue;
       cell_slot_[static_cast<std::size_t>(corner)] = 0;
+      cell_slots_set_.push_back(corner);
       for (int a = 0; a < MS::KG; ++a) {
         std::int64_t f = corner;
         for (int d = 0; d < D; ++d)
@@ -320,6 +333,7 @@ void ImplicitSolver<D>::node_internal_force(std::vector<Vec<D>>& f) const {
   template void ImplicitSolver<D>::assemble_mapped(double, bool);                                     \
   template void ImplicitSolver<D>::assemble_by_cells(double*);                                        \
   template void ImplicitSolver<D>::mapped_cells(std::vector<std::int64_t>&);                          \
+  template void ImplicitSolver<D>::clear_cell_slots();                                                \
   template bool ImplicitSolver<D>::node_magnitudes(std::vector<double>&, std::vector<double>&) const; \
   template StepStatus ImplicitSolver<D>::evaluate_at_rest();                                          \
   template void ImplicitSolver<D>::node_internal_force(std::vector<Vec<D>>&) const;

@@ -31,6 +31,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -99,7 +100,7 @@ struct MappedStencils {
   // between the processes whose boxes hold a cell's lower corner).
   long build(ForceIntegration integration, StressRecovery recovery, const PointStencils<D>& kernel,
              const GridGeometry<D>& g, const Particles<D>& P, const std::vector<double>& volume,
-             const std::vector<double>& inv_r, const std::vector<double>& mass, int threads,
+             const std::vector<double>& inv_r, std::span<const double> mass, int threads,
              BoxExchange<D>* boxes = nullptr) {
     const std::size_t n = P.size();
     const bool axi = !inv_r.empty();
@@ -386,7 +387,7 @@ struct MappedStencils {
   // quadratic at its boundary, linear in a layer one cell thick). A node that carries mass is
   // thus in the patch of the points next to it: the tangent has no empty column.
   void cmpm_trial(std::size_t p, const std::array<int, D>& c, const GridGeometry<D>& g, const Vec<D>& x,
-                  const std::vector<double>& mass) {
+                  std::span<const double> mass) {
     // Per axis: extend to a side when the far nodes of that neighbour, across the cell's own
     // nodes along the other axes, all carry mass.
     const auto active = [&](const std::array<int, D>& node) {

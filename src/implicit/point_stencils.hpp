@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/grid.hpp"
@@ -67,7 +68,7 @@ struct PointStencils {
   // the cell aggregation of unfitted finite elements. A point all of whose nodes are slivers
   // keeps them.
   void aggregate_slivers(const GridGeometry<D>& g, const Particles<D>& P,
-                         const std::vector<std::uint8_t>& sliver, int threads) {
+                         std::span<const std::uint8_t> sliver, int threads) {
     const std::size_t n = size();
 #pragma omp parallel for num_threads(threads) schedule(static)
     for (std::size_t p = 0; p < n; ++p)

@@ -57,6 +57,8 @@ class BoxExchange {
   }
   const Processes& processes() const { return procs_; }
   const std::vector<NodeBox<D>>& boxes() const { return boxes_; }
+  // This process's box (set).
+  const NodeBox<D>& own_box() const { return boxes_[static_cast<std::size_t>(procs_.rank())]; }
 
   // Whether this process counts node ij in the grid's totals: it is the lowest rank whose box,
   // less two layers on the sides that are not the grid's ends, holds it. Every node a point
